@@ -1,0 +1,194 @@
+"""Power-law fits C(omega) = A omega^-gamma to spectra, with an honest uncertainty.
+
+Method
+------
+The spectrum is log-binned (10 bins per decade by default). Each bin carries the mean of ln C over
+its raw Welch ordinates and the geometric-mean frequency; for a power law that point lies exactly on
+the line, and the chi-square bias of E[ln C_hat] (digamma(nu/2) - ln(nu/2)) is the same for every raw
+ordinate, so it shifts the prefactor, not the slope. A weighted least-squares line (weights = number of
+raw ordinates in the bin) is fitted to (ln omega, mean ln C).
+
+Uncertainty: ``gamma_se`` is the standard error of the slope: the larger of (a) the value from the
+scatter of the binned ordinates about the line (the residual variance, so curvature or extra noise
+widen it) and (b) the value expected from the Welch chi-square scatter alone (a floor against a run
+of ordinates that happen to scatter little). ``gamma_err`` is the
+half-width of the 95 % confidence interval, ``t_{0.975, n-2} * gamma_se``. Over 20 seeds of synthetic
+power laws the 95 % interval covered the truth in 19-20 cases (tests/test_fits.py).
+
+Automatic band: within [4 d_omega, omega_Nyquist / 16] (below, the Hann main lobe of the lowest ordinates;
+above, aliasing of the sampled series bends steep spectra: a sampled omega^-2k process is flatter than
+the continuous one by about k u^2/6 in local slope at u = omega dt, 0.03 at k = 3 and omega_N/16), the widest contiguous run of bins spanning at
+least ``min_decades`` whose fit has a reduced chi-square consistent with the expected Welch scatter
+(within 3 sigma of the chi-square distribution) is chosen; ties go to the smaller chi-square.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import special, stats
+
+from .spectra import Spectrum, log_bin
+
+__all__ = ["PowerLawFit", "fit_power_law"]
+
+# Adjacent raw Hann ordinates are correlated: the power correlation of neighbours is (2/3)^2 = 0.444 and
+# of next neighbours (1/6)^2 = 0.028, so the variance of a mean of m neighbours is inflated by
+# 1 + 2 (0.444 + 0.028) = 1.94 over m independent ordinates.
+_HANN_NEIGHBOUR_INFLATION = 1.94
+
+
+@dataclass(frozen=True)
+class PowerLawFit:
+    """Result of :func:`fit_power_law`: C = prefactor * omega^-gamma over ``band``.
+
+    ``gamma_err`` is the 95 % confidence half-width; ``gamma_se`` the 1-sigma standard error.
+    ``prefactor`` has units of C times (rad/s)^gamma.
+    """
+
+    gamma: float
+    gamma_err: float
+    prefactor: float
+    band: tuple[float, float]
+    gamma_se: float
+    n_points: int
+    chi2_red: float
+    band_auto: bool
+    quantity: str = "x"
+    notes: list = field(default_factory=list)
+
+    def level(self, omega):
+        """The fitted line, prefactor * omega^-gamma, at ``omega`` (rad/s)."""
+        return self.prefactor * np.asarray(omega, dtype=float) ** (-self.gamma)
+
+    def to_dict(self) -> dict:
+        """JSON-ready: the keys ``gamma``, ``gamma_err``, ``band`` plus the rest."""
+        return {
+            "gamma": self.gamma, "gamma_err": self.gamma_err, "band": [self.band[0], self.band[1]],
+            "gamma_se": self.gamma_se, "prefactor": self.prefactor, "n_points": self.n_points,
+            "chi2_red": self.chi2_red, "band_auto": self.band_auto, "quantity": self.quantity,
+            "confidence": 0.95,
+        }
+
+    def __str__(self) -> str:
+        return (f"gamma = {self.gamma:.3f} +- {self.gamma_err:.3f} (95 %) over "
+                f"{self.band[0]:.3g}-{self.band[1]:.3g} rad/s{' (auto band)' if self.band_auto else ''}")
+
+
+def _wls(x: np.ndarray, y: np.ndarray, w: np.ndarray) -> tuple[float, float, float, np.ndarray]:
+    """Weighted least-squares line y = a + b x. Returns (a, b, se_b from residuals, residuals)."""
+    W = w.sum()
+    xm = np.sum(w * x) / W
+    ym = np.sum(w * y) / W
+    sxx = np.sum(w * (x - xm) ** 2)
+    b = np.sum(w * (x - xm) * (y - ym)) / sxx
+    a = ym - b * xm
+    r = y - (a + b * x)
+    n = len(x)
+    s2 = np.sum(w * r**2) / (n - 2) if n > 2 else np.inf
+    return float(a), float(b), float(math.sqrt(s2 / sxx)), r
+
+
+def _binned(spectrum: Spectrum, bins_per_decade: int):
+    b = spectrum if "log_mean_C" in spectrum.provenance else log_bin(spectrum, bins_per_decade)
+    logC = np.asarray(b.provenance.get("log_mean_C", np.log(b.C)))
+    # Expected variance of one raw ln C ordinate: trigamma(nu/2) for a chi-square with nu dof.
+    var_raw = float(special.polygamma(1, b.dof / 2.0))
+    var_bin = var_raw * np.where(b.n_avg > 1, _HANN_NEIGHBOUR_INFLATION, 1.0) / b.n_avg
+    return b, np.log(b.omega), logC, var_bin
+
+
+def _auto_band(lnw, lnC, var, w, min_decades):
+    n = len(lnw)
+    min_span = min_decades * math.log(10)
+    best = None  # (span, -chi2, i, j)
+    fallback = None
+    for i in range(n):
+        for j in range(i + 3, n):  # at least 4 points
+            span = lnw[j] - lnw[i]
+            if span < min_span * 0.999:
+                continue
+            sl = slice(i, j + 1)
+            a, b, _, r = _wls(lnw[sl], lnC[sl], w[sl])
+            dof = j - i + 1 - 2
+            chi2 = float(np.sum(r**2 / var[sl]) / dof)
+            limit = 1.0 + 3.0 * math.sqrt(2.0 / dof)
+            if chi2 <= limit:
+                key = (round(span, 6), -chi2)
+                if best is None or key > best[0]:
+                    best = (key, i, j)
+            if abs(span - min_span) < math.log(10) / 8 or span < min_span * 1.2:
+                if fallback is None or chi2 < fallback[0]:
+                    fallback = (chi2, i, j)
+    if best is not None:
+        return best[1], best[2], True
+    if fallback is not None:
+        return fallback[1], fallback[2], False
+    return 0, n - 1, False
+
+
+def fit_power_law(spectrum: Spectrum, band=None, *, bins_per_decade: int = 10,
+                  min_decades: float = 1.0) -> PowerLawFit:
+    """Fit C(omega) = A omega^-gamma over ``band`` (rad/s), or over an automatically chosen band.
+
+    See the module docstring for the method and the meaning of the uncertainty.
+    """
+    notes = []
+    if band is not None:
+        lo, hi = map(float, band)
+        if not 0 < lo < hi:
+            raise ValueError(f"band must satisfy 0 < low < high (got {band!r})")
+        if lo < spectrum.omega_min * (1 - 1e-9) or hi > spectrum.omega_max * (1 + 1e-9):
+            raise ValueError(
+                f"band ({lo:.4g}, {hi:.4g}) rad/s lies outside the resolved range "
+                f"({spectrum.omega_min:.4g}, {spectrum.omega_max:.4g}) rad/s"
+            )
+        sub = spectrum
+        b, lnw, lnC, var = _binned(sub, bins_per_decade)
+        keep = (b.omega >= lo) & (b.omega <= hi)
+        if keep.sum() < 3:
+            raise ValueError(f"band ({lo:.4g}, {hi:.4g}) rad/s holds fewer than 3 log bins; widen it")
+        i, j = int(np.argmax(keep)), int(len(keep) - 1 - np.argmax(keep[::-1]))
+        auto = False
+    else:
+        raw_step = spectrum.omega[0] if np.all(spectrum.n_avg == 1) else spectrum.omega_min
+        dt = spectrum.provenance.get("dt")
+        top = math.pi / dt / 16 if dt else spectrum.omega_max
+        lo, hi = 4 * raw_step, min(top, spectrum.omega_max)
+        if hi <= lo * 1.5:
+            raise ValueError(
+                f"too few resolved frequencies for an automatic band ({lo:.4g}-{hi:.4g} rad/s); "
+                "use a longer record or a shorter nperseg"
+            )
+        b, lnw, lnC, var = _binned(spectrum, bins_per_decade)
+        inside = (b.omega >= lo) & (b.omega <= hi)
+        idx = np.flatnonzero(inside)
+        avail = (lnw[idx[-1]] - lnw[idx[0]]) / math.log(10) if len(idx) > 1 else 0.0
+        if len(idx) < 4:
+            raise ValueError("too few log bins for an automatic band; pass band= explicitly")
+        md = min(min_decades, avail)
+        if md < min_decades:
+            notes.append(f"only {avail:.2f} decades resolved; fitted over all of them")
+        ii, jj, ok = _auto_band(lnw[idx], lnC[idx], var[idx], b.n_avg[idx].astype(float), md)
+        if not ok:
+            notes.append("no band of the requested width is a straight power law within its scatter; "
+                         "reporting the straightest one")
+        i, j = int(idx[ii]), int(idx[jj])
+        auto = True
+    sl = slice(i, j + 1)
+    w = b.n_avg[sl].astype(float)
+    a, slope, se, r = _wls(lnw[sl], lnC[sl], w)
+    wm = 1.0 / var[sl]
+    x_m = np.sum(wm * lnw[sl]) / wm.sum()
+    se = max(se, float(math.sqrt(1.0 / np.sum(wm * (lnw[sl] - x_m) ** 2))))
+    npts = j - i + 1
+    chi2 = float(np.sum(r**2 / var[sl]) / max(npts - 2, 1))
+    tq = float(stats.t.ppf(0.975, max(npts - 2, 1)))
+    # ln C_hat is biased low by digamma(nu/2) - ln(nu/2) for every raw ordinate; undo it in the prefactor.
+    bias = float(special.digamma(b.dof / 2.0) - math.log(b.dof / 2.0))
+    band_out = (float(b.omega[i]), float(b.omega[j])) if band is None else (lo, hi)
+    return PowerLawFit(
+        gamma=-slope, gamma_err=tq * se, prefactor=float(math.exp(a - bias)), band=band_out,
+        gamma_se=se, n_points=npts, chi2_red=chi2, band_auto=auto, quantity=spectrum.quantity, notes=notes,
+    )

@@ -1,0 +1,37 @@
+"""Synthetic series with exactly known spectra, for tests (eq. 2 convention)."""
+import numpy as np
+
+
+def ou_process(n: int, dt: float, tau: float, sigma: float, seed: int) -> np.ndarray:
+    """Exact discretisation of an Ornstein-Uhlenbeck process (AR(1) with rho = exp(-dt/tau)).
+
+    Its spectrum is the Lorentzian C(omega) = sigma^2 tau / (pi (1 + omega^2 tau^2)) up to aliasing.
+    """
+    rng = np.random.default_rng(seed)
+    rho = np.exp(-dt / tau)
+    from scipy.signal import lfilter
+    e = rng.standard_normal(n) * sigma * np.sqrt(1 - rho**2)
+    e[0] = rng.standard_normal() * sigma
+    return lfilter([1.0], [1.0, -rho], e)
+
+
+def ou_spectrum(omega, tau: float, sigma: float):
+    return sigma**2 * tau / (np.pi * (1.0 + (omega * tau) ** 2))
+
+
+def pink_noise(n: int, seed: int) -> np.ndarray:
+    """1/f noise by Fourier synthesis: Gaussian coefficients with |c|^2 ~ 1/f (exact, periodic)."""
+    rng = np.random.default_rng(seed)
+    k = np.fft.rfftfreq(n)
+    amp = np.zeros_like(k)
+    amp[1:] = k[1:] ** -0.5
+    c = (rng.standard_normal(len(k)) + 1j * rng.standard_normal(len(k))) * amp
+    return np.fft.irfft(c, n)
+
+
+def power_law_series(gamma: int, n: int, seed: int) -> np.ndarray:
+    """omega^-gamma series by integrating white (even gamma) or 1/f (odd gamma) noise gamma//2 times."""
+    x = pink_noise(n, seed) if gamma % 2 else np.random.default_rng(seed).standard_normal(n)
+    for _ in range(gamma // 2):
+        x = np.cumsum(x)
+    return x
