@@ -1,0 +1,39 @@
+"""The trace every reduced model returns: what compare needs (t, x, metadata) plus model channels."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["ModelTrace"]
+
+
+@dataclass(frozen=True)
+class ModelTrace:
+    """A sampled run of a reduced model.
+
+    Attributes
+    ----------
+    t : ndarray
+        Sample times (Units: s), uniform, starting at 0.
+    x : ndarray
+        Block position x(t) = v t + zeta(t) relative to its start (Units: m).
+    force : ndarray
+        The model's fluctuating force on the block, averaged over [t_k, t_k + dt) (Units: N). Model I: the
+        summed random force sum_i f_i on the miniblocks; model II: sum of particle forces; model III: the
+        friction force F(t).
+    events : dict
+        Model-specific event records (arrays), e.g. model I renewal times and miniblock indices.
+    metadata : dict
+        Model name, parameters (SI), seed, package version, and how the run was made.
+    """
+
+    t: np.ndarray
+    x: np.ndarray
+    force: np.ndarray
+    events: dict = field(default_factory=dict)
+    metadata: dict = field(default_factory=dict)
+
+    @property
+    def dt(self) -> float:
+        return float(self.t[1] - self.t[0])
