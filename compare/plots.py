@@ -1,0 +1,62 @@
+"""Figures for reports (matplotlib, Agg). The only module of compare that imports matplotlib."""
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from .spectra import Spectrum, log_bin  # noqa: E402
+
+__all__ = ["spectrum_figure", "save_figure", "figure_png_bytes"]
+
+
+def spectrum_figure(measured: list, theory: list = (), *, title: str = "", ylabel: str = r"$C_x$ (m$^2$ s)",
+                    fits: list = (), band: tuple | None = None):
+    """Log-log overlay.
+
+    measured : list of (Spectrum, label) -- drawn log-binned (20 per decade) as lines with markers.
+    theory : list of (omega, C, label) -- drawn as dashed lines.
+    fits : list of (PowerLawFit, label) -- drawn as thin lines over their band.
+    band : shaded frequency band (rad/s), e.g. the fit band.
+    """
+    fig, ax = plt.subplots(figsize=(6.4, 4.6), dpi=110)
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for i, (spec, label) in enumerate(measured):
+        b = log_bin(spec, 20) if isinstance(spec, Spectrum) else spec
+        ax.loglog(b.omega, b.C, "-", marker=".", ms=3, lw=1.2, color=colors[i % len(colors)], label=label)
+    for j, (w, C, label) in enumerate(theory):
+        ax.loglog(w, C, "--", lw=1.4, color=colors[(len(measured) + j) % len(colors)] if len(theory) > len(measured)
+                  else colors[j % len(colors)], alpha=0.9, label=label)
+    for fit, label in fits:
+        w = np.logspace(np.log10(fit.band[0]), np.log10(fit.band[1]), 20)
+        ax.loglog(w, fit.level(w) * 3.0, "k-", lw=0.8)
+        ax.text(np.sqrt(fit.band[0] * fit.band[1]), fit.level(np.sqrt(fit.band[0] * fit.band[1])) * 4.5,
+                f"{label}$\\gamma$ = {fit.gamma:.2f} ± {fit.gamma_err:.2f}", fontsize=8, ha="center")
+    if band is not None:
+        ax.axvspan(band[0], band[1], color="0.9", zorder=-1)
+    ax.set_xlabel(r"$\omega$ (rad/s)")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="major", alpha=0.3)
+    ax.legend(fontsize=7, loc="lower left")
+    fig.tight_layout()
+    return fig
+
+
+def figure_png_bytes(fig) -> bytes:
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png")
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def save_figure(fig, path: Path) -> bytes:
+    """Write a PNG and return its bytes (for embedding)."""
+    data = figure_png_bytes(fig)
+    Path(path).write_bytes(data)
+    return data

@@ -1,0 +1,327 @@
+"""The `frictionnoise report` job: the paper's model figures, exponents with uncertainty, per-band
+comparison with the closed forms, and timings, as one self-contained HTML page plus summary.json.
+
+Numbers are computed in :func:`build_report` (no files); :func:`write_report` writes them atomically
+(a temporary folder renamed into place), so an interrupted run leaves no half-written report.
+"""
+from __future__ import annotations
+
+import base64
+import html
+import json
+import math
+import os
+import shutil
+import tempfile
+import time
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from reduced_models import asperity_force, spring_block, wear_particle
+from reduced_models._version import package_version
+
+from .fits import fit_power_law
+from .spectra import band_average, displacement_spectrum, force_series_spectrum
+
+__all__ = ["Section", "build_report", "write_report"]
+
+
+@dataclass
+class Section:
+    title: str
+    paragraphs: list = field(default_factory=list)
+    tables: list = field(default_factory=list)  # (caption, header, rows)
+    figures: list = field(default_factory=list)  # (name, png bytes, caption)
+
+
+def _band_ratios(spec, theory_values, edges):
+    r = band_average(spec, edges) / band_average(spec, edges, theory_values)
+    return [{"band": [float(edges[i]), float(edges[i + 1])], "ratio": float(r[i])} for i in range(len(r))]
+
+
+def _ratio_rows(ratios):
+    return [[f"{b['band'][0]:.3g} - {b['band'][1]:.3g}", f"{b['ratio']:.3f}"] for b in ratios]
+
+
+def _log_err(ratios):
+    return float(np.mean([abs(math.log(b["ratio"])) for b in ratios]))
+
+
+def _timed(fn, *a, **k):
+    t0 = time.perf_counter()
+    out = fn(*a, **k)
+    return out, time.perf_counter() - t0
+
+
+# ----------------------------------------------------------------------------- model I
+def _model_I(quick: bool, seed: int, summary: dict, timings: list, progress) -> list[Section]:
+    from . import plots
+
+    p = spring_block.SpringBlockParams.reference()
+    T = 900.0  # the paper's run; 0.5 s of wall time, so quick mode keeps it
+    T_var = 300.0 if quick else 900.0
+    spring_block.simulate(p, 0.1, 1e-3, seed=seed)  # JIT warm-up, not timed
+    tr, wall = _timed(spring_block.simulate, p, T, 1e-3, seed=seed)
+    progress("model I reference")
+    spec = displacement_spectrum(tr.t, tr.x)
+    band = (10 * p.v / p.a, spring_block.crossover_frequency(p) / 10)
+    fit = fit_power_law(spec, band=band)
+    edges = np.logspace(0, 3, 9)
+    ratios = _band_ratios(spec, spring_block.theory_spectrum(p, spec.omega), edges)
+    amp = float(band_average(spec, list(band))[0] / band_average(spec, list(band), spring_block.asymptotic_spectrum(p, spec.omega))[0])
+    timings.append(["model I (exact modal)", f"{T:g} s at 1 kHz", f"{wall:.3f}", f"{_log_err(ratios):.3f}"])
+    summary["model_I"] = {**fit.to_dict(), "band_ratios_vs_A10": ratios, "eq6_amplitude_ratio": amp,
+                          "params": p.to_dict(), "seed": seed, "duration_s": T, "wall_s": wall,
+                          "mean_renewal_interval_s": float(np.mean(np.diff(tr.events["times"]))),
+                          "mean_renewal_interval_theory_s": spring_block.mean_renewal_interval(p)}
+    w = np.logspace(np.log10(spec.omega_min), np.log10(spec.omega_max), 300)
+    fig13 = plots.spectrum_figure(
+        [(spec, f"simulation, {T:g} s")],
+        [(w, spring_block.theory_spectrum(p, w), "eq. (A10)"), (w, spring_block.asymptotic_spectrum(p, w), "eq. (6)/(A12)")],
+        fits=[(fit, "")], band=band, title="Model I, reference case (paper Fig. 13)")
+    s1 = Section("Model I: spring-block (paper section 3-4, Appendix A)")
+    s1.paragraphs += [
+        f"Reference case (N = 30, v = 0.5 mm/s, a = 1 mm, k0 = 1e4 N/m, k1 = 1e2 N/m, M = 1 kg, m = 1e-5 kg, "
+        f"eta0 = 8000 1/s, eta1 = {p.eta1:.3g} 1/s from steady sliding, alpha = 1), {T:g} s sampled at 1 kHz, "
+        f"propagated exactly between renewals in {wall:.2f} s of wall time.",
+        f"Fitted gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} (95 %) over {band[0]:.3g}-{band[1]:.3g} rad/s "
+        f"(10 v/a to omega_c/10, omega_c = sqrt(N k0 / M) = {spring_block.crossover_frequency(p):.0f} rad/s). "
+        f"The measured level is {amp:.3f} times eq. (6) in that band. Per-band ratios to eq. (A10) range "
+        f"{min(b['ratio'] for b in ratios):.3f}-{max(b['ratio'] for b in ratios):.3f} over 1-1000 rad/s.",
+        "Assumptions and regime: the block responds viscously, Z = -1/(i omega m eta1) (eq. A6), for "
+        f"omega well below N m eta1 / M = {p.N * p.m * p.eta1 / p.M:.3g} rad/s and the resonance "
+        f"{spring_block.crossover_frequency(p):.0f} rad/s; the random force of each miniblock is white above v/a = "
+        f"{p.v / p.a:.2g} rad/s (C_f ~ omega^-2 in the convention of eq. A9), which gives gamma = 4. Below v/a "
+        "the force is correlated over whole renewal intervals and C_x ~ omega^-2 (the random walk of Appendix A).",
+    ]
+    s1.tables.append(("C_x(simulation) / C_x(A10), per log band", ["band (rad/s)", "ratio"], _ratio_rows(ratios)))
+    s1.figures.append(("fig13_model_I_reference.png", plots.figure_png_bytes(fig13),
+                       "Simulated C_x against eq. (A10) (full transfer function) and the asymptote eq. (6)."))
+
+    # Fig. 2: variations
+    variations = [("reference", {}), ("v = 1 mm/s", {"v": 1e-3}), ("a = 0.5 mm", {"a": 0.5e-3}),
+                  ("N = 60", {"N": 60}), ("alpha = 0.4", {"alpha": 0.4})]
+    specs, theo, rows, var_summary = [], [], [], {}
+    for label, change in variations:
+        q = replace(p, **change)
+        tq = spring_block.simulate(q, T_var, 1e-3, seed=seed + 1)
+        sq = displacement_spectrum(tq.t, tq.x)
+        bq = (10 * q.v / q.a, spring_block.crossover_frequency(q) / 10)
+        fq = fit_power_law(sq, band=bq)
+        lvl = float(band_average(sq, [10.0, 50.0])[0])
+        specs.append((sq, label))
+        theo.append((w, spring_block.theory_spectrum(q, w), f"(A10), {label}"))
+        var_summary[label] = {**fq.to_dict(), "C_x_10_50": lvl,
+                              "C_x_10_50_eq6": float(band_average(sq, [10.0, 50.0], spring_block.asymptotic_spectrum(q, sq.omega))[0])}
+        rows.append([label, f"{fq.gamma:.3f} &plusmn; {fq.gamma_err:.3f}", f"{bq[0]:.3g}-{bq[1]:.3g}",
+                     f"{lvl / var_summary['reference']['C_x_10_50']:.3f}",
+                     f"{var_summary[label]['C_x_10_50_eq6'] / var_summary['reference']['C_x_10_50_eq6']:.3f}"])
+    progress("model I variations")
+    summary["model_I_variations"] = var_summary
+    fig2 = plots.spectrum_figure(specs, theo, title="Model I variations (paper Fig. 2)")
+    s2 = Section("Model I variations (paper Fig. 2)")
+    s2.paragraphs.append(
+        "Each variation changes one parameter of the reference case (eta1 re-derived from steady sliding). "
+        "Eq. (6) predicts C_x ~ alpha^2 v^3 / (N a) in the omega^-4 band; the table compares the measured level "
+        "in 10-50 rad/s, relative to the reference, with that prediction.")
+    s2.tables.append(("Fitted exponents and levels", ["case", "gamma (95 %)", "band (rad/s)",
+                                                       "C_x(10-50) / reference", "eq. (6) ratio"], rows))
+    s2.figures.append(("fig2_model_I_variations.png", plots.figure_png_bytes(fig2), "Simulations (solid) and eq. (A10) (dashed)."))
+    return [s1, s2]
+
+
+# ----------------------------------------------------------------------------- model III
+def _model_III(quick: bool, seed: int, summary: dict, timings: list, progress) -> Section:
+    from . import plots
+
+    s = Section("Model III: asperity force (paper sections 6-7)")
+    specs, theo, rows = [], [], []
+    n_steps = 2**18 if quick else 2**20
+    for N in (30, 300):
+        p = asperity_force.AsperityForceParams.reference(N)
+        asperity_force.simulate(p, 100 * p.dt, seed=seed)
+        tr, wall = _timed(asperity_force.simulate, p, n_steps * p.dt, seed=seed)
+        sx = displacement_spectrum(tr.t, tr.x)
+        sF = force_series_spectrum(tr.t, tr.force)
+        wN = math.pi / p.dt
+        band = (30 * p.v / p.w, wN / 4)
+        fit = fit_power_law(sx, band=band)
+        edges = np.logspace(np.log10(3 * p.v / p.w), np.log10(wN / 3), 9)
+        ratios = _band_ratios(sF, asperity_force.theory_force_spectrum(p, sF.omega), edges)
+        timings.append([f"model III, N = {N}", f"{n_steps} steps of {p.dt:.3g} s", f"{wall:.3f}", f"{_log_err(ratios):.3f}"])
+        key = "model_III" if N == 30 else f"model_III_N{N}"
+        summary[key] = {**fit.to_dict(), "N": N, "mean_force_over_F_f": float(tr.force.mean() / p.F_f),
+                        "C_F_band_ratios": ratios, "params": p.to_dict(), "wall_s": wall}
+        w = np.logspace(np.log10(sx.omega_min), np.log10(sx.omega_max * 0.99), 400)
+        specs.append((sx, f"simulation, N = {N}"))
+        theo.append((w, asperity_force.theory_spectrum_sampled(p, w), f"exact, N = {N}"))
+        rows.append([str(N), f"{fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f}", f"{band[0]:.3g}-{band[1]:.3g}",
+                     f"{tr.force.mean() / p.F_f:.4f}",
+                     f"{min(b['ratio'] for b in ratios):.3f}-{max(b['ratio'] for b in ratios):.3f}"])
+    progress("model III")
+    fig = plots.spectrum_figure(specs, theo, title="Model III (paper Fig. 6)")
+    s.paragraphs += [
+        "F_f = 5 N, v = 0.5 mm/s, p = 0.1, M = 1 kg, w = 1 cm. The force is a moving-window sum of i.i.d. cell "
+        "forces; its spectrum is exactly sigma_g^2 dt/(2 pi) sin^2(N_w omega dt/2)/sin^2(omega dt/2), white below "
+        "2 pi v / w and ~omega^-2 above, so the inertial relation C_x = C_F/(M^2 omega^4) gives gamma = 6.",
+        "Assumptions and regime: a rigid flat block, no load redistribution between contacts (section 7), and a "
+        "purely inertial block (no velocity-strengthening friction), so below v/w its velocity diffuses and "
+        "C_x ~ omega^-4 there. The paper attributes the disagreement with experiment (gamma 4-5) to the missing "
+        "load redistribution.",
+    ]
+    s.tables.append(("Fits (band 30 v/w to omega_N/4) and checks", ["N", "gamma (95 %)", "band (rad/s)",
+                                                                   "mean F / F_f", "C_F / exact, per band"], rows))
+    s.figures.append(("fig6_model_III.png", plots.figure_png_bytes(fig), "Simulated C_x (solid) and the exact sampled spectrum (dashed)."))
+    return s
+
+
+# ----------------------------------------------------------------------------- model II
+def _model_II(quick: bool, seed: int, summary: dict, timings: list, progress) -> Section:
+    from . import plots
+
+    p = wear_particle.WearParticleParams.one_over_f(1000)
+    T = 500.0 if quick else 2000.0
+    nper = 2**16 if quick else 2**18
+    wear_particle.simulate(replace(p, n_particles=2), 1.0, 1e-3, seed=seed)
+    tr, wall = _timed(wear_particle.simulate, p, T, 1e-3, seed=seed)
+    progress("model II")
+    sF = force_series_spectrum(tr.t, tr.force, nperseg=nper)
+    sx = displacement_spectrum(tr.t, tr.x, nperseg=nper)
+    pred = wear_particle.power_law_prediction(p)
+    band = pred["band"] if not quick else (0.3, 10.0)
+    fitF = fit_power_law(sF, band=band)
+    fitx = fit_power_law(sx, band=band)
+    fit_hi = fit_power_law(sF, band=(300.0, 1000.0))
+    lo = max(0.1, 4 * sF.omega_min)
+    edges = np.logspace(np.log10(lo), 3, 9)
+    ratios = _band_ratios(sF, wear_particle.theory_force_spectrum(p, sF.omega, dt_avg=1e-3), edges)
+    w = np.logspace(np.log10(sF.omega_min), 3.4, 300)
+    ind = replace(p, tau_link="independent")
+    slope_ind = float(np.polyfit(np.log(np.logspace(-1, 1, 20)), np.log(wear_particle.theory_force_spectrum(ind, np.logspace(-1, 1, 20))), 1)[0])
+    cum = wear_particle.theory_force_spectrum(p, np.logspace(-1, 1, 9), closure="cumulant") / wear_particle.theory_force_spectrum(p, np.logspace(-1, 1, 9))
+    timings.append(["model II (1000 particles)", f"{T:g} s at 1 kHz", f"{wall:.3f}", f"{_log_err(ratios):.3f}"])
+    summary["model_II"] = {**fitx.to_dict(), "force_fit": fitF.to_dict(), "force_fit_above_1_over_tau_min": fit_hi.to_dict(),
+                           "C_F_band_ratios_vs_B2": ratios, "prediction": {k: v for k, v in pred.items()},
+                           "independent_times_B2_slope_0.1_10": slope_ind,
+                           "cumulant_over_exact_closure_range": [float(cum.min()), float(cum.max())], "wall_s": wall}
+    fig = plots.spectrum_figure([(sF, "simulation, C_F")],
+                                [(w, wear_particle.theory_force_spectrum(p, w, dt_avg=1e-3), "eq. (B2), exact closure"),
+                                 (w, wear_particle.theory_force_spectrum(p, w, closure="cumulant", dt_avg=1e-3), "eq. (B2), paper's cumulant closure")],
+                                fits=[(fitF, "force ")], band=band, ylabel=r"$C_F$ (N$^2$ s)",
+                                title="Model II, 1000 particles, tau 10 ms - 100 s")
+    figx = plots.spectrum_figure([(sx, "simulation, C_x")], [(w, wear_particle.theory_spectrum(p, w), "C_F(B2) / (M^2 omega^4)")],
+                                 fits=[(fitx, "")], band=band, title="Model II displacement spectrum")
+    s = Section("Model II: wear particles, trap and release (paper section 5, Appendix B)")
+    s.paragraphs += [
+        f"1000 particles; each has one relaxation time drawn log-uniform over 10 ms-100 s, shared by its trapped "
+        f"and sliding states, exponential durations, and an independent random-sign force of 0.01 N per episode "
+        f"(the assumption under which eq. (B2) is exact). {T:g} s at 1 kHz in {wall:.2f} s.",
+        f"Force spectrum slope over {band[0]:.3g}-{band[1]:.3g} rad/s: {-fitF.gamma:.3f} &plusmn; {fitF.gamma_err:.3f} "
+        f"(1/f predicted by beta + beta' = 2); displacement gamma = {fitx.gamma:.3f} &plusmn; {fitx.gamma_err:.3f}. Above "
+        f"1/tau_min the force spectrum falls as omega^-{fit_hi.gamma:.2f} &plusmn; {fit_hi.gamma_err:.2f} (Appendix B: omega^-2, gamma = 6).",
+        f"Two findings. (1) If a particle's trapped and sliding times are drawn independently (P_A(tau) P_B(tau') as "
+        f"written in eq. B2), the weight 1/(tau + tau') diverges logarithmically at small tau' and (B2) itself gives "
+        f"a slope of {slope_ind:.2f} over 0.1-10 rad/s, not -1: the beta + beta' = 2 rule holds only up to that "
+        f"logarithm. (2) The paper's cumulant closure exp(-s^2 omega^2/2) cos(omega tau) overestimates (B2) by "
+        f"{100 * (cum.min() - 1):.0f}-{100 * (cum.max() - 1):.0f} % in the 1/f band for exponential durations; the "
+        "simulation follows the exact closure.",
+        "Assumptions and regime: inertial response C_x = C_F/(M^2 omega^4) (no velocity-strengthening friction); "
+        "particles do not interact.",
+    ]
+    s.tables.append(("C_F(simulation) / C_F(B2), per log band", ["band (rad/s)", "ratio"], _ratio_rows(ratios)))
+    s.figures.append(("model_II_force.png", plots.figure_png_bytes(fig), "Force spectrum against eq. (B2)."))
+    s.figures.append(("model_II_displacement.png", plots.figure_png_bytes(figx), "Displacement spectrum: gamma = 5."))
+    return s
+
+
+def build_report(quick: bool = False, seed: int = 0, progress=lambda stage: None):
+    """Compute every section and the summary (no files written). Returns (sections, summary)."""
+    summary = {"version": package_version(), "quick": quick, "seed": seed,
+               "conventions": "C(omega) two-sided in angular frequency, eq. (2); gamma_err = 95 % half-width"}
+    timings: list = []
+    t0 = time.perf_counter()
+    sections = _model_I(quick, seed, summary, timings, progress)
+    sections.append(_model_III(quick, seed, summary, timings, progress))
+    sections.append(_model_II(quick, seed, summary, timings, progress))
+    speed = Section("Speed against error (reduced models)")
+    speed.paragraphs.append(
+        "Wall time of each run in this report (after JIT warm-up) and its band-averaged |ln(simulation / exact "
+        "theory)|, which for these exact simulators is sampling noise. The explicit baseline for model I and the "
+        "work-precision tables are in benchmarks/ (see the README).")
+    speed.tables.append(("Runs in this report", ["model", "run", "wall (s)", "mean |ln ratio|"], timings))
+    sections.append(speed)
+    engine = Section("Engine scenes")
+    engine.paragraphs.append("The pymunk scene (issue 5) is not implemented yet; no scenario is compared in this report.")
+    sections.append(engine)
+    summary["scenarios"] = {}
+    summary["timings"] = [dict(zip(["model", "run", "wall_s", "mean_abs_log_ratio"], r)) for r in timings]
+    summary["total_wall_s"] = time.perf_counter() - t0
+    return sections, summary
+
+
+# ----------------------------------------------------------------------------- writing
+_CSS = """body{font-family:system-ui,sans-serif;max-width:60rem;margin:2rem auto;padding:0 1rem;color:#222}
+h1{font-size:1.5rem}h2{font-size:1.2rem;border-bottom:1px solid #ccc;margin-top:2rem}
+table{border-collapse:collapse;margin:0.6rem 0;font-size:0.9rem}td,th{border:1px solid #ccc;padding:2px 8px}
+th{background:#f4f4f4}figure{margin:1rem 0}figcaption{font-size:0.85rem;color:#555}img{max-width:100%}"""
+
+
+def _html(sections, summary) -> str:
+    out = ["<!doctype html><html><head><meta charset='utf-8'><title>frictionnoise report</title>",
+           f"<style>{_CSS}</style></head><body>",
+           "<h1>frictionnoise report</h1>",
+           f"<p>Version {html.escape(str(summary['version']))}, seed {summary['seed']}"
+           f"{', quick mode (shorter runs)' if summary['quick'] else ''}. Spectra are two-sided in angular frequency "
+           "(Xu, Zhou &amp; Persson 2025, eq. 2); exponent uncertainties are 95 % confidence half-widths.</p>"]
+    for s in sections:
+        out.append(f"<h2>{html.escape(s.title)}</h2>")
+        out += [f"<p>{p}</p>" for p in s.paragraphs]
+        for caption, header, rows in s.tables:
+            out.append(f"<table><caption>{html.escape(caption)}</caption><tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in header) + "</tr>")
+            out += ["<tr>" + "".join(f"<td>{c}</td>" for c in row) + "</tr>" for row in rows]
+            out.append("</table>")
+        for name, data, caption in s.figures:
+            b64 = base64.b64encode(data).decode()
+            out.append(f"<figure><img alt='{html.escape(name)}' src='data:image/png;base64,{b64}'>"
+                       f"<figcaption>{html.escape(caption)} (figures/{html.escape(name)})</figcaption></figure>")
+    out.append("</body></html>")
+    return "\n".join(out)
+
+
+def _json_default(o):
+    if isinstance(o, (np.floating, np.integer)):
+        return o.item()
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    if hasattr(o, "__dataclass_fields__"):
+        from dataclasses import asdict
+        return asdict(o)
+    raise TypeError(f"not JSON serialisable: {type(o).__name__}")
+
+
+def write_report(out_dir: Path, sections, summary) -> Path:
+    """Write index.html, summary.json and figures/*.png into ``out_dir`` atomically."""
+    out_dir = Path(out_dir).resolve()
+    out_dir.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.tmp-", dir=out_dir.parent))
+    tmp.chmod(0o755)
+    try:
+        (tmp / "figures").mkdir()
+        for s in sections:
+            for name, data, _ in s.figures:
+                (tmp / "figures" / name).write_bytes(data)
+        (tmp / "summary.json").write_text(json.dumps(summary, indent=2, default=_json_default))
+        (tmp / "index.html").write_text(_html(sections, summary))
+        if out_dir.exists():
+            old = out_dir.with_name(f".{out_dir.name}.old-{os.getpid()}")
+            out_dir.rename(old)
+            tmp.rename(out_dir)
+            shutil.rmtree(old, ignore_errors=True)
+        else:
+            tmp.rename(out_dir)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    return out_dir

@@ -1,0 +1,56 @@
+"""`frictionnoise report --quick`: the main job's outputs and numbers; CLI errors."""
+import base64
+import io
+import json
+import re
+
+import numpy as np
+import pytest
+
+from compare.cli import main
+
+
+@pytest.fixture(scope="module")
+def quick_report(tmp_path_factory):
+    out = tmp_path_factory.mktemp("r") / "out"
+    assert main(["report", "--quick", "-o", str(out)]) == 0
+    return out
+
+
+def test_summary_holds_the_model_exponents(quick_report):
+    s = json.loads((quick_report / "summary.json").read_text())
+    for key, truth, tol in (("model_I", 4.0, 0.15), ("model_III", 6.0, 0.2), ("model_II", 5.0, 0.2)):
+        fit = s[key]
+        assert set(["gamma", "gamma_err", "band"]) <= set(fit)
+        assert abs(fit["gamma"] - truth) < tol, (key, fit["gamma"])
+        assert 0 < fit["gamma_err"] < tol
+        assert fit["band"][0] < fit["band"][1]
+    assert all(0.85 < b["ratio"] < 1.15 for b in s["model_I"]["band_ratios_vs_A10"])
+    assert s["model_III"]["mean_force_over_F_f"] == pytest.approx(1.0, abs=0.02)
+
+
+def test_html_embeds_non_blank_figures(quick_report):
+    import matplotlib.image as mpimg
+
+    page = (quick_report / "index.html").read_text()
+    imgs = re.findall(r"src='data:image/png;base64,([^']+)'", page)
+    assert len(imgs) == 5
+    for data in imgs:
+        arr = mpimg.imread(io.BytesIO(base64.b64decode(data)), format="png")
+        assert arr.std() > 0.05  # a blank figure has (almost) no variance
+    assert len(list((quick_report / "figures").glob("*.png"))) == 5
+    assert "not implemented yet" in page  # the engine section says so rather than staying silent
+
+
+def test_output_path_that_is_a_file_is_a_user_error(tmp_path, capsys):
+    target = tmp_path / "file"
+    target.write_text("keep me")
+    assert main(["report", "--quick", "-o", str(target)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "not a folder" in err and "Traceback" not in err
+    assert target.read_text() == "keep me"
+
+
+def test_no_command_prints_help(capsys):
+    assert main([]) == 0
+    assert "report" in capsys.readouterr().out
