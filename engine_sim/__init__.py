@@ -1,0 +1,13 @@
+"""The pymunk scene: a block on spring-mounted pads sliding over random substrate tracks.
+
+``run(scenario, duration=None, seed=None)`` returns an :class:`EngineTrace` in SI units; scenarios are
+TOML files (``scenarios/``) or :class:`Scenario` objects. The scene works in mm, g, ms internally
+(``engine_sim.units``) and converts only at its boundary.
+"""
+from .record import EngineTrace
+from .run import run
+from .scenario import Scenario, ScenarioError, load_scenario, scenario_from_dict, shipped_scenarios
+from .scene import Scene
+
+__all__ = ["run", "EngineTrace", "Scenario", "ScenarioError", "load_scenario", "scenario_from_dict",
+           "shipped_scenarios", "Scene"]
