@@ -35,7 +35,9 @@ def _cmd_report(args) -> int:
     out = Path(args.output)
     if out.exists() and not out.is_dir():
         raise UserError(f"{out}: exists and is not a folder")
-    stages = ["model I reference", "model I variations", "model III", "model II"]
+    from engine_sim import shipped_scenarios
+
+    stages = ["model I reference", "model I variations", "model III", "model II"] + list(shipped_scenarios())
     with tqdm(total=len(stages), desc="report", unit="stage", file=sys.stderr,
               disable=not sys.stderr.isatty()) as bar:
         def progress(stage):

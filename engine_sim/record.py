@@ -23,7 +23,7 @@ class EngineTrace:
     """A recorded scene run (SI units). ``t`` [s], ``x`` [m] (block position from its start), ``v`` [m/s];
     ``F_t``, ``F_n`` [N]: summed tangential and normal contact force on the pads (tangential positive
     against the sliding direction, i.e. the Coulomb part of the friction law); ``F_drag`` [N]: the viscous
-    part c sum v_pad, so F_t + F_drag is the whole friction force; ``pad_force`` [N] (samples x pads), tangential; ``n_contact``: pads
+    part c sum v_pad, so F_t + F_drag is the whole friction force; ``F_drive`` [N]: the drive's force on the block; ``pad_force`` [N] (samples x pads), tangential; ``n_contact``: pads
     touching their track; ``penetration`` [m]: the deepest any pad sits below its resting height on its
     track (negative when all are above); ``work_drive``, ``dissipated``, ``mech_energy`` [J] cumulative from the first
     sample; ``metadata``: scenario, seed, version, timings."""
@@ -34,6 +34,7 @@ class EngineTrace:
     F_t: np.ndarray
     F_n: np.ndarray
     F_drag: np.ndarray
+    F_drive: np.ndarray
     pad_force: np.ndarray
     n_contact: np.ndarray
     penetration: np.ndarray
@@ -65,6 +66,7 @@ class Recorder:
         self.penetration = np.empty(n_samples)
         self._rest_y = np.array(scene.pad_y)
         self.F_drag = np.empty(n_samples)
+        self.F_drive = np.empty(n_samples)
         self.power_in = np.empty(n_samples)
         self.power_out = np.empty(n_samples)
         self.mech = np.empty(n_samples)
@@ -110,7 +112,7 @@ class Recorder:
         drive_k, drive_x, drive_rest, drive_v = self._drive_state()
         _reduce(ids, fl, ai, af, self._sorted_ids, self._order, self.block_id, self._bs, self._pp, sc.dt, self.c,
                 self.m_p, self.M, -sc.space.gravity.y, drive_k, drive_x, drive_rest, drive_v, self.x0, k,
-                self._rest_y, self.x, self.v, self.F_t, self.F_n, self.F_drag, self.pad_force, self.n_contact,
+                self._rest_y, self.x, self.v, self.F_t, self.F_n, self.F_drag, self.F_drive, self.pad_force, self.n_contact,
                 self.penetration, self.power_in, self.power_out, self.mech)
         self.t[k] = sc.steps * sc.dt / U.TIME
         self.k += 1
@@ -128,7 +130,7 @@ class Recorder:
         cum = lambda p: np.concatenate([[0.0], np.cumsum(0.5 * (p[1:n] + p[: n - 1]) * dt_s)]) / U.ENERGY
         return EngineTrace(
             t=t - t[0], x=(self.x[:n] - self.x[0]) / U.LENGTH, v=self.v[:n] / U.VELOCITY, F_t=self.F_t[:n],
-            F_n=self.F_n[:n], F_drag=self.F_drag[:n],
+            F_n=self.F_n[:n], F_drag=self.F_drag[:n], F_drive=self.F_drive[:n],
             pad_force=self.pad_force[:n], n_contact=self.n_contact[:n],
             penetration=self.penetration[:n] / U.LENGTH, work_drive=cum(self.power_in),
             dissipated=cum(self.power_out), mech_energy=(self.mech[:n] - self.mech[0]) / U.ENERGY,
@@ -138,7 +140,7 @@ class Recorder:
 
 @numba.njit(cache=True)
 def _reduce(ids, fl, ai, af, sorted_ids, order, block_id, bs, pp, dt, c, m_p, M, g, dk, dx_anchor, drest, dv,
-            x0, k, rest_y, x, v, F_t, F_n, F_drag, pad_force, n_contact, penetration, power_in, power_out, mech):
+            x0, k, rest_y, x, v, F_t, F_n, F_drag, F_drive, pad_force, n_contact, penetration, power_in, power_out, mech):
     """One sample from the raw batch buffers (scene units): bodies [px, py, vx, vy] by id, arbiters
     [a_id, b_id, count] x [Jx, Jy]; contact forces per pad, powers and mechanical energy."""
     N = sorted_ids.shape[0]
@@ -213,6 +215,7 @@ def _reduce(ids, fl, ai, af, sorted_ids, order, block_id, bs, pp, dt, c, m_p, M,
         pe += 0.5 * dk * stretch * stretch
     else:
         power_in[k] = f_drive * bvx
+    F_drive[k] = f_drive
     F_t[k] = sft
     F_n[k] = sfn
     F_drag[k] = c * sv

@@ -11,7 +11,7 @@ from .scene import Scene
 
 __all__ = ["run"]
 
-_MAINTAIN_EVERY = 16  # output steps between substrate maintenance (the margin ahead covers 200 outputs)
+_MAINTAIN_EVERY = 64  # output steps between substrate maintenance (the margin ahead covers 200 outputs)
 
 
 def _version() -> str:
@@ -49,7 +49,7 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
             scene.advance(n_sub)
         if k % _MAINTAIN_EVERY == 0:
             scene.maintain()
-            if progress is not None and k % (_MAINTAIN_EVERY * 64) == 0:
+            if progress is not None and k % (_MAINTAIN_EVERY * 16) == 0:
                 progress((n_warm + k) * sc.run.dt_out, total)
     wall = time.perf_counter() - t0
     if progress is not None:

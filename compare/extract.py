@@ -1,0 +1,83 @@
+"""Parameters of the reduced models measured from an engine trace, each with its provenance.
+
+Model I (spring-block) from a pad scene:
+
+- N: pads in contact (mean of the recorded count); load per pad: mean normal contact force / N.
+- a: the renewal length, from the pads' tangential-force autocorrelation in sliding distance. For
+  renewals at distances a (1 + r - r') (section 3), the integral correlation length is
+  <tau^2> / (2 <tau>) = 7 a / 12, so a = (12/7) Int rho(s) ds; cross-checked with the substrate's a.
+- f_kin and alpha: the mean pad contact force is f_kin; a uniform random part alpha f_kin (r - 1/2) has
+  rms alpha f_kin / sqrt(12) (eq. A7), so alpha = sqrt(12) rms / f_kin.
+- c = dF/dv per pad (m eta1 in model I): from the friction law, checked against the recorded viscous force
+  over the pads' speed; omega* = N c / M separates viscous (below) from inertial (above) response.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["model_I_parameters", "spring_block_params"]
+
+
+def _correlation_length(x: np.ndarray, f: np.ndarray, max_lag_distance: float) -> float:
+    """Int_0^{s0} rho(s) ds over the pads' force series, rho averaged over pads, up to its first zero."""
+    dx = float(np.mean(np.diff(x)))
+    fz = f - f.mean(axis=0)
+    n = len(fz)
+    nfft = 1 << int(math.ceil(math.log2(2 * n)))
+    F = np.fft.rfft(fz, nfft, axis=0)
+    ac = np.fft.irfft(np.abs(F) ** 2, nfft, axis=0)[:n].mean(axis=1)
+    ac /= (n - np.arange(n))  # unbiased
+    rho = ac / ac[0]
+    m = min(n - 1, int(max_lag_distance / dx))
+    seg = rho[: m + 1]
+    stop = np.flatnonzero(seg <= 0)
+    end = int(stop[0]) if stop.size else m
+    return float(np.trapezoid(seg[: end + 1], dx=dx))
+
+
+def model_I_parameters(trace, scenario) -> dict:
+    """Model I parameters of an engine trace: {name: {"value", "unit", "provenance", ...}}."""
+    sc = scenario
+    N_contact = float(np.mean(trace.n_contact))
+    load = float(np.mean(trace.F_n)) / max(N_contact, 1.0)
+    v = float((trace.x[-1] - trace.x[0]) / (trace.t[-1] - trace.t[0]))
+    f = trace.pad_force
+    f_kin = float(np.mean(f))
+    rms = float(np.mean(np.std(f, axis=0)))
+    Lc = _correlation_length(trace.x, f, 10 * sc.substrate.a)
+    a = 12.0 / 7.0 * Lc
+    c_law = sc.friction.c
+    c_meas = float(np.mean(trace.F_drag) / (N_contact * v))
+    return {
+        "N": {"value": N_contact, "unit": "", "provenance": "mean number of pads touching their track"},
+        "load_per_pad": {"value": load, "unit": "N", "provenance": "mean normal contact force / N"},
+        "v": {"value": v, "unit": "m/s", "provenance": "block displacement / time"},
+        "a": {"value": a, "unit": "m", "provenance": "(12/7) x integral correlation length of the pad forces in distance",
+              "substrate_value": sc.substrate.a},
+        "f_kin": {"value": f_kin, "unit": "N", "provenance": "mean tangential contact force per pad"},
+        "alpha": {"value": math.sqrt(12.0) * rms / f_kin, "unit": "", "provenance": "sqrt(12) x rms pad force / f_kin (eq. A7)",
+                  "substrate_value": sc.substrate.alpha},
+        "c": {"value": c_law, "unit": "N s/m", "provenance": "friction law (scenario)", "measured": c_meas},
+        "k0": {"value": sc.pads.k0, "unit": "N/m", "provenance": "scenario"},
+        "M": {"value": sc.block.M, "unit": "kg", "provenance": "scenario"},
+        "m": {"value": sc.pads.mass, "unit": "kg", "provenance": "scenario (pad mass)"},
+        "eta0": {"value": sc.pads.c0 / sc.pads.mass, "unit": "1/s", "provenance": "scenario (c0 / m)"},
+        "omega_star": {"value": N_contact * c_law / sc.block.M, "unit": "rad/s",
+                       "provenance": "N c / M: viscous response below, inertial above"},
+        "omega_c": {"value": math.sqrt(N_contact * sc.pads.k0 / sc.block.M), "unit": "rad/s",
+                    "provenance": "sqrt(N k0 / M): block-on-pads resonance, the top of the omega^-4 band"},
+    }
+
+
+def spring_block_params(ex: dict):
+    """A SpringBlockParams built from :func:`model_I_parameters` (k1 = 0, F_drive from steady sliding)."""
+    from reduced_models.spring_block import SpringBlockParams
+
+    N = max(1, int(round(ex["N"]["value"])))
+    f_kin, c, v = ex["f_kin"]["value"], ex["c"]["value"], ex["v"]["value"]
+    m = ex["m"]["value"]
+    return SpringBlockParams(N=N, v=v, a=ex["a"]["value"], k0=ex["k0"]["value"], k1=0.0, M=ex["M"]["value"], m=m,
+                             eta0=ex["eta0"]["value"], eta1=None, alpha=ex["alpha"]["value"],
+                             F_drive=N * (f_kin + c * v), F_kin=N * f_kin)
