@@ -22,7 +22,148 @@ def _build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--quick", action="store_true", help="shorter runs (under a minute)")
     rep.add_argument("--seed", type=int, default=0, help="random seed (default: %(default)s)")
     rep.set_defaults(func=_cmd_report)
+
+    run = sub.add_parser("run", help="run a scenario and write its trace (.npz + .json)")
+    run.add_argument("scenario", help="scenario TOML file")
+    run.add_argument("-o", "--output", default=None, help="output folder (default: run-<scenario name>)")
+    run.add_argument("--duration", type=float, default=None, help="simulated seconds (default: the scenario's)")
+    run.add_argument("--seed", type=int, default=None, help="random seed (default: the scenario's)")
+    run.set_defaults(func=_cmd_run)
+
+    cmp_ = sub.add_parser("compare", help="report one scene (scenario TOML or trace .npz) against the reduced models")
+    cmp_.add_argument("source", help="scenario TOML file or trace .npz written by `frictionnoise run`")
+    cmp_.add_argument("-o", "--output", default=None, help="output folder (default: compare-<name>)")
+    cmp_.add_argument("--duration", type=float, default=None, help="simulated seconds when running a scenario")
+    cmp_.add_argument("--seed", type=int, default=None)
+    cmp_.set_defaults(func=_cmd_compare)
+
+    ren = sub.add_parser("render", help="render a scenario headless to PNG frames (and an animated GIF)")
+    ren.add_argument("scenario", help="scenario TOML file")
+    ren.add_argument("-o", "--output", default=None, help="output folder (default: render-<scenario name>)")
+    ren.add_argument("--frames", type=int, default=12, help="number of frames (default: %(default)s)")
+    ren.add_argument("--duration", type=float, default=0.6, help="simulated seconds spanned (default: %(default)s)")
+    ren.add_argument("--gif", action="store_true", help="also write animation.gif")
+    ren.add_argument("--seed", type=int, default=None)
+    ren.set_defaults(func=_cmd_render)
     return ap
+
+
+def _cmd_render(args) -> int:
+    from pathlib import Path
+
+    from .outputs import atomic_folder
+
+    sc = _load_scenario(args.scenario)
+    if args.frames < 1:
+        raise UserError(f"--frames must be at least 1 (got {args.frames})")
+    if not args.duration > 0:
+        raise UserError(f"--duration must be positive (got {args.duration})")
+    from engine_sim import Scene
+    from engine_sim.render import SceneRenderer
+
+    out = Path(args.output or f"render-{sc.name}")
+    if out.exists() and not out.is_dir():
+        raise UserError(f"{out}: exists and is not a folder")
+    scene = Scene(sc, args.seed)
+    renderer = SceneRenderer(scene)
+    steps = max(1, int(round(args.duration / sc.run.dt / args.frames)))
+    images = []
+    with atomic_folder(out) as tmp:
+        for k in range(args.frames):
+            img = renderer.frame()
+            renderer.save_png(tmp / f"frame_{k:03d}.png")
+            if args.gif:
+                images.append(img.copy())
+            scene.advance(steps)
+            scene.maintain()
+        if args.gif:
+            from PIL import Image
+
+            frames = [Image.fromarray(im).convert("P", palette=Image.ADAPTIVE) for im in images]
+            frames[0].save(tmp / "animation.gif", save_all=True, append_images=frames[1:], duration=120, loop=0)
+    renderer.close()
+    print(f"wrote {args.frames} frames{' and animation.gif' if args.gif else ''} to {out}")
+    return 0
+
+
+def _load_scenario(path):
+    from engine_sim import ScenarioError, load_scenario
+
+    try:
+        return load_scenario(path)
+    except ScenarioError as e:
+        raise UserError(str(e)) from None
+
+
+def _progress_bar(desc):
+    from tqdm import tqdm
+
+    bar = tqdm(total=1.0, desc=desc, unit="s", file=sys.stderr, disable=not sys.stderr.isatty(),
+               bar_format="{desc}: {percentage:3.0f}%|{bar}| {postfix} [{elapsed}<{remaining}]")
+
+    def update(done, total):
+        bar.total = total
+        bar.n = done
+        bar.set_postfix_str(f"{done:.1f}/{total:.1f} s simulated")
+        bar.refresh()
+    return bar, update
+
+
+def _cmd_run(args) -> int:
+    import engine_sim
+    from pathlib import Path
+
+    from .traceio import save_trace
+
+    sc = _load_scenario(args.scenario)
+    if args.duration is not None and not args.duration > 0:
+        raise UserError(f"--duration must be positive (got {args.duration})")
+    out = Path(args.output or f"run-{sc.name}")
+    if out.exists() and not out.is_dir():
+        raise UserError(f"{out}: exists and is not a folder")
+    bar, update = _progress_bar(sc.name)
+    with bar:
+        tr = engine_sim.run(sc, duration=args.duration, seed=args.seed, progress=update)
+    out.mkdir(parents=True, exist_ok=True)
+    path = save_trace(tr, out / "trace.npz")
+    print(f"wrote {path} and {path.with_suffix('.json')} ({len(tr.t)} samples, {tr.metadata['wall_s']:.1f} s wall)")
+    return 0
+
+
+def _cmd_compare(args) -> int:
+    from pathlib import Path
+
+    from .report import build_scene_report, write_report
+    from .traceio import TraceFileError, load_trace
+
+    src = Path(args.source)
+    if not src.exists():
+        raise UserError(f"{src}: no such file")
+    trace = None
+    if src.suffix == ".npz":
+        from engine_sim import ScenarioError, scenario_from_dict
+
+        try:
+            trace = load_trace(src)
+            sc = scenario_from_dict(trace.metadata.get("scenario", {}), where=f"{src} (metadata)")
+        except (TraceFileError, ScenarioError) as e:
+            raise UserError(str(e)) from None
+    else:
+        sc = _load_scenario(src)
+    out = Path(args.output or f"compare-{sc.name}")
+    if out.exists() and not out.is_dir():
+        raise UserError(f"{out}: exists and is not a folder")
+    if trace is None:
+        bar, update = _progress_bar(sc.name)
+        with bar:
+            sections, summary = build_scene_report(sc, duration=args.duration, seed=args.seed, progress=update)
+    else:
+        sections, summary = build_scene_report(sc, trace=trace)
+    path = write_report(out, sections, summary)
+    f = summary["scenarios"][sc.name]
+    print(f"wrote {path / 'index.html'}: gamma = {f['gamma']:.3f} +- {f['gamma_err']:.3f} over "
+          f"{f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s")
+    return 0
 
 
 def _cmd_report(args) -> int:

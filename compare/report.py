@@ -10,9 +10,6 @@ import base64
 import html
 import json
 import math
-import os
-import shutil
-import tempfile
 import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -236,17 +233,21 @@ def _model_II(quick: bool, seed: int, summary: dict, timings: list, progress) ->
     return s
 
 
-def _engine_section(name, sc, quick, seed, summary, timings) -> Section:
-    """One shipped scenario against model I built from its own measured parameters."""
+def _engine_section(name, sc, quick, seed, summary, timings, trace=None, duration=None, progress=None) -> Section:
+    """One scenario against model I built from its own measured parameters (runs it unless given a trace)."""
     import engine_sim
     from reduced_models import spring_block
 
     from . import plots
     from .extract import model_I_parameters, spring_block_params
 
-    T = 15.0 if quick else 60.0
-    tr, wall = _timed(engine_sim.run, sc.with_run(duration=T), seed=seed)
-    nper = 2**12 if quick else 2**13
+    if trace is None:
+        T = duration or (15.0 if quick else sc.run.duration)
+        tr, wall = _timed(engine_sim.run, sc.with_run(duration=T), seed=seed, progress=progress)
+    else:
+        tr, wall = trace, float(trace.metadata.get("wall_s", float("nan")))
+        T = float(tr.t[-1])
+    nper = min(2**13, 1 << int(math.floor(math.log2(len(tr.t) / 4))))
     spec = displacement_spectrum(tr.t, tr.x, nperseg=nper)
     ex = model_I_parameters(tr, sc)
     w0 = ex["v"]["value"] / ex["a"]["value"]
@@ -306,6 +307,20 @@ def _engine_section(name, sc, quick, seed, summary, timings) -> Section:
     sec.figures.append((f"scene_{name}.png", plots.figure_png_bytes(fig),
                         "Scene C_x, model I simulated and in closed form, both with the parameters extracted from the scene."))
     return sec
+
+
+def build_scene_report(sc, trace=None, duration=None, seed=None, progress=None):
+    """Sections and summary for one scene (``frictionnoise compare``)."""
+    summary = {"version": package_version(), "quick": False, "seed": seed if seed is not None else sc.run.seed,
+               "conventions": "C(omega) two-sided in angular frequency, eq. (2); gamma_err = 95 % half-width",
+               "scenarios": {}}
+    timings: list = []
+    sec = _engine_section(sc.name, sc, False, summary["seed"], summary, timings, trace=trace, duration=duration,
+                          progress=progress)
+    speed = Section("Speed")
+    speed.tables.append(("Run", ["what", "run", "wall (s)", "mean |ln ratio| vs model I"], timings))
+    summary["timings"] = [dict(zip(["model", "run", "wall_s", "mean_abs_log_ratio"], r)) for r in timings]
+    return [sec, speed], summary
 
 
 def build_report(quick: bool = False, seed: int = 0, progress=lambda stage: None):
@@ -378,25 +393,13 @@ def _json_default(o):
 
 def write_report(out_dir: Path, sections, summary) -> Path:
     """Write index.html, summary.json and figures/*.png into ``out_dir`` atomically."""
-    out_dir = Path(out_dir).resolve()
-    out_dir.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.tmp-", dir=out_dir.parent))
-    tmp.chmod(0o755)
-    try:
+    from .outputs import atomic_folder
+
+    with atomic_folder(out_dir) as tmp:
         (tmp / "figures").mkdir()
         for s in sections:
             for name, data, _ in s.figures:
                 (tmp / "figures" / name).write_bytes(data)
         (tmp / "summary.json").write_text(json.dumps(summary, indent=2, default=_json_default))
         (tmp / "index.html").write_text(_html(sections, summary))
-        if out_dir.exists():
-            old = out_dir.with_name(f".{out_dir.name}.old-{os.getpid()}")
-            out_dir.rename(old)
-            tmp.rename(out_dir)
-            shutil.rmtree(old, ignore_errors=True)
-        else:
-            tmp.rename(out_dir)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    return out_dir
+    return Path(out_dir).resolve()

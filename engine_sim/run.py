@@ -54,6 +54,7 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     wall = time.perf_counter() - t0
     if progress is not None:
         progress(total, total)
+    seed_used = scene.seed
     meta = {
         "producer": "engine_sim", "scenario": sc.to_dict(), "seed": scene.seed, "version": _version(),
         "wall_s": wall, "steps": scene.steps, "us_per_step": wall / max(scene.steps, 1) * 1e6,

@@ -1,0 +1,74 @@
+"""Trace files: ``trace.npz`` (arrays, SI units) beside ``trace.json`` (metadata). Written atomically."""
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from dataclasses import fields
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["save_trace", "load_trace", "TraceFileError", "FORMAT"]
+
+FORMAT = "frictionnoise-trace-1"
+
+
+class TraceFileError(ValueError):
+    """A file that is not a readable frictionnoise trace; the message names the file and the problem."""
+
+
+def _atomic_write(path: Path, write):
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    os.close(fd)
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def save_trace(trace, path) -> Path:
+    """Write an EngineTrace to ``path`` (.npz) and its metadata to the same name with .json."""
+    path = Path(path).with_suffix(".npz")
+    arrays = {f.name: getattr(trace, f.name) for f in fields(trace) if f.name != "metadata"}
+    arrays["format"] = np.array(FORMAT)
+    meta = {"format": FORMAT, **trace.metadata}
+
+    def w_npz(tmp):
+        with open(tmp, "wb") as fh:
+            np.savez(fh, **arrays)
+
+    _atomic_write(path, w_npz)
+    _atomic_write(path.with_suffix(".json"), lambda tmp: Path(tmp).write_text(json.dumps(meta, indent=1, default=float)))
+    return path
+
+
+def load_trace(path):
+    """Read a trace written by :func:`save_trace`; returns an EngineTrace."""
+    from engine_sim.record import EngineTrace
+
+    path = Path(path)
+    if not path.exists():
+        raise TraceFileError(f"{path}: no such file")
+    try:
+        data = np.load(path, allow_pickle=False)
+        keys = set(data.files)
+    except Exception:
+        raise TraceFileError(f"{path}: not a .npz trace file") from None
+    if "format" not in keys or str(data["format"]) != FORMAT:
+        raise TraceFileError(f"{path}: not a frictionnoise trace (no '{FORMAT}' format tag)")
+    need = [f.name for f in fields(EngineTrace) if f.name != "metadata"]
+    missing = [k for k in need if k not in keys]
+    if missing:
+        raise TraceFileError(f"{path}: trace is missing field {missing[0]!r}")
+    meta_path = path.with_suffix(".json")
+    if not meta_path.exists():
+        raise TraceFileError(f"{meta_path}: metadata file missing (written beside the .npz)")
+    try:
+        meta = json.loads(meta_path.read_text())
+    except json.JSONDecodeError as e:
+        raise TraceFileError(f"{meta_path}: not valid JSON ({e})") from None
+    return EngineTrace(**{k: data[k] for k in need}, metadata=meta)
