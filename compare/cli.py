@@ -45,7 +45,91 @@ def _build_parser() -> argparse.ArgumentParser:
     ren.add_argument("--gif", action="store_true", help="also write animation.gif")
     ren.add_argument("--seed", type=int, default=None)
     ren.set_defaults(func=_cmd_render)
+
+    sw = sub.add_parser("sweep", help="run a parameter sweep (dask LocalCluster by default) and its report")
+    sw.add_argument("sweep", help="sweep TOML file")
+    sw.add_argument("-o", "--output", default=None, help="output folder, also the task cache (default: sweep-<name>)")
+    sw.add_argument("--scheduler", default=None, help="address of a running dask scheduler, e.g. tcp://host:8786")
+    sw.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes (default: %(default)s)")
+    sw.add_argument("--serial", action="store_true", help="run in this process, without dask")
+    sw.set_defaults(func=_cmd_sweep)
+
+    an = sub.add_parser("analyze", help="analyse measured x(t) from a CSV file: spectra, gamma, rms, report")
+    an.add_argument("data", help="CSV with a header row: time [s] and displacement columns")
+    an.add_argument("--mass", type=float, required=True, help="block mass M (kg), for C_F = M^2 omega^4 C_x")
+    an.add_argument("--time-col", default=None, help="time column name (default: the first)")
+    an.add_argument("--x-col", default=None, help="displacement column name (default: the second)")
+    an.add_argument("--x-unit", default="m", choices=["um", "mm", "m"], help="displacement unit (default: m)")
+    an.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"), help="fit band (rad/s)")
+    an.add_argument("-o", "--output", default=None, help="output folder (default: analyze-<file stem>)")
+    an.set_defaults(func=_cmd_analyze)
     return ap
+
+
+def _cmd_sweep(args) -> int:
+    from pathlib import Path
+
+    from tqdm import tqdm
+
+    from .report import build_sweep_report, write_sweep_outputs
+    from .sweep import SweepError, load_results, load_sweep, run_sweep
+
+    try:
+        spec = load_sweep(args.sweep)
+    except SweepError as e:
+        raise UserError(str(e)) from None
+    if args.workers < 1:
+        raise UserError(f"--workers must be at least 1 (got {args.workers})")
+    out = Path(args.output or f"sweep-{spec.name}")
+    if out.exists() and not out.is_dir():
+        raise UserError(f"{out}: exists and is not a folder")
+    bar = tqdm(total=0, desc=spec.name, unit="task", file=sys.stderr, disable=not sys.stderr.isatty())
+
+    def progress(done, total):
+        bar.total = total
+        bar.n = done
+        bar.refresh()
+    with bar:
+        counts = run_sweep(spec, out, scheduler=args.scheduler, workers=args.workers, serial=args.serial, progress=progress)
+    import json
+    failures = [json.loads(p.read_text()) for p in sorted((out / "failures").glob("*.json"))]
+    sections, summary = build_sweep_report(spec, load_results(out), failures)
+    write_sweep_outputs(out, sections, summary)
+    print(f"{spec.name}: {counts['done']}/{counts['total']} tasks done ({counts['ran']} run now, "
+          f"{counts['failed']} failed); wrote {out / 'index.html'}")
+    va = summary.get("velocity_analysis")
+    if va:
+        print(f"  C_x at fixed omega ~ v^{va['exponent']:.3f} +- {va['exponent_err']:.3f}; distance-domain collapse "
+              f"{va['collapse_gain']:.1f}x")
+    return 0 if counts["failed"] == 0 else 1
+
+
+def _cmd_analyze(args) -> int:
+    import warnings
+    from pathlib import Path
+
+    from .measured import DataFileError, read_displacement_csv
+    from .report import build_measured_report, write_report
+
+    if not args.mass > 0:
+        raise UserError(f"--mass must be positive (got {args.mass})")
+    try:
+        data = read_displacement_csv(args.data, args.time_col, args.x_col, args.x_unit)
+    except DataFileError as e:
+        raise UserError(str(e)) from None
+    if data.warning:
+        print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)
+    out = Path(args.output or f"analyze-{Path(args.data).stem}")
+    if out.exists() and not out.is_dir():
+        raise UserError(f"{out}: exists and is not a folder")
+    try:
+        sections, summary = build_measured_report(data, args.mass, band=tuple(args.band) if args.band else None)
+    except ValueError as e:
+        raise UserError(f"{args.data}: {e}") from None
+    write_report(out, sections, summary)
+    print(f"wrote {out / 'index.html'}: gamma = {summary['gamma']:.3f} +- {summary['gamma_err']:.3f} over "
+          f"{summary['band'][0]:.3g}-{summary['band'][1]:.3g} rad/s")
+    return 0
 
 
 def _cmd_render(args) -> int:

@@ -60,3 +60,18 @@ def save_figure(fig, path: Path) -> bytes:
     data = figure_png_bytes(fig)
     Path(path).write_bytes(data)
     return data
+
+
+def level_figure(v, C, exponent, err, omega_ref):
+    """C_x at fixed omega against v, log-log, with the fitted power law."""
+    fig, ax = plt.subplots(figsize=(5.4, 4.0), dpi=110)
+    ax.loglog(v * 1e3, C, "o", label="runs")
+    A = np.exp(np.mean(np.log(C) - exponent * np.log(v)))
+    vv = np.logspace(np.log10(v.min()), np.log10(v.max()), 20)
+    ax.loglog(vv * 1e3, A * vv**exponent, "-", label=f"fit: $v^{{{exponent:.2f} \\pm {err:.2f}}}$")
+    ax.set_xlabel("v (mm/s)")
+    ax.set_ylabel(rf"$C_x$, {omega_ref[0]:g}-{omega_ref[1]:g} rad/s (m$^2$ s)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig

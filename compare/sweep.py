@@ -1,0 +1,300 @@
+"""Parameter sweeps: a grid over model or scenario parameters and seeds, run serially or on
+dask.distributed, with per-task results cached on disk (a rerun completes only what is missing).
+
+Sweep file (TOML)::
+
+    name = "velocity_model1"
+    target = "model_I"            # model_I | model_II | model_III | scenario
+    scenario = "../pads_friction_patches.toml"   # for target = "scenario", relative to this file
+    [fixed]                       # held fixed: model parameters, or run settings (duration, dt_out)
+    duration = 300.0
+    [grid]                        # the Cartesian product of these lists; "seed" sets the seeds
+    v = [1e-4, 5e-4, 1e-3]
+    seed = [0]
+    [analysis]
+    omega_ref = [70.0, 140.0]     # band (rad/s) for C_x at fixed omega against v
+
+Each task returns its log-binned spectrum and fit, never the raw trace. Pure numerics except
+:func:`run_sweep`, which does the I/O and scheduling.
+"""
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import math
+import os
+import tempfile
+import time
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["SweepSpec", "SweepError", "load_sweep", "expand", "run_task", "run_sweep", "load_results",
+           "velocity_analysis"]
+
+_TARGETS = ("model_I", "model_II", "model_III", "scenario")
+_RUN_KEYS = {"duration", "dt_out"}
+
+
+class SweepError(ValueError):
+    """An invalid sweep file: the message names the file and the field."""
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    name: str
+    target: str
+    fixed: dict
+    grid: dict
+    analysis: dict = field(default_factory=dict)
+    scenario: str | None = None
+    description: str = ""
+
+
+def load_sweep(path) -> SweepSpec:
+    path = Path(path)
+    if not path.exists():
+        raise SweepError(f"{path}: no such file")
+    try:
+        d = tomllib.loads(path.read_text())
+    except tomllib.TOMLDecodeError as e:
+        raise SweepError(f"{path}: not valid TOML ({e})") from None
+    valid = {"name", "description", "target", "scenario", "fixed", "grid", "analysis"}
+    bad = sorted(set(d) - valid)
+    if bad:
+        raise SweepError(f"{path}: unknown key {bad[0]!r}; valid keys: {', '.join(sorted(valid))}")
+    target = d.get("target")
+    if target not in _TARGETS:
+        raise SweepError(f"{path}: target must be one of {', '.join(_TARGETS)} (got {target!r})")
+    grid = d.get("grid", {})
+    if not grid or not all(isinstance(v, list) and v for v in grid.values()):
+        raise SweepError(f"{path}: [grid] must hold non-empty lists of values")
+    scen = d.get("scenario")
+    if target == "scenario":
+        if not scen:
+            raise SweepError(f"{path}: target = 'scenario' needs scenario = <path>")
+        scen = str((path.parent / scen).resolve())
+        if not Path(scen).exists():
+            raise SweepError(f"{path}: scenario {scen}: no such file")
+    spec = SweepSpec(name=d.get("name", path.stem), target=target, fixed=d.get("fixed", {}), grid=grid,
+                     analysis=d.get("analysis", {}), scenario=scen, description=d.get("description", ""))
+    try:  # validate every grid point's parameters once, before anything runs
+        for params, _ in expand(spec):
+            _build(spec, params)
+    except (TypeError, ValueError) as e:
+        raise SweepError(f"{path}: {e}") from None
+    return spec
+
+
+def expand(spec: SweepSpec):
+    """[(params, seed)] over the grid's Cartesian product (seed from grid["seed"], default [0])."""
+    keys = [k for k in spec.grid if k != "seed"]
+    seeds = spec.grid.get("seed", [0])
+    out = []
+    for combo in itertools.product(*(spec.grid[k] for k in keys)):
+        params = {**spec.fixed, **dict(zip(keys, combo))}
+        for s in seeds:
+            out.append((params, int(s)))
+    return out
+
+
+def task_id(spec: SweepSpec, params: dict, seed: int) -> str:
+    key = json.dumps({"target": spec.target, "scenario": spec.scenario, "params": params, "seed": seed}, sort_keys=True)
+    return hashlib.sha1(key.encode()).hexdigest()[:16]
+
+
+def _build(spec: SweepSpec, params: dict):
+    """The model parameters (or scenario) and run settings of one grid point; raises on bad values."""
+    model = {k: v for k, v in params.items() if k not in _RUN_KEYS}
+    run = {k: v for k, v in params.items() if k in _RUN_KEYS}
+    if spec.target == "model_I":
+        from reduced_models.spring_block import SpringBlockParams
+        return SpringBlockParams(**model), run
+    if spec.target == "model_III":
+        from reduced_models.asperity_force import AsperityForceParams
+        return AsperityForceParams(**model), run
+    if spec.target == "model_II":
+        from reduced_models.wear_particle import WearParticleParams
+        return WearParticleParams(**model), run
+    from engine_sim.scenario import load_scenario, scenario_from_dict
+    base = load_scenario(spec.scenario).to_dict()
+    for k, v in model.items():
+        sec, _, key = k.partition(".")
+        if not key or sec not in base or not isinstance(base[sec], dict):
+            raise ValueError(f"scenario parameter {k!r} must be written section.key, e.g. drive.v")
+        base[sec][key] = v
+    if "duration" in run:
+        base["run"]["duration"] = run["duration"]
+    return scenario_from_dict(base, where=spec.scenario), run
+
+
+def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
+    """Run one grid point; return its log-binned C_x, fit and timings (JSON-ready). Never raises: an error
+    is returned as {"error": ...} with the parameters, so one failure loses nothing else."""
+    from .fits import fit_power_law
+    from .spectra import displacement_spectrum, log_bin
+
+    t0 = time.perf_counter()
+    try:
+        obj, run = _build(spec, params)
+        if spec.target == "model_I":
+            from reduced_models import spring_block
+            tr = spring_block.simulate(obj, run.get("duration", 300.0), run.get("dt_out", 1e-3), seed=seed)
+            v = obj.v
+            band = (10 * obj.v / obj.a, spring_block.crossover_frequency(obj) / 10)
+        elif spec.target == "model_III":
+            from reduced_models import asperity_force
+            tr = asperity_force.simulate(obj, run.get("duration", 2**18 * obj.dt), seed=seed)
+            v = obj.v
+            band = (30 * obj.v / obj.w, math.pi / obj.dt / 4)
+        elif spec.target == "model_II":
+            from reduced_models import wear_particle
+            tr = wear_particle.simulate(obj, run.get("duration", 500.0), run.get("dt_out", 1e-3), seed=seed)
+            v = obj.v
+            band = None
+        else:
+            import engine_sim
+            tr = engine_sim.run(obj, seed=seed)
+            v = obj.steady_velocity
+            band = (3 * v / obj.substrate.a, 30 * v / obj.substrate.a)
+        spec_x = displacement_spectrum(tr.t, tr.x)
+        if band is not None and band[1] < 2 * band[0]:
+            band = None  # the model's own band has closed (e.g. v/a near omega_c): use the automatic one
+        try:
+            fit = fit_power_law(spec_x, band=band).to_dict()
+        except ValueError as e:
+            fit = {"error": str(e)}
+        lb = log_bin(spec_x, 20)
+        return {"params": params, "seed": seed, "v": v, "omega": lb.omega.tolist(), "C": lb.C.tolist(),
+                "n_avg": lb.n_avg.tolist(), "fit": fit, "wall_s": time.perf_counter() - t0,
+                "mean_velocity": float((tr.x[-1] - tr.x[0]) / (tr.t[-1] - tr.t[0]))}
+    except Exception as e:  # reported with its parameters; the sweep goes on
+        return {"params": params, "seed": seed, "error": f"{type(e).__name__}: {e}", "wall_s": time.perf_counter() - t0}
+
+
+def _write_json(path: Path, obj):
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    with os.fdopen(fd, "w") as fh:
+        json.dump(obj, fh)
+    os.replace(tmp, path)
+
+
+def run_sweep(spec: SweepSpec, out_dir, *, scheduler: str | None = None, workers: int = 2, serial: bool = False,
+              progress=None) -> dict:
+    """Run the tasks whose results are not yet in ``out_dir/tasks``; return {"done", "ran", "failed"}.
+
+    ``serial``: in this process. Otherwise on dask.distributed: ``scheduler`` (an address such as
+    tcp://host:8786) or a LocalCluster of ``workers`` single-threaded processes.
+    """
+    out = Path(out_dir)
+    (out / "tasks").mkdir(parents=True, exist_ok=True)
+    (out / "failures").mkdir(exist_ok=True)
+    todo = []
+    for params, seed in expand(spec):
+        tid = task_id(spec, params, seed)
+        if not (out / "tasks" / f"{tid}.json").exists():
+            todo.append((tid, params, seed))
+    ran, failed = 0, 0
+
+    def store(tid, res):
+        nonlocal ran, failed
+        if "error" in res:
+            _write_json(out / "failures" / f"{tid}.json", res)
+            failed += 1
+        else:
+            _write_json(out / "tasks" / f"{tid}.json", res)
+            stale = out / "failures" / f"{tid}.json"
+            if stale.exists():
+                stale.unlink()
+            ran += 1
+        if progress is not None:
+            progress(ran + failed, len(todo))
+
+    if serial or not todo:
+        for tid, params, seed in todo:
+            store(tid, run_task(spec, params, seed))
+    else:
+        from distributed import Client, LocalCluster, as_completed
+
+        cluster = None
+        if scheduler:
+            client = Client(scheduler)
+        else:
+            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
+            client = Client(cluster)
+        try:
+            futs = {client.submit(run_task, spec, params, seed, pure=False, key=f"task-{tid}"): tid
+                    for tid, params, seed in todo}
+            for fut in as_completed(futs):
+                store(futs[fut], fut.result())
+        finally:
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    done = sorted((out / "tasks").glob("*.json"))
+    return {"done": len(done), "ran": ran, "failed": failed, "total": len(expand(spec))}
+
+
+def load_results(out_dir) -> list:
+    return [json.loads(p.read_text()) for p in sorted(Path(out_dir, "tasks").glob("*.json"))]
+
+
+# ----------------------------------------------------------------------------- velocity analysis
+def velocity_analysis(results: list, omega_ref=(70.0, 140.0), omega_max: float | None = None) -> dict:
+    """The paper's velocity analysis over results that differ in v.
+
+    - C_x at fixed omega: the mean over ``omega_ref`` of each run's spectrum (averaged over seeds), fitted
+      against v in log-log (eq. 6 predicts C_x ~ v^3 for model I; the paper measures v^(5/3) on concrete).
+    - Collapse (section 2): in the distance domain zeta(s), s = v t, the spectrum is C_s(q) = v C_x(omega = q v);
+      if the noise is set by position, curves for different v coincide. The spread is the mean over a common
+      abscissa grid of the standard deviation across velocities of ln C; ``collapse_gain`` is the spread in the
+      frequency domain (ln C_x at common omega) over that in the distance domain (ln v C_x at common q), both on
+      the range where every curve is defined and below ``omega_max`` (default: no limit).
+    """
+    from scipy import stats
+
+    by_v: dict = {}
+    for r in results:
+        by_v.setdefault(float(r["v"]), []).append(r)
+    vs = np.array(sorted(by_v))
+    if len(vs) < 2:
+        raise ValueError("velocity analysis needs results at two or more velocities")
+    curves = []
+    for v in vs:
+        rs = by_v[v]
+        w = np.asarray(rs[0]["omega"])
+        C = np.mean([np.interp(np.log(w), np.log(r["omega"]), np.log(r["C"])) for r in rs], axis=0)
+        keep = w <= omega_max if omega_max else np.ones(len(w), bool)
+        curves.append((v, w[keep], C[keep]))
+    lo, hi = omega_ref
+    level = []
+    for v, w, lnC in curves:
+        m = (w >= lo) & (w <= hi)
+        if not m.any():
+            raise ValueError(f"no spectral point of the run at v = {v:g} m/s lies in omega_ref {omega_ref}")
+        level.append(float(np.mean(lnC[m])))
+    level = np.array(level)
+    res = stats.linregress(np.log(vs), level)
+    tq = float(stats.t.ppf(0.975, max(len(vs) - 2, 1)))
+
+    def spread(xs_list, ys_list):
+        a = max(x[0] for x in xs_list)
+        b = min(x[-1] for x in xs_list)
+        if not b > a:
+            return float("nan"), (a, b)
+        g = np.linspace(a, b, 200)
+        Y = np.array([np.interp(g, x, y) for x, y in zip(xs_list, ys_list)])
+        return float(np.mean(np.std(Y, axis=0))), (float(np.exp(a)), float(np.exp(b)))
+
+    s_freq, r_freq = spread([np.log(w) for _, w, _ in curves], [lnC for _, _, lnC in curves])
+    s_dist, r_dist = spread([np.log(w / v) for v, w, _ in curves], [lnC + np.log(v) for v, _, lnC in curves])
+    return {
+        "velocities": vs.tolist(), "omega_ref": list(omega_ref), "ln_C_at_omega_ref": level.tolist(),
+        "exponent": float(res.slope), "exponent_err": tq * float(res.stderr) if len(vs) > 2 else float("nan"),
+        "spread_frequency_domain": s_freq, "frequency_range": r_freq,
+        "spread_distance_domain": s_dist, "q_range": r_dist,
+        "collapse_gain": s_freq / s_dist if s_dist > 0 else float("inf"),
+    }
