@@ -242,12 +242,12 @@ def _engine_section(name, sc, quick, seed, summary, timings, trace=None, duratio
     from .extract import model_I_parameters, spring_block_params
 
     if trace is None:
-        T = duration or (15.0 if quick else sc.run.duration)
+        T = duration or (12.0 if quick else sc.run.duration)
         tr, wall = _timed(engine_sim.run, sc.with_run(duration=T), seed=seed, progress=progress)
     else:
         tr, wall = trace, float(trace.metadata.get("wall_s", float("nan")))
         T = float(tr.t[-1])
-    nper = min(2**13, 1 << int(math.floor(math.log2(len(tr.t) / 4))))
+    nper = min(2**12 if quick else 2**13, 1 << int(math.floor(math.log2(len(tr.t) / 3))))
     spec = displacement_spectrum(tr.t, tr.x, nperseg=nper)
     ex = model_I_parameters(tr, sc)
     w0 = ex["v"]["value"] / ex["a"]["value"]
@@ -258,7 +258,7 @@ def _engine_section(name, sc, quick, seed, summary, timings, trace=None, duratio
     s1 = displacement_spectrum(m1.t, m1.x, nperseg=nper)
     fit_m1 = fit_power_law(s1, band=band)
     top = min(2000.0, math.pi / (tr.t[1] - tr.t[0]) / 2)
-    edges = np.logspace(np.log10(max(2.0, 4 * spec.omega_min)), np.log10(top), 9)
+    edges = np.logspace(np.log10(max(2.0, 4 * spec.omega_min)), np.log10(top), 7 if quick else 9)
     ratios = _band_ratios(spec, spring_block.theory_spectrum(p, spec.omega), edges)
     # is the substrate force white above v/a (C_f ~ omega^-2 for a piecewise-constant force)?
     sf = force_series_spectrum(tr.t, tr.pad_force.sum(axis=1), nperseg=nper)

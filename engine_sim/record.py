@@ -24,8 +24,8 @@ class EngineTrace:
     ``F_t``, ``F_n`` [N]: summed tangential and normal contact force on the pads (tangential positive
     against the sliding direction, i.e. the Coulomb part of the friction law); ``F_drag`` [N]: the viscous
     part c sum v_pad, so F_t + F_drag is the whole friction force; ``F_drive`` [N]: the drive's force on the block; ``pad_force`` [N] (samples x pads), tangential; ``n_contact``: pads
-    touching their track; ``penetration`` [m]: the deepest any pad sits below its resting height on its
-    track (negative when all are above); ``work_drive``, ``dissipated``, ``mech_energy`` [J] cumulative from the first
+    touching their track; ``penetration`` [m]: the deepest overlap of any pad with its track (pymunk's
+    contact distance; 0 when no contact overlaps); ``work_drive``, ``dissipated``, ``mech_energy`` [J] cumulative from the first
     sample; ``metadata``: scenario, seed, version, timings."""
 
     t: np.ndarray
@@ -49,7 +49,7 @@ class Recorder:
 
     _BODY = B.BodyFields.BODY_ID | B.BodyFields.POSITION | B.BodyFields.VELOCITY
     _ARB = (B.ArbiterFields.BODY_A_ID | B.ArbiterFields.BODY_B_ID | B.ArbiterFields.CONTACT_COUNT
-            | B.ArbiterFields.TOTAL_IMPULSE)
+            | B.ArbiterFields.TOTAL_IMPULSE | B.ArbiterFields.DISTANCE_1)
 
     def __init__(self, scene, n_samples: int):
         self.scene = scene
@@ -64,7 +64,6 @@ class Recorder:
         self.pad_force = np.empty((n_samples, N))
         self.n_contact = np.empty(n_samples, dtype=np.int32)
         self.penetration = np.empty(n_samples)
-        self._rest_y = np.array(scene.pad_y)
         self.F_drag = np.empty(n_samples)
         self.F_drive = np.empty(n_samples)
         self.power_in = np.empty(n_samples)
@@ -112,7 +111,7 @@ class Recorder:
         drive_k, drive_x, drive_rest, drive_v = self._drive_state()
         _reduce(ids, fl, ai, af, self._sorted_ids, self._order, self.block_id, self._bs, self._pp, sc.dt, self.c,
                 self.m_p, self.M, -sc.space.gravity.y, drive_k, drive_x, drive_rest, drive_v, self.x0, k,
-                self._rest_y, self.x, self.v, self.F_t, self.F_n, self.F_drag, self.F_drive, self.pad_force, self.n_contact,
+                self.x, self.v, self.F_t, self.F_n, self.F_drag, self.F_drive, self.pad_force, self.n_contact,
                 self.penetration, self.power_in, self.power_out, self.mech)
         self.t[k] = sc.steps * sc.dt / U.TIME
         self.k += 1
@@ -140,9 +139,9 @@ class Recorder:
 
 @numba.njit(cache=True)
 def _reduce(ids, fl, ai, af, sorted_ids, order, block_id, bs, pp, dt, c, m_p, M, g, dk, dx_anchor, drest, dv,
-            x0, k, rest_y, x, v, F_t, F_n, F_drag, F_drive, pad_force, n_contact, penetration, power_in, power_out, mech):
+            x0, k, x, v, F_t, F_n, F_drag, F_drive, pad_force, n_contact, penetration, power_in, power_out, mech):
     """One sample from the raw batch buffers (scene units): bodies [px, py, vx, vy] by id, arbiters
-    [a_id, b_id, count] x [Jx, Jy]; contact forces per pad, powers and mechanical energy."""
+    [a_id, b_id, count] x [Jx, Jy, d1]; contact forces per pad, penetration, powers, mechanical energy."""
     N = sorted_ids.shape[0]
     P = np.zeros((N, 4))
     bx = by = bvx = bvy = 0.0
@@ -159,6 +158,7 @@ def _reduce(ids, fl, ai, af, sorted_ids, order, block_id, bs, pp, dt, c, m_p, M,
     ft = np.zeros(N)
     fn = np.zeros(N)
     touch = np.zeros(N, dtype=np.bool_)
+    pen = 0.0
     for r in range(ai.shape[0] // 3):
         if ai[3 * r + 2] <= 0:
             continue
@@ -170,8 +170,9 @@ def _reduce(ids, fl, ai, af, sorted_ids, order, block_id, bs, pp, dt, c, m_p, M,
             if not (j < N and sorted_ids[j] == ai[3 * r + 1]):
                 continue
         i = order[j]
-        ft[i] += sign * af[2 * r] / dt
-        fn[i] += sign * af[2 * r + 1] / dt
+        ft[i] += sign * af[3 * r] / dt
+        fn[i] += sign * af[3 * r + 1] / dt
+        pen = max(pen, -af[3 * r + 2])  # contact distance < 0: overlap depth
         touch[i] = True
     x[k] = bx - x0
     v[k] = bvx
@@ -182,9 +183,7 @@ def _reduce(ids, fl, ai, af, sorted_ids, order, block_id, bs, pp, dt, c, m_p, M,
     ke = 0.5 * M * (bvx * bvx + bvy * bvy)
     pe = 0.0
     nc = 0
-    pen = -np.inf
     for i in range(N):
-        pen = max(pen, rest_y[i] - P[i, 1])
         pad_force[k, i] = -ft[i]
         sft -= ft[i]
         sfn += fn[i]

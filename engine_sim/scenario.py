@@ -72,12 +72,20 @@ class SubstrateSpec:
 
     kind "patches": a flat track of friction patches; patch boundaries at (j + r_j) a (so renewal
     intervals follow model I's tau0 (1 + r - r')), each patch with mu = mu0 (1 + alpha (r - 1/2)).
+    kind "self_affine": a randomly rough profile by Fourier synthesis (streamed FIR filtering of white
+    noise): Hurst exponent ``hurst``, roll-off wavelength ``lambda_r`` (flat spectrum above it), short
+    cut-off ``lambda_s``, rms slope ``rms_slope``, grid spacing lambda_s / 4; friction mu0 everywhere.
+    ``a`` is then the renewal length used for the fit band (default: lambda_r).
     """
 
     kind: str = "patches"
     a: float = 1e-3
     alpha: float = 1.0
     segment_radius: float = 0.05e-3
+    hurst: float = 0.8
+    lambda_r: float = 2e-3
+    lambda_s: float = 0.1e-3
+    rms_slope: float = 0.1
 
 
 @dataclass(frozen=True)
@@ -169,11 +177,12 @@ class Scenario:
 
 _SECTIONS = {"block": BlockSpec, "pads": PadSpec, "friction": FrictionSpec, "substrate": SubstrateSpec,
              "drive": DriveSpec, "run": RunSpec}
-_CHOICES = {("friction", "law"): ("linear",), ("substrate", "kind"): ("patches",),
+_CHOICES = {("friction", "law"): ("linear",), ("substrate", "kind"): ("patches", "self_affine"),
             ("drive", "kind"): ("force", "tilted", "velocity")}
 _POSITIVE = {("block", "M"), ("pads", "N"), ("pads", "mass"), ("pads", "radius"), ("pads", "k0"),
              ("pads", "k_normal"), ("pads", "track_spacing"), ("friction", "c"), ("substrate", "a"),
-             ("substrate", "segment_radius"), ("drive", "v"), ("drive", "k_drive"), ("run", "dt"), ("run", "dt_out"),
+             ("substrate", "segment_radius"), ("substrate", "lambda_r"), ("substrate", "lambda_s"),
+             ("substrate", "rms_slope"), ("drive", "v"), ("drive", "k_drive"), ("run", "dt"), ("run", "dt_out"),
              ("run", "duration"), ("run", "iterations")}
 _NON_NEGATIVE = {("pads", "c0"), ("pads", "k1"), ("pads", "c1"), ("friction", "mu0"), ("substrate", "alpha"),
                  ("run", "warmup"), ("run", "seed")}
@@ -257,6 +266,15 @@ def _check_consistency(sc: Scenario, where: str):
         if not v > 0:
             raise _err(where, f"drive force {sc.drive_force:.4g} N does not exceed the kinetic friction "
                               f"{p.N * sc.friction.mu0 * sc.normal_load_per_pad:.4g} N: the block would not slide")
+    sub = sc.substrate
+    if sub.kind == "self_affine":
+        if not 0 < sub.hurst < 1:
+            raise _err(where, f"substrate.hurst must lie in (0, 1) (got {sub.hurst!r})")
+        if not sub.lambda_s < sub.lambda_r:
+            raise _err(where, f"substrate.lambda_s = {sub.lambda_s!r} m must be shorter than lambda_r = {sub.lambda_r!r} m")
+        if sub.rms_slope > 1.0 / max(sc.friction.mu0, 1e-9):
+            raise _err(where, f"substrate.rms_slope = {sub.rms_slope!r} exceeds 1/mu0 = {1 / sc.friction.mu0:.3g}: "
+                              "pads would lock on the steeper flanks")
     if sc.substrate.alpha >= 2:
         raise _err(where, f"substrate.alpha = {sc.substrate.alpha!r} must be < 2 (patch friction stays positive)")
 

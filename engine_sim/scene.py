@@ -20,7 +20,7 @@ import pymunk
 
 from . import units as U
 from .scenario import G, Scenario
-from .substrate import PatchTrack
+from .substrate import PatchTrack, SelfAffineTrack, self_affine_kernel
 
 __all__ = ["Scene", "corrected_drag"]
 
@@ -69,6 +69,9 @@ class Scene:
         pre = load / kn  # pre-compression (mm)
         c_set = corrected_drag(fr.c * U.DAMPING, m_p, self.dt)
         seeds = np.random.SeedSequence(self.seed).spawn(p.N)
+        if sub.kind == "self_affine":
+            dx_s = sub.lambda_s * U.LENGTH / 4
+            kernel = self_affine_kernel(sub.hurst, sub.lambda_r * U.LENGTH, sub.lambda_s * U.LENGTH, dx_s, sub.rms_slope)
         self.pads, self.tracks, self.pad_y = [], [], []
         for i in range(p.N):
             yt = -i * dy
@@ -85,8 +88,12 @@ class Scene:
             space.add(pymunk.DampedSpring(block, pad, (-Lt, ry), (0, 0), Lt, k0, p.c0 * U.DAMPING))
             space.add(pymunk.DampedSpring(block, pad, (0.0, ry + Ln), (0, 0), Ln + pre, kn, 0.0))
             space.add(pymunk.DampedSpring(pad, space.static_body, (0, 0), (_FAR, yp), 0.0, 0.0, c_set))
-            track = PatchTrack(space, yt, sub.a * U.LENGTH, fr.mu0, sub.alpha, rs, flt,
-                               np.random.default_rng(seeds[i]), x_start=-10 * sub.a * U.LENGTH)
+            if sub.kind == "self_affine":
+                track = SelfAffineTrack(space, yt, kernel, dx_s, fr.mu0, rs, flt, np.random.default_rng(seeds[i]),
+                                        x_start=-4.0 * p.radius * U.LENGTH, chunk_points=64)
+            else:
+                track = PatchTrack(space, yt, sub.a * U.LENGTH, fr.mu0, sub.alpha, rs, flt,
+                                   np.random.default_rng(seeds[i]), x_start=-10 * sub.a * U.LENGTH)
             self.pads.append(pad)
             self.tracks.append(track)
             self.pad_y.append(yp)
@@ -117,8 +124,12 @@ class Scene:
         self.drive_spring = pymunk.DampedSpring(block, anchor, (0, 0), (0, 0), rest, kd, 0.0)
         space.add(anchor, self.drive_spring)
         self.driver = anchor
-        self.ahead = 8 * sub.a * U.LENGTH + 200 * v0 * self.dt * self.n_sub
-        self.behind = 4 * sub.a * U.LENGTH
+        if sub.kind == "patches":
+            self.ahead = 8 * sub.a * U.LENGTH + 200 * v0 * self.dt * self.n_sub
+            self.behind = 4 * sub.a * U.LENGTH
+        else:  # a pad touches the profile within its radius; keep a few radii either side
+            self.ahead = 4 * p.radius * U.LENGTH + 200 * v0 * self.dt * self.n_sub
+            self.behind = 2 * p.radius * U.LENGTH
         self.maintain()
         self.steps = 0
 

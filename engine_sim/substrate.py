@@ -10,7 +10,7 @@ from collections import deque
 import numpy as np
 import pymunk
 
-__all__ = ["PatchTrack"]
+__all__ = ["PatchTrack", "SelfAffineTrack", "self_affine_kernel"]
 
 _CHUNK = 32  # patches generated at a time
 
@@ -77,3 +77,75 @@ class PatchTrack:
             if s.a.x <= x < s.b.x:
                 return s.friction
         return float("nan")
+
+
+def self_affine_kernel(hurst: float, lambda_r: float, lambda_s: float, dx: float, rms_slope: float):
+    """FIR kernel K (scene units) such that h = K * w (w: unit white noise per grid point, spacing dx) has the
+    self-affine spectrum C(q) ~ q^(-2(1+H)) for 2 pi/lambda_r < q < 2 pi/lambda_s, flat below the roll-off
+    and cut above, scaled to the rms slope. Length: 8 roll-off wavelengths (the kernel's tails are below
+    1e-3 of its peak there)."""
+    n = int(2 ** np.ceil(np.log2(8 * lambda_r / dx)))
+    q = 2 * np.pi * np.fft.rfftfreq(n, dx)
+    qr, qs = 2 * np.pi / lambda_r, 2 * np.pi / lambda_s
+    amp = (np.maximum(q, qr) / qr) ** (-(1 + hurst))  # flat below the roll-off
+    amp[q > qs] = 0.0
+    amp[0] = 0.0  # zero mean height
+    k = np.fft.irfft(amp, n)
+    k = np.roll(k, n // 2)  # centred, so the filter is non-causal but finite
+    slope = np.diff(k) / dx
+    return k * (rms_slope / np.sqrt(np.sum(slope**2)))
+
+
+class SelfAffineTrack:
+    """A randomly rough self-affine track, streamed: white noise filtered by a fixed FIR kernel, keeping the
+    last kernel-length of noise between chunks, so the profile is exactly stationary across chunk joins.
+    Straight segments between grid points, consecutive segments linked with set_neighbors; friction mu0."""
+
+    def __init__(self, space, y, kernel, dx, mu0, radius, shape_filter, rng, x_start, chunk_points=256):
+        self.space, self.y, self.k, self.dx, self.mu0, self.radius = space, y, kernel, dx, mu0, radius
+        self.filter = shape_filter
+        self.rng = rng
+        self.chunk = chunk_points
+        self._noise = rng.standard_normal(len(kernel) - 1)
+        self._x_next = x_start  # x of the next profile point to generate
+        self._last = None  # last generated point (x, y)
+        self.segments: deque = deque()
+        self.generated = 0
+        self.removed = 0
+
+    def _extend(self):
+        w = np.concatenate([self._noise, self.rng.standard_normal(self.chunk)])
+        h = np.convolve(w, self.k, mode="valid")  # chunk_points heights
+        self._noise = w[-(len(self.k) - 1):]
+        xs = self._x_next + self.dx * np.arange(self.chunk)
+        pts = [(float(a), float(self.y + b)) for a, b in zip(xs, h)]
+        if self._last is not None:
+            pts.insert(0, self._last)
+        new = []
+        for p0, p1 in zip(pts[:-1], pts[1:]):
+            s = pymunk.Segment(self.space.static_body, p0, p1, self.radius)
+            s.friction = self.mu0
+            s.filter = self.filter
+            new.append(s)
+        prev = self.segments[-1] if self.segments else None
+        for i, s in enumerate(new):
+            a_prev = prev.a if prev is not None else s.a - (s.b - s.a)
+            b_next = new[i + 1].b if i + 1 < len(new) else s.b + (s.b - s.a)
+            s.set_neighbors(a_prev, b_next)
+            prev = s
+        if new:
+            self.space.add(*new)
+        self.segments.extend(new)
+        self._last = pts[-1]
+        self._x_next = float(xs[-1] + self.dx)
+        self.generated += len(new)
+
+    def maintain(self, x, ahead, behind):
+        while self._x_next < x + ahead:
+            self._extend()
+        old = []
+        while self.segments and self.segments[0].b.x < x - behind:
+            old.append(self.segments.popleft())
+        if old:
+            self.space.remove(*old)
+            self.removed += len(old)

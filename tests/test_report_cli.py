@@ -30,18 +30,25 @@ def test_summary_holds_the_model_exponents(quick_report):
 
 
 def test_summary_holds_every_shipped_scenario(quick_report):
-    # Quick mode: 15 s per scene. Measured gamma 3.82-3.83 +- 0.25; model I built from the scene's own
-    # measured parameters within 0.86-1.23 per band, so the factor-1.5 claim holds and is asserted.
+    # Quick mode: 12 s per scene, 6 bands. The friction-patch scenes are in model I's regime: gamma near 4 and
+    # model I built from the scene's own measured parameters within a factor 1.5 per band (measured
+    # 0.80-1.05). The rough profile is not: its pad forces follow the local slope smoothly, and model I
+    # (abrupt renewals) overpredicts its noise in the top bands by 3-5x (measured ratios 0.22-0.30).
     from engine_sim import shipped_scenarios
 
     s = json.loads((quick_report / "summary.json").read_text())
     assert set(s["scenarios"]) == set(shipped_scenarios())
     for name, sc in s["scenarios"].items():
-        assert abs(sc["gamma"] - 4.0) < 0.3 + sc["gamma_err"], (name, sc["gamma"], sc["gamma_err"])
-        assert sc["model_I_within_factor_1p5"], (name, sc["band_ratios_vs_model_I"])
-        assert all(1 / 1.5 < b["ratio"] < 1.5 for b in sc["band_ratios_vs_model_I"])
         assert abs(sc["force_balance_rel"]) < 0.02 and abs(sc["energy_balance_rel"]) < 0.02
-        assert sc["extracted"]["a"]["value"] == pytest.approx(sc["extracted"]["a"]["substrate_value"], rel=0.15)
+        assert set(["gamma", "gamma_err", "band"]) <= set(sc) and sc["gamma_err"] > 0
+        ratios = np.array([b["ratio"] for b in sc["band_ratios_vs_model_I"]])
+        if name == "pads_rough_profile":
+            assert not sc["model_I_within_factor_1p5"]
+            assert np.all(ratios[-2:] < 0.5) and ratios.min() < 1 / 1.5, ratios
+        else:
+            assert abs(sc["gamma"] - 4.0) < 0.3 + sc["gamma_err"], (name, sc["gamma"], sc["gamma_err"])
+            assert sc["model_I_within_factor_1p5"], (name, ratios)
+            assert sc["extracted"]["a"]["value"] == pytest.approx(sc["extracted"]["a"]["substrate_value"], rel=0.15)
 
 
 def test_html_embeds_non_blank_figures(quick_report):
