@@ -17,6 +17,8 @@ from . import units as U
 
 __all__ = ["EngineTrace", "Recorder"]
 
+_COLS = ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "penetration", "power_in", "power_out", "mech")
+
 
 @dataclass(frozen=True)
 class EngineTrace:
@@ -57,18 +59,11 @@ class Recorder:
         self.n = n_samples
         self.k = 0
         self.t = np.empty(n_samples)
-        self.x = np.empty(n_samples)
-        self.v = np.empty(n_samples)
-        self.F_t = np.empty(n_samples)
-        self.F_n = np.empty(n_samples)
+        # scalar channels per sample, columns in _COLS order (one array: numba's dispatch cost grows with
+        # the number of arguments, and this kernel runs every output step)
+        self.out = np.empty((n_samples, len(_COLS)))
         self.pad_force = np.empty((n_samples, N))
         self.n_contact = np.empty(n_samples, dtype=np.int32)
-        self.penetration = np.empty(n_samples)
-        self.F_drag = np.empty(n_samples)
-        self.F_drive = np.empty(n_samples)
-        self.power_in = np.empty(n_samples)
-        self.power_out = np.empty(n_samples)
-        self.mech = np.empty(n_samples)
         ids = np.array([pad.id for pad in scene.pads], dtype=np.int64)
         self._order = np.argsort(ids)
         self._sorted_ids = ids[self._order]
@@ -80,6 +75,8 @@ class Recorder:
         self.M = sc.block.M * U.MASS
         self.c = sc.friction.c * U.DAMPING
         self.x0 = None
+        # scalars for the kernel: drive k, anchor x, rest, anchor v, x0, dt, c, m_p, M, g
+        self._prm = np.array([0.0, 0.0, 0.0, 0.0, 0.0, scene.dt, self.c, self.m_p, self.M, -scene.space.gravity.y])
         # Springs with energy, as (body a is block?, anchors, rest length, stiffness) arrays for vectorised
         # lengths; drag springs (stiffness 0) store none. Pad-pad springs use both pad positions.
         bs, pp = [], []
@@ -109,10 +106,10 @@ class Recorder:
         if self.x0 is None:
             self.x0 = float(sc.block.position.x)
         drive_k, drive_x, drive_rest, drive_v = self._drive_state()
-        _reduce(ids, fl, ai, af, self._sorted_ids, self._order, self.block_id, self._bs, self._pp, sc.dt, self.c,
-                self.m_p, self.M, -sc.space.gravity.y, drive_k, drive_x, drive_rest, drive_v, self.x0, k,
-                self.x, self.v, self.F_t, self.F_n, self.F_drag, self.F_drive, self.pad_force, self.n_contact,
-                self.penetration, self.power_in, self.power_out, self.mech)
+        prm = self._prm
+        prm[0], prm[1], prm[2], prm[3], prm[4] = drive_k, drive_x, drive_rest, drive_v, self.x0
+        _reduce(ids, fl, ai, af, self._sorted_ids, self._order, self.block_id, self._bs, self._pp, prm, k,
+                self.out, self.pad_force, self.n_contact)
         self.t[k] = sc.steps * sc.dt / U.TIME
         self.k += 1
 
@@ -125,23 +122,25 @@ class Recorder:
     def trace(self, metadata: dict) -> EngineTrace:
         n = self.k
         t = self.t[:n]
+        o = {c: self.out[:n, i] for i, c in enumerate(_COLS)}
         dt_s = np.diff(t) * U.TIME
         cum = lambda p: np.concatenate([[0.0], np.cumsum(0.5 * (p[1:n] + p[: n - 1]) * dt_s)]) / U.ENERGY
         return EngineTrace(
-            t=t - t[0], x=(self.x[:n] - self.x[0]) / U.LENGTH, v=self.v[:n] / U.VELOCITY, F_t=self.F_t[:n],
-            F_n=self.F_n[:n], F_drag=self.F_drag[:n], F_drive=self.F_drive[:n],
+            t=t - t[0], x=(o["x"] - o["x"][0]) / U.LENGTH, v=o["v"] / U.VELOCITY, F_t=o["F_t"].copy(),
+            F_n=o["F_n"].copy(), F_drag=o["F_drag"].copy(), F_drive=o["F_drive"].copy(),
             pad_force=self.pad_force[:n], n_contact=self.n_contact[:n],
-            penetration=self.penetration[:n] / U.LENGTH, work_drive=cum(self.power_in),
-            dissipated=cum(self.power_out), mech_energy=(self.mech[:n] - self.mech[0]) / U.ENERGY,
+            penetration=o["penetration"] / U.LENGTH, work_drive=cum(o["power_in"]),
+            dissipated=cum(o["power_out"]), mech_energy=(o["mech"] - o["mech"][0]) / U.ENERGY,
             metadata=metadata,
         )
 
 
 @numba.njit(cache=True)
-def _reduce(ids, fl, ai, af, sorted_ids, order, block_id, bs, pp, dt, c, m_p, M, g, dk, dx_anchor, drest, dv,
-            x0, k, x, v, F_t, F_n, F_drag, F_drive, pad_force, n_contact, penetration, power_in, power_out, mech):
+def _reduce(ids, fl, ai, af, sorted_ids, order, block_id, bs, pp, prm, k, out, pad_force, n_contact):
     """One sample from the raw batch buffers (scene units): bodies [px, py, vx, vy] by id, arbiters
     [a_id, b_id, count] x [Jx, Jy, d1]; contact forces per pad, penetration, powers, mechanical energy."""
+    dk, dx_anchor, drest, dv, x0 = prm[0], prm[1], prm[2], prm[3], prm[4]
+    dt, c, m_p, M, g = prm[5], prm[6], prm[7], prm[8], prm[9]
     N = sorted_ids.shape[0]
     P = np.zeros((N, 4))
     bx = by = bvx = bvy = 0.0
@@ -174,8 +173,6 @@ def _reduce(ids, fl, ai, af, sorted_ids, order, block_id, bs, pp, dt, c, m_p, M,
         fn[i] += sign * af[3 * r + 1] / dt
         pen = max(pen, -af[3 * r + 2])  # contact distance < 0: overlap depth
         touch[i] = True
-    x[k] = bx - x0
-    v[k] = bvx
     sft = 0.0
     sfn = 0.0
     sv = 0.0
@@ -210,15 +207,19 @@ def _reduce(ids, fl, ai, af, sorted_ids, order, block_id, bs, pp, dt, c, m_p, M,
     stretch = drest - abs(dx_anchor - bx)  # > 0: compressed, pushes the block away from the anchor
     f_drive = dk * stretch * (1.0 if bx > dx_anchor else -1.0)
     if dv != 0.0:
-        power_in[k] = f_drive * dv
+        p_in = f_drive * dv
         pe += 0.5 * dk * stretch * stretch
     else:
-        power_in[k] = f_drive * bvx
-    F_drive[k] = f_drive
-    F_t[k] = sft
-    F_n[k] = sfn
-    F_drag[k] = c * sv
+        p_in = f_drive * bvx
+    # columns: see _COLS
+    out[k, 0] = bx - x0
+    out[k, 1] = bvx
+    out[k, 2] = sft
+    out[k, 3] = sfn
+    out[k, 4] = c * sv
+    out[k, 5] = f_drive
+    out[k, 6] = pen
+    out[k, 7] = p_in
+    out[k, 8] = pout
+    out[k, 9] = ke + pe
     n_contact[k] = nc
-    penetration[k] = pen
-    power_out[k] = pout
-    mech[k] = ke + pe
