@@ -28,6 +28,8 @@ def _build_parser() -> argparse.ArgumentParser:
     run.add_argument("-o", "--output", default=None, help="output folder (default: run-<scenario name>)")
     run.add_argument("--duration", type=float, default=None, help="simulated seconds (default: the scenario's)")
     run.add_argument("--seed", type=int, default=None, help="random seed (default: the scenario's)")
+    run.add_argument("--checkpoint-every", type=float, default=None, metavar="S",
+                     help="checkpoint every S simulated seconds to DIR/checkpoint.pkl; rerunning resumes from it")
     run.set_defaults(func=_cmd_run)
 
     cmp_ = sub.add_parser("compare", help="report one scene (scenario TOML or trace .npz) against the reduced models")
@@ -205,11 +207,27 @@ def _cmd_run(args) -> int:
     out = Path(args.output or f"run-{sc.name}")
     if out.exists() and not out.is_dir():
         raise UserError(f"{out}: exists and is not a folder")
+    ck = None
+    if args.checkpoint_every is not None:
+        if not args.checkpoint_every > 0:
+            raise UserError(f"--checkpoint-every must be positive (got {args.checkpoint_every})")
+        out.mkdir(parents=True, exist_ok=True)
+        ck = out / "checkpoint.pkl"
     bar, update = _progress_bar(sc.name)
     with bar:
-        tr = engine_sim.run(sc, duration=args.duration, seed=args.seed, progress=update)
+        try:
+            tr = engine_sim.run(sc, duration=args.duration, seed=args.seed, progress=update, checkpoint=ck,
+                                checkpoint_every=args.checkpoint_every)
+        except ValueError as e:  # e.g. a checkpoint of another run in the folder
+            raise UserError(str(e)) from None
     out.mkdir(parents=True, exist_ok=True)
     path = save_trace(tr, out / "trace.npz")
+    if tr.metadata["partial"]:
+        print(f"interrupted at t = {tr.t[-1]:.3f} s: partial trace (marked partial) written to {path}"
+              + ("; rerun the same command to resume" if ck else ""), file=sys.stderr)
+        return 130
+    if ck is not None and ck.exists():
+        ck.unlink()
     print(f"wrote {path} and {path.with_suffix('.json')} ({len(tr.t)} samples, {tr.metadata['wall_s']:.1f} s wall)")
     return 0
 

@@ -1,6 +1,9 @@
 """engine_sim.run: simulate a scenario and record it (SI trace)."""
 from __future__ import annotations
 
+import os
+import pickle
+import tempfile
 import time
 from importlib import metadata as _md
 from pathlib import Path
@@ -21,45 +24,103 @@ def _version() -> str:
         return "0+unknown"
 
 
-def run(scenario, duration: float | None = None, seed: int | None = None, progress=None) -> EngineTrace:
+def _snapshot(scene, rec, k) -> bytes:
+    state = {"scene": scene, "t": rec.t, "out": rec.out, "pad_force": rec.pad_force, "n_contact": rec.n_contact,
+             "rec_k": rec.k, "x0": rec.x0, "k": k}
+    return pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
+
+
+def _restore(data: bytes, n_out: int):
+    state = pickle.loads(data)
+    scene = state["scene"]
+    for tr in scene.tracks:
+        tr.restore_neighbors()
+    rec = Recorder(scene, n_out)
+    rec.t, rec.out, rec.pad_force, rec.n_contact = state["t"], state["out"], state["pad_force"], state["n_contact"]
+    rec.k, rec.x0 = state["rec_k"], state["x0"]
+    return scene, rec, state["k"]
+
+
+def _write_atomic(path: Path, key: dict, data: bytes):
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    with os.fdopen(fd, "wb") as fh:
+        pickle.dump({"key": key, "data": data}, fh, protocol=pickle.HIGHEST_PROTOCOL)
+    os.replace(tmp, path)
+
+
+def run(scenario, duration: float | None = None, seed: int | None = None, progress=None, *,
+        checkpoint: str | None = None, checkpoint_every: float | None = None) -> EngineTrace:
     """Run a scenario (a path or a :class:`Scenario`) and return its trace.
 
     ``duration`` and ``seed`` override the scenario's ``[run]`` values. The warm-up (``run.warmup``) is
     simulated first and not recorded. ``progress(t_done, t_total)`` is called now and then (seconds).
+
+    ``checkpoint``/``checkpoint_every``: every that many simulated seconds the whole scene is pickled to the
+    file (atomically) and, since a restored pymunk space is not an exact continuation of the live one, the run
+    itself continues from the restored copy; a run started with an existing checkpoint of the same scenario,
+    duration and seed resumes from it, and the trace is identical bit for bit to an uninterrupted run.
+    Ctrl-C (KeyboardInterrupt) stops at the next output step, writes a checkpoint if one is configured and
+    returns the trace so far with ``metadata["partial"] = True``.
     """
     sc = scenario if isinstance(scenario, Scenario) else load_scenario(Path(scenario))
     if duration is not None:
         if not duration > 0:
             raise ValueError(f"duration must be positive (got {duration!r})")
         sc = sc.with_run(duration=float(duration))
-    scene = Scene(sc, seed)
-    n_sub = scene.n_sub
     n_warm = int(round(sc.run.warmup / sc.run.dt_out))
     n_out = int(round(sc.run.duration / sc.run.dt_out)) + 1
     total = (n_warm + n_out) * sc.run.dt_out
+    every = max(1, int(round(checkpoint_every / sc.run.dt_out))) if checkpoint_every else None
+    ck_path = Path(checkpoint) if checkpoint else None
+    key = {"scenario": sc.to_dict(), "seed": seed, "n_out": n_out, "every": every}
     t0 = time.perf_counter()
-    for k in range(n_warm):
-        scene.advance(n_sub)
-        if k % _MAINTAIN_EVERY == 0:
-            scene.maintain()
-    rec = Recorder(scene, n_out)
-    for k in range(n_out):
-        rec.sample()
-        if k + 1 < n_out:
-            scene.advance(n_sub)
-        if k % _MAINTAIN_EVERY == 0:
-            scene.maintain()
-            if progress is not None and k % (_MAINTAIN_EVERY * 16) == 0:
-                progress((n_warm + k) * sc.run.dt_out, total)
+    resumed = False
+    if ck_path is not None and ck_path.exists():
+        with open(ck_path, "rb") as fh:
+            saved = pickle.load(fh)
+        if saved.get("key") != key:
+            raise ValueError(f"{ck_path}: checkpoint of a different run (scenario, duration, seed or interval differ)")
+        scene, rec, k0 = _restore(saved["data"], n_out)
+        resumed = True
+    else:
+        scene = Scene(sc, seed)
+        for k in range(n_warm):
+            scene.advance(scene.n_sub)
+            if k % _MAINTAIN_EVERY == 0:
+                scene.maintain()
+        rec = Recorder(scene, n_out)
+        k0 = 0
+    n_sub = scene.n_sub
+    partial = False
+    k = k0
+    try:
+        while k < n_out:
+            rec.sample()
+            if k + 1 < n_out:
+                scene.advance(n_sub)
+            if k % _MAINTAIN_EVERY == 0:
+                scene.maintain()
+                if progress is not None and k % (_MAINTAIN_EVERY * 16) == 0:
+                    progress((n_warm + k) * sc.run.dt_out, total)
+            k += 1
+            if every and k % every == 0 and k < n_out:
+                data = _snapshot(scene, rec, k)
+                if ck_path is not None:
+                    _write_atomic(ck_path, key, data)
+                scene, rec, k = _restore(data, n_out)  # continue from the copy, exactly as a resumed run will
+    except KeyboardInterrupt:
+        partial = True
+        if ck_path is not None and every:
+            _write_atomic(ck_path, key, _snapshot(scene, rec, k))
     wall = time.perf_counter() - t0
-    if progress is not None:
+    if progress is not None and not partial:
         progress(total, total)
-    seed_used = scene.seed
     meta = {
         "producer": "engine_sim", "scenario": sc.to_dict(), "seed": scene.seed, "version": _version(),
         "wall_s": wall, "steps": scene.steps, "us_per_step": wall / max(scene.steps, 1) * 1e6,
         "steady_velocity_law": sc.steady_velocity, "drive_force": sc.drive_force if sc.drive.kind != "velocity" else None,
         "segments_generated": sum(t.generated for t in scene.tracks),
         "segments_live": sum(len(t.segments) for t in scene.tracks),
+        "partial": partial, "resumed_from_checkpoint": resumed,
     }
     return rec.trace(meta)

@@ -31,6 +31,7 @@ class PatchTrack:
         self.filter = shape_filter
         self.rng = rng
         self.segments: deque = deque()
+        self.neighbors: deque = deque()  # (a_prev, b_next) per segment: pickling a space drops them
         self._j = int(np.floor(x_start / a)) - 2
         self._x_end = (self._j + rng.random()) * a
         self.generated = 0
@@ -53,6 +54,7 @@ class PatchTrack:
             a_prev = (prev.a if prev is not None else s.a - (s.b - s.a))
             b_next = new[i + 1].b if i + 1 < len(new) else s.b + (s.b - s.a)
             s.set_neighbors(a_prev, b_next)
+            self.neighbors.append((a_prev, b_next))
             prev = s
         self.space.add(*new)
         self.segments.extend(new)
@@ -67,9 +69,15 @@ class PatchTrack:
         old = []
         while self.segments and self.segments[0].b.x < x - behind:
             old.append(self.segments.popleft())
+            self.neighbors.popleft()
         if old:
             self.space.remove(*old)
             self.removed += len(old)
+
+    def restore_neighbors(self):
+        """Re-apply set_neighbors after unpickling (pymunk does not save them)."""
+        for seg, (a, b) in zip(self.segments, self.neighbors):
+            seg.set_neighbors(a, b)
 
     def friction_at(self, x: float) -> float:
         """mu of the patch under x (scene units), or nan outside the generated range."""
@@ -110,6 +118,7 @@ class SelfAffineTrack:
         self._x_next = x_start  # x of the next profile point to generate
         self._last = None  # last generated point (x, y)
         self.segments: deque = deque()
+        self.neighbors: deque = deque()
         self.generated = 0
         self.removed = 0
 
@@ -132,6 +141,7 @@ class SelfAffineTrack:
             a_prev = prev.a if prev is not None else s.a - (s.b - s.a)
             b_next = new[i + 1].b if i + 1 < len(new) else s.b + (s.b - s.a)
             s.set_neighbors(a_prev, b_next)
+            self.neighbors.append((a_prev, b_next))
             prev = s
         if new:
             self.space.add(*new)
@@ -146,6 +156,11 @@ class SelfAffineTrack:
         old = []
         while self.segments and self.segments[0].b.x < x - behind:
             old.append(self.segments.popleft())
+            self.neighbors.popleft()
         if old:
             self.space.remove(*old)
             self.removed += len(old)
+
+    def restore_neighbors(self):
+        for seg, (a, b) in zip(self.segments, self.neighbors):
+            seg.set_neighbors(a, b)

@@ -337,7 +337,9 @@ def _run(lr, cr, Br, lc, cc, Bc, qr, gr, qc, gc, forces, v, dt, k0, k1, ev_pos, 
             i = ev_idx[ptr]
             df = ev_val[ptr] - forces[i]
             forces[i] = ev_val[ptr]
-            fsum += df
+            fsum = 0.0  # summed afresh, not incremented, so re-entering the kernel cannot change its bits
+            for j in range(forces.shape[0]):
+                fsum += forces[j]
             for j in range(nr):
                 gr[j] += Br[j, i] * df
             for j in range(nc):
@@ -372,7 +374,8 @@ def _renewal_block(p: SpringBlockParams, rng: np.random.Generator, b: int):
     return pos[order], idx[order].astype(np.int64), val[order], (b + 1) * nb * p.a
 
 
-def simulate(params: SpringBlockParams, duration: float, dt_out: float, seed=None) -> ModelTrace:
+def simulate(params: SpringBlockParams, duration: float, dt_out: float, seed=None, *,
+             checkpoint: str | None = None, checkpoint_every: float | None = None) -> ModelTrace:
     """Simulate model I exactly and sample the block position every ``dt_out`` seconds.
 
     Parameters
@@ -383,6 +386,10 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float, seed=Non
     dt_out : float
         Output step (Units: s). Any value works: propagation is exact between renewals.
     seed : int or numpy.random.Generator
+    checkpoint, checkpoint_every : str, float
+        If given, the full state is written (atomically) to ``checkpoint`` every ``checkpoint_every``
+        simulated seconds, and a run started with the same file resumes from it: the result is identical,
+        bit for bit, to an uninterrupted run (test: a run killed with SIGKILL and resumed).
 
     Returns
     -------
@@ -397,40 +404,54 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float, seed=Non
     n = int(round(duration / dt_out))
     if n < 2:
         raise ValueError(f"duration {duration!r} s holds fewer than two output steps of {dt_out!r} s")
-    rng = np.random.default_rng(seed)
     md = _modal(params)
-    forces = params.alpha * params.f_kin * (rng.random(params.N) - 0.5)
-    qr = np.zeros(len(md.lam_r))
-    qc = np.zeros(len(md.lam_c), dtype=np.complex128)
-    gr = md.B_r @ forces
-    gc = md.B_c @ forces.astype(np.complex128)
-    x = np.empty(n)
-    f = np.empty(n)
-    expected_events = int(params.N * (params.v * duration * 1.5 / params.a + 2 * _BLOCK_INTERVALS)) + 16
-    ev_time = np.empty(expected_events)
-    ev_index = np.empty(expected_events, dtype=np.int64)
-    ev_count = 0
-    k, b = 0, 0
-    pos = np.empty(0)
-    idx = np.empty(0, dtype=np.int64)
-    val = np.empty(0)
-    ptr = 0
+    every = n if not checkpoint_every else max(1, int(round(checkpoint_every / dt_out)))
+    st = _load_checkpoint(checkpoint, params, n, dt_out, seed) if checkpoint else None
+    if st is None:
+        rng = np.random.default_rng(seed)
+        forces = params.alpha * params.f_kin * (rng.random(params.N) - 0.5)
+        st = {
+            "rng": rng, "forces": forces, "qr": np.zeros(len(md.lam_r)),
+            "qc": np.zeros(len(md.lam_c), dtype=np.complex128), "gr": md.B_r @ forces,
+            "gc": md.B_c @ forces.astype(np.complex128), "x": np.empty(n), "f": np.empty(n),
+            "ev_time": np.empty(int(params.N * (params.v * duration * 1.5 / params.a + 2 * _BLOCK_INTERVALS)) + 16),
+            "ev_index": None, "ev_count": 0, "k": 0, "b": 0, "pos": np.empty(0), "idx": np.empty(0, dtype=np.int64),
+            "val": np.empty(0), "ptr": 0, "boundary": -np.inf,
+        }
+        st["ev_index"] = np.empty(len(st["ev_time"]), dtype=np.int64)
+    rng, forces, qr, qc, gr, gc = st["rng"], st["forces"], st["qr"], st["qc"], st["gr"], st["gc"]
+    x, f = st["x"], st["f"]
+    k, b, pos, idx, val, ptr, boundary = st["k"], st["b"], st["pos"], st["idx"], st["val"], st["ptr"], st["boundary"]
+    ev_time, ev_index, ev_count = st["ev_time"], st["ev_index"], st["ev_count"]
+    need_block = st.get("need_block", True)
+    next_ckpt = (k // every + 1) * every
     while k < n:
-        new_pos, new_idx, new_val, boundary = _renewal_block(params, rng, b)
-        b += 1
-        pos = np.concatenate([pos[ptr:], new_pos])
-        idx = np.concatenate([idx[ptr:], new_idx])
-        val = np.concatenate([val[ptr:], new_val])
-        ptr = 0
-        if ev_count + len(pos) > len(ev_time):
-            grow = max(len(ev_time), len(pos))
-            ev_time = np.concatenate([ev_time, np.empty(grow)])
-            ev_index = np.concatenate([ev_index, np.empty(grow, dtype=np.int64)])
+        if need_block:  # the kernel stopped near the end of the loaded renewals: load the next distance block
+            new_pos, new_idx, new_val, boundary = _renewal_block(params, rng, b)
+            b += 1
+            pos = np.concatenate([pos[ptr:], new_pos])
+            idx = np.concatenate([idx[ptr:], new_idx])
+            val = np.concatenate([val[ptr:], new_val])
+            ptr = 0
+            if ev_count + len(pos) > len(ev_time):
+                grow = max(len(ev_time), len(pos))
+                ev_time = np.concatenate([ev_time, np.empty(grow)])
+                ev_index = np.concatenate([ev_index, np.empty(grow, dtype=np.int64)])
         start = ptr
-        k, ptr, new_count = _run(md.lam_r, md.c0_r, md.B_r, md.lam_c, md.c0_c, md.B_c, qr, gr, qc, gc, forces,
-                                 params.v, dt_out, k, n, pos, idx, val, ptr, boundary, x, f, ev_time, ev_count)
+        k_stop = min(n, next_ckpt)
+        k_new, ptr, new_count = _run(md.lam_r, md.c0_r, md.B_r, md.lam_c, md.c0_c, md.B_c, qr, gr, qc, gc, forces,
+                                     params.v, dt_out, k, k_stop, pos, idx, val, ptr, boundary, x, f, ev_time, ev_count)
         ev_index[ev_count:new_count] = idx[start:ptr]
         ev_count = new_count
+        need_block = k_new < k_stop
+        k = k_new
+        if k == k_stop and k < n:
+            next_ckpt += every
+            if checkpoint:
+                _save_checkpoint(checkpoint, params, n, dt_out, seed, dict(
+                    rng=rng, forces=forces, qr=qr, qc=qc, gr=gr, gc=gc, x=x, f=f, ev_time=ev_time, ev_index=ev_index,
+                    ev_count=ev_count, k=k, b=b, pos=pos, idx=idx, val=val, ptr=ptr, boundary=boundary,
+                    need_block=need_block))
     if not np.all(np.isfinite(x)):
         raise FloatingPointError("model I produced non-finite positions; please report the parameters")
     meta = {
@@ -446,6 +467,39 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float, seed=Non
     return ModelTrace(t=np.arange(n) * dt_out, x=x, force=f,
                       events={"times": ev_time[:ev_count].copy(), "index": ev_index[:ev_count].copy()},
                       metadata=meta)
+
+
+def _ckpt_key(params, n, dt_out, seed) -> dict:
+    return {"params": params.to_dict(), "n": n, "dt_out": dt_out, "seed": seed if isinstance(seed, int) else repr(seed)}
+
+
+def _save_checkpoint(path, params, n, dt_out, seed, state):
+    """Pickle the state next to its identity (params, length, step, seed); atomic rename."""
+    import os
+    import pickle
+    import tempfile
+    from pathlib import Path
+
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    with os.fdopen(fd, "wb") as fh:
+        pickle.dump({"key": _ckpt_key(params, n, dt_out, seed), "state": state}, fh, protocol=pickle.HIGHEST_PROTOCOL)
+    os.replace(tmp, path)
+
+
+def _load_checkpoint(path, params, n, dt_out, seed):
+    """The saved state if ``path`` holds a checkpoint of this very run, else None."""
+    import pickle
+    from pathlib import Path
+
+    path = Path(path)
+    if not path.exists():
+        return None
+    with open(path, "rb") as fh:
+        data = pickle.load(fh)
+    if data.get("key") != _ckpt_key(params, n, dt_out, seed):
+        raise ValueError(f"{path}: checkpoint of a different run (parameters, duration, step or seed differ)")
+    return data["state"]
 
 
 # ----------------------------------------------------------------------------- theory
