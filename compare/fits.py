@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import special, stats
 
-from .spectra import Spectrum, log_bin
+from .spectra import Spectrum, check_band, log_bin
 
 __all__ = ["PowerLawFit", "fit_power_law"]
 
@@ -136,16 +136,8 @@ def fit_power_law(spectrum: Spectrum, band=None, *, bins_per_decade: int = 10,
     """
     notes = []
     if band is not None:
-        lo, hi = map(float, band)
-        if not 0 < lo < hi:
-            raise ValueError(f"band must satisfy 0 < low < high (got {band!r})")
-        if lo < spectrum.omega_min * (1 - 1e-9) or hi > spectrum.omega_max * (1 + 1e-9):
-            raise ValueError(
-                f"band ({lo:.4g}, {hi:.4g}) rad/s lies outside the resolved range "
-                f"({spectrum.omega_min:.4g}, {spectrum.omega_max:.4g}) rad/s"
-            )
-        sub = spectrum
-        b, lnw, lnC, var = _binned(sub, bins_per_decade)
+        lo, hi = check_band(spectrum, band)
+        b, lnw, lnC, var = _binned(spectrum, bins_per_decade)
         keep = (b.omega >= lo) & (b.omega <= hi)
         if keep.sum() < 3:
             raise ValueError(f"band ({lo:.4g}, {hi:.4g}) rad/s holds fewer than 3 log bins; widen it")

@@ -329,9 +329,8 @@ def friction_coefficient_spectrum(spectrum: Spectrum, g: float = G_STANDARD) -> 
                      f"C_mu = omega^4 C_x / g^2 with g = {g:g} m/s^2  [section 2]")
 
 
-def _band_mask(spectrum: Spectrum, band) -> np.ndarray:
-    if band is None:
-        return np.ones(len(spectrum.omega), dtype=bool)
+def check_band(spectrum: Spectrum, band) -> tuple[float, float]:
+    """(low, high) of a frequency band (rad/s) inside the spectrum's resolved range, or ValueError."""
     lo, hi = map(float, band)
     if not 0 < lo < hi:
         raise ValueError(f"band must satisfy 0 < low < high (got {band!r})")
@@ -340,6 +339,13 @@ def _band_mask(spectrum: Spectrum, band) -> np.ndarray:
             f"band ({lo:.4g}, {hi:.4g}) rad/s lies outside the resolved range "
             f"({spectrum.omega_min:.4g}, {spectrum.omega_max:.4g}) rad/s"
         )
+    return lo, hi
+
+
+def _band_mask(spectrum: Spectrum, band) -> np.ndarray:
+    if band is None:
+        return np.ones(len(spectrum.omega), dtype=bool)
+    lo, hi = check_band(spectrum, band)
     mask = (spectrum.omega >= lo) & (spectrum.omega <= hi)
     if mask.sum() < 2:
         raise ValueError(f"band ({lo:.4g}, {hi:.4g}) rad/s holds fewer than two spectral ordinates")

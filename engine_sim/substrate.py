@@ -15,56 +15,34 @@ __all__ = ["PatchTrack", "SelfAffineTrack", "self_affine_kernel"]
 _CHUNK = 32  # patches generated at a time
 
 
-class PatchTrack:
-    """A flat track of friction patches (model I's renewal, section 3).
+class _StreamedTrack:
+    """Segments generated ahead of a pad and dropped behind it. Subclasses implement ``_extend`` (add the next
+    chunk via ``_link_and_add``) and ``_frontier`` (x up to which the track exists)."""
 
-    Patch boundaries lie at (j + r_j) a, so the distance between renewals is a (1 + r - r'), exactly the
-    interval law behind eq. (A8); each patch has mu = mu0 (1 + alpha (r - 1/2)), so the force on a pad
-    sliding under load N_pad changes to mu0 N_pad + alpha mu0 N_pad (r - 1/2) (eq. 5).
-
-    Parameters are in scene units (mm). ``rng`` is this track's own generator.
-    """
-
-    def __init__(self, space: pymunk.Space, y: float, a: float, mu0: float, alpha: float, radius: float,
-                 shape_filter: pymunk.ShapeFilter, rng: np.random.Generator, x_start: float):
-        self.space, self.y, self.a, self.mu0, self.alpha, self.radius = space, y, a, mu0, alpha, radius
-        self.filter = shape_filter
-        self.rng = rng
+    def _init_stream(self, space, shape_filter, rng):
+        self.space, self.filter, self.rng = space, shape_filter, rng
         self.segments: deque = deque()
         self.neighbors: deque = deque()  # (a_prev, b_next) per segment: pickling a space drops them
-        self._j = int(np.floor(x_start / a)) - 2
-        self._x_end = (self._j + rng.random()) * a
         self.generated = 0
         self.removed = 0
 
-    def _extend(self):
-        j = self._j + 1 + np.arange(_CHUNK)
-        bounds = (j + self.rng.random(_CHUNK)) * self.a
-        mus = self.mu0 * (1.0 + self.alpha * (self.rng.random(_CHUNK) - 0.5))
-        new = []
-        x0 = self._x_end
-        for x1, mu in zip(bounds, mus):
-            s = pymunk.Segment(self.space.static_body, (x0, self.y), (x1, self.y), self.radius)
-            s.friction = float(mu)
-            s.filter = self.filter
-            new.append(s)
-            x0 = x1
+    def _link_and_add(self, new: list):
+        """Link consecutive segments with set_neighbors (so pads do not catch on joints) and add them."""
         prev = self.segments[-1] if self.segments else None
         for i, s in enumerate(new):
-            a_prev = (prev.a if prev is not None else s.a - (s.b - s.a))
+            a_prev = prev.a if prev is not None else s.a - (s.b - s.a)
             b_next = new[i + 1].b if i + 1 < len(new) else s.b + (s.b - s.a)
             s.set_neighbors(a_prev, b_next)
             self.neighbors.append((a_prev, b_next))
             prev = s
-        self.space.add(*new)
+        if new:
+            self.space.add(*new)
         self.segments.extend(new)
-        self._j = int(j[-1])
-        self._x_end = float(bounds[-1])
         self.generated += len(new)
 
     def maintain(self, x: float, ahead: float, behind: float):
         """Keep segments covering [x - behind, x + ahead]; add ahead, remove behind."""
-        while self._x_end < x + ahead:
+        while self._frontier() < x + ahead:
             self._extend()
         old = []
         while self.segments and self.segments[0].b.x < x - behind:
@@ -78,6 +56,43 @@ class PatchTrack:
         """Re-apply set_neighbors after unpickling (pymunk does not save them)."""
         for seg, (a, b) in zip(self.segments, self.neighbors):
             seg.set_neighbors(a, b)
+
+
+class PatchTrack(_StreamedTrack):
+    """A flat track of friction patches (model I's renewal, section 3).
+
+    Patch boundaries lie at (j + r_j) a, so the distance between renewals is a (1 + r - r'), exactly the
+    interval law behind eq. (A8); each patch has mu = mu0 (1 + alpha (r - 1/2)), so the force on a pad
+    sliding under load N_pad changes to mu0 N_pad + alpha mu0 N_pad (r - 1/2) (eq. 5).
+
+    Parameters are in scene units (mm). ``rng`` is this track's own generator.
+    """
+
+    def __init__(self, space: pymunk.Space, y: float, a: float, mu0: float, alpha: float, radius: float,
+                 shape_filter: pymunk.ShapeFilter, rng: np.random.Generator, x_start: float):
+        self._init_stream(space, shape_filter, rng)
+        self.y, self.a, self.mu0, self.alpha, self.radius = y, a, mu0, alpha, radius
+        self._j = int(np.floor(x_start / a)) - 2
+        self._x_end = (self._j + rng.random()) * a
+
+    def _frontier(self) -> float:
+        return self._x_end
+
+    def _extend(self):
+        j = self._j + 1 + np.arange(_CHUNK)
+        bounds = (j + self.rng.random(_CHUNK)) * self.a
+        mus = self.mu0 * (1.0 + self.alpha * (self.rng.random(_CHUNK) - 0.5))
+        new = []
+        x0 = self._x_end
+        for x1, mu in zip(bounds, mus):
+            s = pymunk.Segment(self.space.static_body, (x0, self.y), (x1, self.y), self.radius)
+            s.friction = float(mu)
+            s.filter = self.filter
+            new.append(s)
+            x0 = x1
+        self._link_and_add(new)
+        self._j = int(j[-1])
+        self._x_end = float(bounds[-1])
 
     def friction_at(self, x: float) -> float:
         """mu of the patch under x (scene units), or nan outside the generated range."""
@@ -104,23 +119,21 @@ def self_affine_kernel(hurst: float, lambda_r: float, lambda_s: float, dx: float
     return k * (rms_slope / np.sqrt(np.sum(slope**2)))
 
 
-class SelfAffineTrack:
+class SelfAffineTrack(_StreamedTrack):
     """A randomly rough self-affine track, streamed: white noise filtered by a fixed FIR kernel, keeping the
     last kernel-length of noise between chunks, so the profile is exactly stationary across chunk joins.
     Straight segments between grid points, consecutive segments linked with set_neighbors; friction mu0."""
 
     def __init__(self, space, y, kernel, dx, mu0, radius, shape_filter, rng, x_start, chunk_points=256):
-        self.space, self.y, self.k, self.dx, self.mu0, self.radius = space, y, kernel, dx, mu0, radius
-        self.filter = shape_filter
-        self.rng = rng
+        self._init_stream(space, shape_filter, rng)
+        self.y, self.k, self.dx, self.mu0, self.radius = y, kernel, dx, mu0, radius
         self.chunk = chunk_points
         self._noise = rng.standard_normal(len(kernel) - 1)
         self._x_next = x_start  # x of the next profile point to generate
         self._last = None  # last generated point (x, y)
-        self.segments: deque = deque()
-        self.neighbors: deque = deque()
-        self.generated = 0
-        self.removed = 0
+
+    def _frontier(self) -> float:
+        return self._x_next
 
     def _extend(self):
         w = np.concatenate([self._noise, self.rng.standard_normal(self.chunk)])
@@ -136,31 +149,6 @@ class SelfAffineTrack:
             s.friction = self.mu0
             s.filter = self.filter
             new.append(s)
-        prev = self.segments[-1] if self.segments else None
-        for i, s in enumerate(new):
-            a_prev = prev.a if prev is not None else s.a - (s.b - s.a)
-            b_next = new[i + 1].b if i + 1 < len(new) else s.b + (s.b - s.a)
-            s.set_neighbors(a_prev, b_next)
-            self.neighbors.append((a_prev, b_next))
-            prev = s
-        if new:
-            self.space.add(*new)
-        self.segments.extend(new)
+        self._link_and_add(new)
         self._last = pts[-1]
         self._x_next = float(xs[-1] + self.dx)
-        self.generated += len(new)
-
-    def maintain(self, x, ahead, behind):
-        while self._x_next < x + ahead:
-            self._extend()
-        old = []
-        while self.segments and self.segments[0].b.x < x - behind:
-            old.append(self.segments.popleft())
-            self.neighbors.popleft()
-        if old:
-            self.space.remove(*old)
-            self.removed += len(old)
-
-    def restore_neighbors(self):
-        for seg, (a, b) in zip(self.segments, self.neighbors):
-            seg.set_neighbors(a, b)
