@@ -107,7 +107,6 @@ def _cmd_sweep(args) -> int:
 
 
 def _cmd_analyze(args) -> int:
-    import warnings
     from pathlib import Path
 
     from .measured import DataFileError, read_displacement_csv

@@ -20,7 +20,7 @@ renewal position, found by safeguarded Newton iteration on the exact solution.
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, field
 
 import numba
 import numpy as np

@@ -4,7 +4,6 @@ import hashlib
 import subprocess
 import sys
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,7 +12,6 @@ import engine_sim
 from compare.fits import fit_power_law
 from compare.spectra import band_average, displacement_spectrum
 from engine_sim import ScenarioError, load_scenario, scenario_from_dict, shipped_scenarios
-from engine_sim.scenario import SubstrateSpec
 from reduced_models.spring_block import SpringBlockParams, theory_spectrum
 
 PATCHES = shipped_scenarios()["pads_friction_patches"]
