@@ -56,23 +56,24 @@ def test_time_step_beyond_the_limit_is_refused():
         scenario_from_dict({"run": {"dt": 3e-4, "dt_out": 3e-3}})
 
 
-def test_cost_flat_and_substrate_bounded_over_a_metre():
-    # 1 m of sliding at 100 mm/s. The wall time per simulated second late in the run (7-10 s, 0.7-1 m) stays
-    # within 20 % of its early value (0.5-3.5 s, 5-35 cm), and the live substrate does not grow: the
+def test_cost_flat_and_substrate_bounded_over_two_metres():
+    # 2 m of sliding at 100 mm/s. The wall time per simulated second late in the run (1.35-2 m) stays
+    # within 20 % of its early value (5-70 cm), and the live substrate does not grow: the
     # segments alive at the end are no more than at 1 cm, while > 25x as many were generated.
     import time
 
-    sc = replace(BASE, drive=replace(BASE.drive, v=0.1)).with_run(duration=10.0, warmup=0.1)
+    sc = replace(BASE, drive=replace(BASE.drive, v=0.1)).with_run(duration=20.0, warmup=0.1)
     engine_sim.run(sc.with_run(duration=0.3))  # compile the recorder kernel first (a fresh clone has no cache)
     marks = []
     tr = engine_sim.run(sc, progress=lambda done, total: marks.append((done, time.perf_counter())))
     t = np.array([m[0] for m in marks])
     w = np.array([m[1] for m in marks])
     rate = np.diff(w) / np.diff(t)  # wall s per simulated s between progress calls (every ~1 s)
-    # medians of the ~1 s intervals in the first and last thirds (robust to one slow interval)
-    early = np.median(rate[(t[1:] > 0.5) & (t[1:] <= 3.5)])
-    late = np.median(rate[t[1:] > 7.0])
+    # medians of the ~1 s intervals over 6 s early and late: the rate has no trend (measured 0.26-0.29) but
+    # periodic spikes to 0.35 (garbage collection of dropped segments) that a short window can catch
+    early = np.median(rate[(t[1:] > 0.5) & (t[1:] <= 7.0)])
+    late = np.median(rate[t[1:] > 13.5])
     assert late == pytest.approx(early, rel=0.20), (early, late)
-    assert tr.x[-1] > 0.99  # m
-    assert tr.metadata["segments_generated"] > 25 * tr.metadata["segments_live"]
+    assert tr.x[-1] > 1.99  # m
+    assert tr.metadata["segments_generated"] > 50 * tr.metadata["segments_live"]
     assert tr.metadata["segments_live"] <= sc.pads.N * (2 * 32 + 12 + 1)  # two chunks ahead + the kept window
