@@ -279,7 +279,8 @@ def _cmd_report(args) -> int:
         raise UserError(f"{out}: exists and is not a folder")
     from engine_sim import shipped_scenarios
 
-    stages = ["model I reference", "model I variations", "model III", "model II"] + list(shipped_scenarios())
+    stages = (["model I reference", "model I variations", "model III", "model II"] + list(shipped_scenarios())
+              + ([] if args.quick else ["work-precision"]))
     with tqdm(total=len(stages), desc="report", unit="stage", file=sys.stderr,
               disable=not sys.stderr.isatty()) as bar:
         def progress(stage):

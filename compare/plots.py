@@ -75,3 +75,21 @@ def level_figure(v, C, exponent, err, omega_ref):
     ax.legend(fontsize=8)
     fig.tight_layout()
     return fig
+
+
+def work_precision_figure(rows):
+    """Cost against error, log-log; Pareto front in red, the default labelled."""
+    fig, ax = plt.subplots(figsize=(5.5, 4.0), dpi=110)
+    for r in rows:
+        if r["pareto"] is None:
+            continue
+        e = max(r["error"], 1e-4)
+        ax.plot(r["cost"], e, "o", color="tab:red" if r["pareto"] else "0.5")
+        ax.annotate(f"dt={r['dt']:g}, it={r['iterations']}{' (default)' if r['default'] else ''}", (r["cost"], e), fontsize=7)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall s per simulated s")
+    ax.set_ylabel(r"band-averaged $|\ln C_x / C_{x,\mathrm{ref}}|$ (floor 1e-4)")
+    ax.set_title("Engine work-precision (red: Pareto front)", fontsize=9)
+    fig.tight_layout()
+    return fig
