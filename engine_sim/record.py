@@ -56,7 +56,6 @@ class Recorder:
     def __init__(self, scene, n_samples: int):
         self.scene = scene
         N = len(scene.pads)
-        self.n = n_samples
         self.k = 0
         self.t = np.empty(n_samples)
         # scalar channels per sample, columns in _COLS order (one array: numba's dispatch cost grows with

@@ -25,6 +25,7 @@ class SceneRenderer:
 
     def __init__(self, scene, window: float | None = None, dpi: int = 90):
         self.scene = scene
+        self._pads = set(scene.pads)
         sc = scene.sc
         self.window = (window or 12 * sc.substrate.a) * U.LENGTH  # mm either side of the block
         self.fig, self.ax = plt.subplots(figsize=(7.0, 5.0), dpi=dpi)
@@ -65,7 +66,7 @@ class SceneRenderer:
         pads = np.array([(p.position.x, p.position.y) for p in s.pads])
         self.pads.set_offsets(pads)
         anchors = [c.a.local_to_world(c.anchor_a) for c in s.space.constraints
-                   if getattr(c, "a", None) is s.block and c.b in self._pad_set and c.anchor_a.x < 0]
+                   if getattr(c, "a", None) is s.block and c.b in self._pads and c.anchor_a.x < 0]
         self.springs.set_segments([((a.x, a.y), (p[0], p[1])) for a, p in zip(anchors, pads)])
         self.block.set_x(bx - 5.0)
         self.block.set_width(5.0)
@@ -73,10 +74,6 @@ class SceneRenderer:
         self.text.set_text(f"t = {s.time:.3f} s   x = {bx:.3f} mm   v = {s.block.velocity.x * 1e3:.3f} mm/s")
         self.fig.canvas.draw()
         return np.asarray(self.fig.canvas.buffer_rgba())
-
-    @property
-    def _pad_set(self):
-        return set(self.scene.pads)
 
     def save_png(self, path: Path):
         self.fig.savefig(path)

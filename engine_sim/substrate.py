@@ -94,12 +94,6 @@ class PatchTrack(_StreamedTrack):
         self._j = int(j[-1])
         self._x_end = float(bounds[-1])
 
-    def friction_at(self, x: float) -> float:
-        """mu of the patch under x (scene units), or nan outside the generated range."""
-        for s in self.segments:
-            if s.a.x <= x < s.b.x:
-                return s.friction
-        return float("nan")
 
 
 def self_affine_kernel(hurst: float, lambda_r: float, lambda_s: float, dx: float, rms_slope: float):
