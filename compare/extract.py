@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-__all__ = ["model_I_parameters", "spring_block_params"]
+__all__ = ["model_I_parameters", "spring_block_params", "model_III_parameters", "asperity_force_params"]
 
 
 def _correlation_length(x: np.ndarray, f: np.ndarray, max_lag_distance: float) -> float:
@@ -48,8 +48,12 @@ def model_I_parameters(trace, scenario) -> dict:
     rms = float(np.mean(np.std(f, axis=0)))
     Lc = _correlation_length(trace.x, f, 10 * sc.substrate.a)
     a = 12.0 / 7.0 * Lc
-    c_law = sc.friction.c
+    c_law = sc.friction_slope(float((trace.x[-1] - trace.x[0]) / (trace.t[-1] - trace.t[0])))
     c_meas = float(np.mean(trace.F_drag) / (N_contact * v))
+    if sc.drive.kind == "leonardo":  # the taut rope moves the hanging mass with the block
+        M, M_prov = sc.block.M + sc.hanging_mass, "scenario: block + hanging mass (Leonardo's slider, rope taut)"
+    else:
+        M, M_prov = sc.block.M, "scenario"
     return {
         "N": {"value": N_contact, "unit": "", "provenance": "mean number of pads touching their track"},
         "load_per_pad": {"value": load, "unit": "N", "provenance": "mean normal contact force / N"},
@@ -61,12 +65,12 @@ def model_I_parameters(trace, scenario) -> dict:
                   "substrate_value": sc.substrate.alpha},
         "c": {"value": c_law, "unit": "N s/m", "provenance": "friction law (scenario)", "measured": c_meas},
         "k0": {"value": sc.pads.k0, "unit": "N/m", "provenance": "scenario"},
-        "M": {"value": sc.block.M, "unit": "kg", "provenance": "scenario"},
+        "M": {"value": M, "unit": "kg", "provenance": M_prov},
         "m": {"value": sc.pads.mass, "unit": "kg", "provenance": "scenario (pad mass)"},
         "eta0": {"value": sc.pads.c0 / sc.pads.mass, "unit": "1/s", "provenance": "scenario (c0 / m)"},
-        "omega_star": {"value": N_contact * c_law / sc.block.M, "unit": "rad/s",
+        "omega_star": {"value": N_contact * c_law / M, "unit": "rad/s",
                        "provenance": "N c / M: viscous response below, inertial above"},
-        "omega_c": {"value": math.sqrt(N_contact * sc.pads.k0 / sc.block.M), "unit": "rad/s",
+        "omega_c": {"value": math.sqrt(N_contact * sc.pads.k0 / M), "unit": "rad/s",
                     "provenance": "sqrt(N k0 / M): block-on-pads resonance, the top of the omega^-4 band"},
     }
 
@@ -81,3 +85,45 @@ def spring_block_params(ex: dict):
     return SpringBlockParams(N=N, v=v, a=ex["a"]["value"], k0=ex["k0"]["value"], k1=0.0, M=ex["M"]["value"], m=m,
                              eta0=ex["eta0"]["value"], eta1=None, alpha=ex["alpha"]["value"],
                              F_drive=N * (f_kin + c * v), F_kin=N * f_kin)
+
+
+def model_III_parameters(trace, scenario) -> dict:
+    """Model III (section 6) contact statistics of an asperity-field trace: {name: {"value", "unit", "provenance"}}.
+
+    w is the sole's width N foot_length; N the mean number of foot-asperity contact pairs; the model's cell
+    is the substrate's, so p = N cell / w is the probability that a cell under the sole carries a *touching*
+    asperity (the substrate's own p counts bumps too low to be touched as well); F_f is the mean tangential
+    contact force and f0 = 2 F_f / N (model III's contact force is r f0 with r uniform in [0, 1]). The
+    per-contact force distribution is measured on feet touching exactly one asperity: its coefficient of
+    variation is compared with the uniform law's 1/sqrt(3)."""
+    sc = scenario
+    w = sc.pads.N * sc.pads.foot_length
+    N = float(np.mean(trace.n_pairs))
+    F_f = float(np.mean(trace.F_t))
+    v = float((trace.x[-1] - trace.x[0]) / (trace.t[-1] - trace.t[0]))
+    f = trace.pad_force
+    single = f[np.abs(f) > 0]
+    cv = float(np.std(single) / np.mean(single)) if single.size else float("nan")
+    return {
+        "w": {"value": w, "unit": "m", "provenance": "N x foot_length (scenario)"},
+        "N": {"value": N, "unit": "", "provenance": "mean number of foot-asperity contact pairs"},
+        "p": {"value": N * sc.substrate.cell / w, "unit": "", "provenance": "N cell / w: touching asperities per cell",
+              "substrate_value": sc.substrate.p},
+        "F_f": {"value": F_f, "unit": "N", "provenance": "mean tangential contact force"},
+        "f0": {"value": 2.0 * F_f / N, "unit": "N", "provenance": "2 F_f / N (model III: mean contact force f0 / 2)"},
+        "contact_force_cv": {"value": cv, "unit": "", "provenance": "std / mean of the tangential force of feet in contact "
+                             "(model III's uniform r f0: 0.577)"},
+        "n_rel_std": {"value": float(np.std(trace.n_pairs) / N), "unit": "", "provenance": "relative std of the number of contacts"},
+        "v": {"value": v, "unit": "m/s", "provenance": "block displacement / time"},
+        "M": {"value": sc.block.M, "unit": "kg", "provenance": "scenario"},
+        "omega_star": {"value": sc.pads.N * sc.friction_slope(v) / sc.block.M, "unit": "rad/s",
+                       "provenance": "N c / M: viscous response below, inertial above"},
+    }
+
+
+def asperity_force_params(ex: dict):
+    """An AsperityForceParams with the contact statistics of :func:`model_III_parameters`."""
+    from reduced_models.asperity_force import AsperityForceParams
+
+    return AsperityForceParams(F_f=ex["F_f"]["value"], v=ex["v"]["value"], p=min(1.0, ex["p"]["value"]),
+                               M=ex["M"]["value"], w=ex["w"]["value"], N=ex["N"]["value"])

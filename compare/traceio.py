@@ -11,7 +11,7 @@ import numpy as np
 
 __all__ = ["save_trace", "load_trace", "TraceFileError", "FORMAT"]
 
-FORMAT = "frictionnoise-trace-1"
+FORMAT = "frictionnoise-trace-2"
 
 
 class TraceFileError(ValueError):

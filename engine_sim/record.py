@@ -3,7 +3,12 @@
 Per output sample: the block's position and velocity; per pad, the tangential and normal contact force
 (arbiter impulse of the last step / dt) and whether it touches its track; the drive's work and the power
 dissipated by the friction law (Coulomb part -f_t v and viscous part c v^2), integrated by trapezoids, and
-the mechanical energy, for the energy balance W_drive = dissipated + change of mechanical energy.
+the mechanical energy, for the energy balance W_drive (+ W_recycle) = dissipated + change of mechanical energy.
+Dissipation is measured, not inferred: at every contact the friction power -F_t (v_A(p) - v_B(p))_t (tangential
+force times slip at the contact point p, rotation included), plus the friction law's drag and the springs' and rotary dampers' damping. With the
+log law the velocity part b N_pad ln(1 + v/v_c) enters the drag force and its power. With wear particles: per
+particle and sample its state (0 idle: not touching its pad; 1 trapped: touching and slower than the trapped
+threshold; 2 moving) and the tangential force it exerts on its pad.
 """
 from __future__ import annotations
 
@@ -17,7 +22,8 @@ from . import units as U
 
 __all__ = ["EngineTrace", "Recorder"]
 
-_COLS = ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "penetration", "power_in", "power_out", "mech")
+_COLS = ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "penetration", "power_in", "power_out", "mech", "pairs",
+         "p_pen")
 
 
 @dataclass(frozen=True)
@@ -25,10 +31,15 @@ class EngineTrace:
     """A recorded scene run (SI units). ``t`` [s], ``x`` [m] (block position from its start), ``v`` [m/s];
     ``F_t``, ``F_n`` [N]: summed tangential and normal contact force on the pads (tangential positive
     against the sliding direction, i.e. the Coulomb part of the friction law); ``F_drag`` [N]: the viscous
-    part c sum v_pad, so F_t + F_drag is the whole friction force; ``F_drive`` [N]: the drive's force on the block; ``pad_force`` [N] (samples x pads), tangential; ``n_contact``: pads
-    touching their track; ``penetration`` [m]: the deepest overlap of any pad with its track (pymunk's
+    part of the law summed over pads (c v_pad, plus b N_pad ln(1 + v_pad/v_c) for the log law), so F_t + F_drag
+    is the whole friction force; ``F_drive`` [N]: the drive's force (for Leonardo's slider the hanging weight); ``pad_force`` [N] (samples x pads), tangential; ``n_contact``: pads
+    touching their track; ``n_pairs``: pad-substrate contact pairs (a foot may stand on several asperities); ``penetration`` [m]: the deepest overlap of any pad with its track (pymunk's
     contact distance; 0 when no contact overlaps); ``work_drive``, ``dissipated``, ``mech_energy`` [J] cumulative from the first
-    sample; ``metadata``: scenario, seed, version, timings."""
+    sample; ``work_recycle`` [J]: energy moved into the scene by recycling wear particles (their change of potential
+    energy minus the kinetic energy taken away); ``p_state`` (samples x particles, int8: 0 idle, 1 trapped,
+    2 moving), ``p_force`` [N] (samples x particles): tangential force of each particle on its pad, positive
+    against sliding; ``particle_penetration`` [m]: the deepest overlap of any particle with its track (contact distance);
+    ``metadata``: scenario, seed, version, timings, particle counts."""
 
     t: np.ndarray
     x: np.ndarray
@@ -39,23 +50,32 @@ class EngineTrace:
     F_drive: np.ndarray
     pad_force: np.ndarray
     n_contact: np.ndarray
+    n_pairs: np.ndarray
     penetration: np.ndarray
     work_drive: np.ndarray
     dissipated: np.ndarray
     mech_energy: np.ndarray
+    work_recycle: np.ndarray
+    p_state: np.ndarray
+    p_force: np.ndarray
+    particle_penetration: np.ndarray
     metadata: dict = field(default_factory=dict)
 
 
 class Recorder:
     """Samples a :class:`~engine_sim.scene.Scene` into preallocated arrays."""
 
-    _BODY = B.BodyFields.BODY_ID | B.BodyFields.POSITION | B.BodyFields.VELOCITY
+    _BODY = (B.BodyFields.BODY_ID | B.BodyFields.POSITION | B.BodyFields.VELOCITY
+             | B.BodyFields.ANGULAR_VELOCITY)
     _ARB = (B.ArbiterFields.BODY_A_ID | B.ArbiterFields.BODY_B_ID | B.ArbiterFields.CONTACT_COUNT
-            | B.ArbiterFields.TOTAL_IMPULSE | B.ArbiterFields.DISTANCE_1)
+            | B.ArbiterFields.TOTAL_IMPULSE | B.ArbiterFields.NORMAL | B.ArbiterFields.POINT_A_1
+            | B.ArbiterFields.DISTANCE_1)
 
     def __init__(self, scene, n_samples: int):
         self.scene = scene
         N = len(scene.pads)
+        wear = scene.wear
+        n_p = wear.count if wear is not None else 0
         self.k = 0
         self.t = np.empty(n_samples)
         # scalar channels per sample, columns in _COLS order (one array: numba's dispatch cost grows with
@@ -63,10 +83,26 @@ class Recorder:
         self.out = np.empty((n_samples, len(_COLS)))
         self.pad_force = np.empty((n_samples, N))
         self.n_contact = np.empty(n_samples, dtype=np.int32)
-        ids = np.array([pad.id for pad in scene.pads], dtype=np.int64)
-        self._order = np.argsort(ids)
-        self._sorted_ids = ids[self._order]
-        self.block_id = scene.block.id
+        self.p_state = np.zeros((n_samples, n_p), dtype=np.int8)
+        self.p_force = np.zeros((n_samples, n_p))
+        self.recycle = np.zeros(n_samples)
+        # body table: sorted ids -> (kind, index); kinds 0 block, 1 pad, 2 particle, 3 hanging mass
+        rows = [(scene.block.id, 0, 0)] + [(pad.id, 1, i) for i, pad in enumerate(scene.pads)]
+        if wear is not None:
+            rows += [(b.id, 2, j) for j, b in enumerate(wear.bodies)]
+        if scene.hanging is not None:
+            rows += [(scene.hanging.id, 3, 0)]
+        rows.sort()
+        self._tab = np.array(rows, dtype=np.int64).reshape(-1, 3)
+        # per particle: mass, moment, radius, asleep (set each sample), last known (x, y)
+        if wear is not None:
+            moment = np.where(np.isfinite(wear.moment), wear.moment, 0.0)  # locked grains: no rotational energy
+            self._part = np.column_stack([wear.mass, moment, wear.r, np.zeros(n_p),
+                                          np.zeros(n_p), np.zeros(n_p)]).astype(float)
+            for j, b in enumerate(wear.bodies):
+                self._part[j, 4:6] = b.position.x, b.position.y
+        else:
+            self._part = np.zeros((0, 6))
         self._bbuf = B.Buffer()
         self._abuf = B.Buffer()
         sc = scene.sc
@@ -74,23 +110,29 @@ class Recorder:
         self.M = sc.block.M * U.MASS
         self.c = sc.friction.c * U.DAMPING
         self.x0 = None
-        # scalars for the kernel: drive k, anchor x, rest, anchor v, x0, dt, c, m_p, M, g
-        self._prm = np.array([0.0, 0.0, 0.0, 0.0, 0.0, scene.dt, self.c, self.m_p, self.M, -scene.space.gravity.y])
-        # Springs with energy, as (body a is block?, anchors, rest length, stiffness) arrays for vectorised
-        # lengths; drag springs (stiffness 0) store none. Pad-pad springs use both pad positions.
+        bN, vc = scene.log_law if scene.log_law is not None else (0.0, 1.0)
+        m_h = scene.hanging.mass if scene.hanging is not None else 0.0
+        c_rot = 0.0  # no rotary dampers (see wear.py); kept as a kernel input
+        v_trap = sc.wear.trapped_speed * sc.steady_velocity * U.VELOCITY
+        # scalars for the kernel: drive k, anchor x, rest, anchor v, x0, dt, c, m_p, M, g, b N_pad, v_c, m_h,
+        # rotary damping, trapped-speed threshold, output step
+        self._prm = np.array([0.0, 0.0, 0.0, 0.0, 0.0, scene.dt, self.c, self.m_p, self.M, -scene.space.gravity.y,
+                              bN, vc, m_h, c_rot, v_trap, scene.dt * scene.n_sub])
+        # Springs with energy, as (pad, anchors, rest length, stiffness, damping) arrays for vectorised lengths;
+        # drag springs (stiffness 0) store none. Pad-pad springs use both pad positions.
         bs, pp = [], []
         index = {pad: i for i, pad in enumerate(scene.pads)}
         for c in scene.space.constraints:
-            if not hasattr(c, "stiffness") or c.stiffness <= 0:
+            if c is scene.drive_spring:
+                self._drive_spring = c
+            if not hasattr(c, "stiffness") or not hasattr(c, "rest_length") or c.stiffness <= 0:
                 continue
             if c.a is scene.block and c.b in index:
-                bs.append((index[c.b], *c.anchor_a, *c.anchor_b, c.rest_length, c.stiffness))
+                bs.append((index[c.b], *c.anchor_a, *c.anchor_b, c.rest_length, c.stiffness, c.damping))
             elif c.a in index and c.b in index:
-                pp.append((index[c.a], index[c.b], *c.anchor_a, *c.anchor_b, c.rest_length, c.stiffness))
-            elif c.a is scene.block and c is scene.drive_spring:
-                self._drive_spring = c
-        self._bs = np.array(bs).reshape(-1, 7)
-        self._pp = np.array(pp).reshape(-1, 8)
+                pp.append((index[c.a], index[c.b], *c.anchor_a, *c.anchor_b, c.rest_length, c.stiffness, c.damping))
+        self._bs = np.array(bs).reshape(-1, 8)
+        self._pp = np.array(pp).reshape(-1, 9)
 
     def sample(self):
         sc, k = self.scene, self.k
@@ -107,8 +149,12 @@ class Recorder:
         drive_k, drive_x, drive_rest, drive_v = self._drive_state()
         prm = self._prm
         prm[0], prm[1], prm[2], prm[3], prm[4] = drive_k, drive_x, drive_rest, drive_v, self.x0
-        _reduce(ids, fl, ai, af, self._sorted_ids, self._order, self.block_id, self._bs, self._pp, prm, k,
-                self.out, self.pad_force, self.n_contact)
+        if sc.wear is not None:  # recycling moved particles since the last sample: their new places
+            for j, b in enumerate(sc.wear.bodies):
+                self._part[j, 3] = b.is_sleeping
+            self.recycle[k] = sc.wear.recycle_work
+        _reduce(ids, fl, ai, af, self._tab, self._part, self._bs, self._pp, prm, k,
+                self.out, self.pad_force, self.n_contact, self.p_state, self.p_force)
         self.t[k] = sc.steps * sc.dt / U.TIME
         self.k += 1
 
@@ -127,98 +173,191 @@ class Recorder:
         return EngineTrace(
             t=t - t[0], x=(o["x"] - o["x"][0]) / U.LENGTH, v=o["v"] / U.VELOCITY, F_t=o["F_t"].copy(),
             F_n=o["F_n"].copy(), F_drag=o["F_drag"].copy(), F_drive=o["F_drive"].copy(),
-            pad_force=self.pad_force[:n], n_contact=self.n_contact[:n],
+            pad_force=self.pad_force[:n], n_contact=self.n_contact[:n], n_pairs=o["pairs"].astype(np.int32),
             penetration=o["penetration"] / U.LENGTH, work_drive=cum(o["power_in"]),
             dissipated=cum(o["power_out"]), mech_energy=(o["mech"] - o["mech"][0]) / U.ENERGY,
-            metadata=metadata,
+            work_recycle=(self.recycle[:n] - self.recycle[0]) / U.ENERGY,
+            p_state=self.p_state[:n], p_force=self.p_force[:n] / U.FORCE,
+            particle_penetration=o["p_pen"] / U.LENGTH, metadata=metadata,
         )
 
 
 @numba.njit(cache=True)
-def _reduce(ids, fl, ai, af, sorted_ids, order, block_id, bs, pp, prm, k, out, pad_force, n_contact):
-    """One sample from the raw batch buffers (scene units): bodies [px, py, vx, vy] by id, arbiters
-    [a_id, b_id, count] x [Jx, Jy, d1]; contact forces per pad, penetration, powers, mechanical energy."""
+def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, k, out, pad_force, n_contact, p_state, p_force):
+    """One sample from the raw batch buffers (scene units): bodies [px, py, vx, vy, w] by id, arbiters
+    [a_id, b_id, count] x [Jx, Jy, nx, ny, pax, pay, d1] with J the impulse on body A; contact forces per pad and per
+    particle, penetrations, powers, mechanical energy. Bodies absent from the buffer are asleep (at rest)."""
     dk, dx_anchor, drest, dv, x0 = prm[0], prm[1], prm[2], prm[3], prm[4]
     dt, c, m_p, M, g = prm[5], prm[6], prm[7], prm[8], prm[9]
-    N = sorted_ids.shape[0]
+    bN, vc, m_h, c_rot, v_trap, dt_out = prm[10], prm[11], prm[12], prm[13], prm[14], prm[15]
+    N = pad_force.shape[1]
+    n_p = part.shape[0]
+    n_tab = tab.shape[0]
     P = np.zeros((N, 4))
+    Q = np.zeros((n_p, 5))  # particles: x, y, vx, vy, w
+    for j in range(n_p):
+        Q[j, 0], Q[j, 1] = part[j, 4], part[j, 5]
+    prev = part[:, 4:6].copy()  # places at the previous sample: a grain's state is judged on its mean speed since
     bx = by = bvx = bvy = 0.0
+    hx = hvx = 0.0
+    has_hanging = False
     for r in range(ids.shape[0]):
-        bid = ids[r]
-        if bid == block_id:
-            bx, by, bvx, bvy = fl[4 * r], fl[4 * r + 1], fl[4 * r + 2], fl[4 * r + 3]
+        t = np.searchsorted(tab[:, 0], ids[r])
+        if t >= n_tab or tab[t, 0] != ids[r]:
             continue
-        j = np.searchsorted(sorted_ids, bid)
-        if j < N and sorted_ids[j] == bid:
-            i = order[j]
+        kind, i = tab[t, 1], tab[t, 2]
+        f = fl[5 * r: 5 * r + 5]
+        if kind == 0:
+            bx, by, bvx, bvy = f[0], f[1], f[2], f[3]
+        elif kind == 1:
             for q in range(4):
-                P[i, q] = fl[4 * r + q]
+                P[i, q] = f[q]
+        elif kind == 2:
+            for q in range(5):
+                Q[i, q] = f[q]
+            if part[i, 3] > 0:  # asleep: at rest
+                Q[i, 2] = Q[i, 3] = Q[i, 4] = 0.0
+            part[i, 4], part[i, 5] = f[0], f[1]
+        else:
+            hx, hvx = f[0], f[2]
+            has_hanging = True
+    if not has_hanging:
+        hx, hvx = bx, bvx
     ft = np.zeros(N)
     fn = np.zeros(N)
     touch = np.zeros(N, dtype=np.bool_)
+    p_touch = np.zeros(n_p, dtype=np.bool_)
     pen = 0.0
+    p_pen = 0.0
+    pairs = 0
+    pout = 0.0
     for r in range(ai.shape[0] // 3):
         if ai[3 * r + 2] <= 0:
             continue
-        sign = 1.0
-        j = np.searchsorted(sorted_ids, ai[3 * r])
-        if not (j < N and sorted_ids[j] == ai[3 * r]):
-            j = np.searchsorted(sorted_ids, ai[3 * r + 1])
-            sign = -1.0
-            if not (j < N and sorted_ids[j] == ai[3 * r + 1]):
+        a0 = 7 * r  # batch order: impulse (2), normal (2), point A 1 (2), distance 1
+        Fx, Fy = af[a0] / dt, af[a0 + 1] / dt  # on A; B feels minus this
+        tx, ty = -af[a0 + 3], af[a0 + 2]  # contact tangent
+        px, py = af[a0 + 4], af[a0 + 5]
+        kinds = np.full(2, -1)
+        idx = np.zeros(2, dtype=np.int64)
+        for s in range(2):
+            t = np.searchsorted(tab[:, 0], ai[3 * r + s])
+            if t < n_tab and tab[t, 0] == ai[3 * r + s]:
+                kinds[s], idx[s] = tab[t, 1], tab[t, 2]
+        # a sleeping grain's cached arbiter holds stale contact data (overlaps of tens of mm were read);
+        # asleep, a grain only rests on its track: skip its arbiters
+        if (kinds[0] == 2 and part[idx[0], 3] > 0) or (kinds[1] == 2 and part[idx[1], 3] > 0):
+            continue
+        # friction power: tangential force x tangential slip at the contact point. The normal part is left out:
+        # after a step of a few solver iterations the bodies keep a small residual normal velocity at resting
+        # contacts (the position error is then fixed by pymunk's bias, which does no recorded work), and its
+        # product with the normal force read as a spurious 5-6 % of the drive's work once grains slid on tracks
+        # (measured); resting contacts do no work, and inelastic impacts are rare here.
+        Ft = Fx * tx + Fy * ty
+        for s in range(2):
+            sg = 1.0 if s == 0 else -1.0
+            if kinds[s] == 1:
+                vx, vy = P[idx[s], 2], P[idx[s], 3]
+            elif kinds[s] == 2:
+                j = idx[s]
+                vx = Q[j, 2] - Q[j, 4] * (py - Q[j, 1])
+                vy = Q[j, 3] + Q[j, 4] * (px - Q[j, 0])
+            elif kinds[s] == 0:
+                vx, vy = bvx, bvy
+            else:
+                vx, vy = 0.0, 0.0
+            pout -= sg * Ft * (vx * tx + vy * ty)
+        for s in range(2):
+            if kinds[s] != 1:
                 continue
-        i = order[j]
-        ft[i] += sign * af[3 * r] / dt
-        fn[i] += sign * af[3 * r + 1] / dt
-        pen = max(pen, -af[3 * r + 2])  # contact distance < 0: overlap depth
-        touch[i] = True
+            sg = 1.0 if s == 0 else -1.0
+            i = idx[s]
+            other = kinds[1 - s]
+            ft[i] += sg * Fx
+            fn[i] += sg * Fy
+            if other == 2:  # a particle pressing on the pad
+                j = idx[1 - s]
+                p_force[k, j] -= sg * Fx
+                p_touch[j] = True
+            elif other == -1:  # the pad on its track
+                pen = max(pen, -af[a0 + 6])  # contact distance < 0: overlap depth
+                touch[i] = True
+                pairs += 1
+        if (kinds[0] == 2 and kinds[1] == -1) or (kinds[1] == 2 and kinds[0] == -1):  # a particle on its track
+            p_pen = max(p_pen, -af[a0 + 6])
     sft = 0.0
     sfn = 0.0
-    sv = 0.0
-    pout = 0.0
+    fv = 0.0
     ke = 0.5 * M * (bvx * bvx + bvy * bvy)
-    pe = 0.0
+    pe = M * g * by  # constant unless the block is free vertically (asperity field)
+    if has_hanging:
+        ke += 0.5 * m_h * hvx * hvx
     nc = 0
     for i in range(N):
         pad_force[k, i] = -ft[i]
         sft -= ft[i]
         sfn += fn[i]
-        sv += P[i, 2]
-        pout += -ft[i] * P[i, 2] + c * P[i, 2] * P[i, 2]
+        vx = P[i, 2]
+        f_v = c * vx  # the law's velocity part on this pad (drag, along its velocity)
+        if bN > 0.0:
+            f_v += np.sign(vx) * bN * np.log1p(abs(vx) / vc)
+        fv += f_v
+        pout += f_v * vx
         ke += 0.5 * m_p * (P[i, 2] ** 2 + P[i, 3] ** 2)
         pe += m_p * g * P[i, 1]
         nc += touch[i]
+    for j in range(n_p):
+        m, I = part[j, 0], part[j, 1]
+        ke += 0.5 * m * (Q[j, 2] ** 2 + Q[j, 3] ** 2) + 0.5 * I * Q[j, 4] ** 2
+        pe += m * g * Q[j, 1]
+        pout += c_rot * Q[j, 4] ** 2
+        if p_touch[j]:  # trapped: its mean speed over the last output step below the threshold
+            speed = np.sqrt((Q[j, 0] - prev[j, 0]) ** 2 + (Q[j, 1] - prev[j, 1]) ** 2) / dt_out
+            p_state[k, j] = 1 if speed < v_trap else 2
+        else:
+            p_state[k, j] = 0
     for r in range(bs.shape[0]):
         i = int(bs[r, 0])
         ddx = bx + bs[r, 1] - (P[i, 0] + bs[r, 3])
         ddy = by + bs[r, 2] - (P[i, 1] + bs[r, 4])
-        d = np.sqrt(ddx * ddx + ddy * ddy) - bs[r, 5]
+        ln = np.sqrt(ddx * ddx + ddy * ddy)
+        d = ln - bs[r, 5]
         pe += 0.5 * bs[r, 6] * d * d
+        if bs[r, 7] > 0.0:  # spring damping: power c (relative speed along the spring)^2
+            vr = ((bvx - P[i, 2]) * ddx + (bvy - P[i, 3]) * ddy) / ln
+            pout += bs[r, 7] * vr * vr
     for r in range(pp.shape[0]):
         i = int(pp[r, 0])
         j2 = int(pp[r, 1])
         ddx = P[i, 0] + pp[r, 2] - (P[j2, 0] + pp[r, 4])
         ddy = P[i, 1] + pp[r, 3] - (P[j2, 1] + pp[r, 5])
-        d = np.sqrt(ddx * ddx + ddy * ddy) - pp[r, 6]
+        ln = np.sqrt(ddx * ddx + ddy * ddy)
+        d = ln - pp[r, 6]
         pe += 0.5 * pp[r, 7] * d * d
-    # drive spring: force on the block dk (rest - length); its work enters through the anchor's motion
-    # (velocity drive) or, for the far constant-force anchor at rest, through the block's motion.
-    stretch = drest - abs(dx_anchor - bx)  # > 0: compressed, pushes the block away from the anchor
-    f_drive = dk * stretch * (1.0 if bx > dx_anchor else -1.0)
+        if pp[r, 8] > 0.0:
+            vr = ((P[i, 2] - P[j2, 2]) * ddx + (P[i, 3] - P[j2, 3]) * ddy) / ln
+            pout += pp[r, 8] * vr * vr
+    # drive spring: force on the driven body dk (rest - length); its work enters through the anchor's motion
+    # (velocity drive) or, for the far constant-force anchor at rest, through the body's motion.
+    # (Leonardo's slider: the spring pulls the hanging mass, whose rope pulls the block)
+    stretch = drest - abs(dx_anchor - hx)  # > 0: compressed, pushes the body away from the anchor
+    f_drive = dk * stretch * (1.0 if hx > dx_anchor else -1.0)
     if dv != 0.0:
         p_in = f_drive * dv
         pe += 0.5 * dk * stretch * stretch
     else:
-        p_in = f_drive * bvx
+        p_in = f_drive * hvx
     # columns: see _COLS
     out[k, 0] = bx - x0
     out[k, 1] = bvx
     out[k, 2] = sft
     out[k, 3] = sfn
-    out[k, 4] = c * sv
+    out[k, 4] = fv
     out[k, 5] = f_drive
     out[k, 6] = pen
     out[k, 7] = p_in
     out[k, 8] = pout
     out[k, 9] = ke + pe
+    out[k, 10] = pairs
+    out[k, 11] = max(p_pen, 0.0)
     n_contact[k] = nc

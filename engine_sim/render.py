@@ -1,7 +1,8 @@
 """Headless rendering of a scene (matplotlib Agg, collections updated in place: ~20-60 ms a frame).
 
-Draws a window around the block: each track's friction patches coloured by mu, the pads, their
-tangential springs to the block, the block, and the time. The only matplotlib importer of engine_sim.
+Draws a window around the block: the substrate (friction patches coloured by mu, or the rough profile, or the
+asperity caps), the pads or feet, their tangential springs to the block, the block, wear particles coloured by
+state (trapped: at rest on the substrate; moving), and the time. The only matplotlib importer of engine_sim.
 """
 from __future__ import annotations
 
@@ -12,12 +13,14 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from matplotlib.collections import LineCollection  # noqa: E402
+from matplotlib.collections import EllipseCollection, LineCollection  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
 
 from . import units as U  # noqa: E402
 
 __all__ = ["SceneRenderer"]
+
+_STATE_COLORS = np.array([[0.6, 0.6, 0.6, 1.0], [0.12, 0.47, 0.71, 1.0], [0.89, 0.10, 0.11, 1.0]])  # out, trapped, moving
 
 
 class SceneRenderer:
@@ -25,51 +28,95 @@ class SceneRenderer:
 
     def __init__(self, scene, window: float | None = None, dpi: int = 90):
         self.scene = scene
-        self._pads = set(scene.pads)
         sc = scene.sc
-        self.window = (window or 12 * sc.substrate.a) * U.LENGTH  # mm either side of the block
+        self.asperities = scene.asperities
+        if window is None:
+            window = 0.65 * sc.pads.N * sc.pads.foot_length if self.asperities else 12 * sc.substrate.a
+        self.window = window * U.LENGTH  # mm either side of the block
         self.fig, self.ax = plt.subplots(figsize=(7.0, 5.0), dpi=dpi)
         ax = self.ax
         ys = np.array(scene.pad_y)
-        self.ylim = (ys.min() - 3.0, scene.y_block + 4.0)
+        if self.asperities:  # micrometre relief under a centimetre sole: the axes zoom onto the interface
+            h = sc.substrate.h_max * U.LENGTH
+            self.ylim = (-3 * h, 4 * h)
+            ax.set_ylabel("y (mm): asperity caps and feet")
+        else:
+            self.ylim = (ys.min() - 3.0, scene.y_block + 4.0)
+            ax.set_ylabel("y (mm): one track per pad")
         ax.set_ylim(*self.ylim)
         ax.set_xlabel("x (mm)")
-        ax.set_ylabel("y (mm): one track per pad")
-        mu0, al = sc.friction.mu0, sc.substrate.alpha
+        mu0, al = sc.friction.mu0, sc.substrate.alpha if sc.substrate.kind == "patches" else 0.0
         self.norm = matplotlib.colors.Normalize(mu0 * (1 - al / 2), mu0 * (1 + al / 2) + 1e-12)
-        self.tracks = LineCollection([], cmap="viridis", norm=self.norm, linewidths=3)
+        self.tracks = LineCollection([], cmap="viridis", norm=self.norm, linewidths=3 if not self.asperities else 1.5)
         ax.add_collection(self.tracks)
         self.springs = LineCollection([], colors="0.4", linewidths=0.6)
         ax.add_collection(self.springs)
+        self.feet = LineCollection([], colors="tab:red", linewidths=3)
+        ax.add_collection(self.feet)
         self.pads = ax.scatter([], [], s=18, c="tab:red", zorder=3)
-        self.block = Rectangle((0, ys.max() + 1.0), 8.0, self.ylim[1] - ys.max() - 2.0, color="tab:blue", alpha=0.35)
+        top = self.ylim[1] - 0.06 * (self.ylim[1] - self.ylim[0]) if self.asperities else ys.max() + 1.0
+        self.block = Rectangle((0, top), 8.0, self.ylim[1] - top, color="tab:blue", alpha=0.35)
         ax.add_patch(self.block)
+        self.particles = None
         self.text = ax.text(0.02, 0.01, "", transform=ax.transAxes, va="bottom", fontsize=9,
                             bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
-        cb = self.fig.colorbar(self.tracks, ax=ax, fraction=0.04)
-        cb.set_label("patch friction coefficient")
+        if sc.substrate.kind == "patches":
+            cb = self.fig.colorbar(self.tracks, ax=ax, fraction=0.04)
+            cb.set_label("patch friction coefficient")
+        else:
+            self.tracks.set_cmap(matplotlib.colors.ListedColormap(["0.25"]))
         self.fig.tight_layout()
+
+    def _substrate(self, lo, hi):
+        segs, mus = [], []
+        for tr in self.scene.tracks:
+            for sh in tr.segments:
+                if self.asperities:  # the cap of a bump: the arc within 3 h_max of its top
+                    c, r = sh.offset, sh.radius
+                    if c.x + r < lo or c.x - r > hi:
+                        continue
+                    half = np.sqrt(2 * r * 3 * tr.h_max + 1e-12)
+                    xs = np.linspace(c.x - half, c.x + half, 9)
+                    segs.append(np.column_stack([xs, c.y + np.sqrt(np.maximum(r * r - (xs - c.x) ** 2, 0.0))]))
+                elif sh.b.x >= lo and sh.a.x <= hi:
+                    segs.append(((sh.a.x, sh.a.y), (sh.b.x, sh.b.y)))
+                else:
+                    continue
+                mus.append(sh.friction)
+        return segs, mus
 
     def frame(self) -> np.ndarray:
         """Update the artists to the scene's state and render; returns the RGBA image."""
         s = self.scene
         bx = s.block.position.x
         lo, hi = bx - self.window, bx + self.window
-        segs, mus = [], []
-        for tr in s.tracks:
-            for seg in tr.segments:
-                if seg.b.x >= lo and seg.a.x <= hi:
-                    segs.append(((seg.a.x, seg.a.y), (seg.b.x, seg.b.y)))
-                    mus.append(seg.friction)
+        segs, mus = self._substrate(lo, hi)
         self.tracks.set_segments(segs)
         self.tracks.set_array(np.asarray(mus))
         pads = np.array([(p.position.x, p.position.y) for p in s.pads])
-        self.pads.set_offsets(pads)
-        anchors = [c.a.local_to_world(c.anchor_a) for c in s.space.constraints
-                   if getattr(c, "a", None) is s.block and c.b in self._pads and c.anchor_a.x < 0]
-        self.springs.set_segments([((a.x, a.y), (p[0], p[1])) for a, p in zip(anchors, pads)])
-        self.block.set_x(bx - 5.0)
-        self.block.set_width(5.0)
+        if self.asperities:
+            feet = []
+            for p in s.pads:
+                for sh in p.shapes:
+                    a, b = p.local_to_world(sh.a), p.local_to_world(sh.b)
+                    feet.append(((a.x, a.y - sh.radius), (b.x, b.y - sh.radius)))  # the sole's underside
+            self.feet.set_segments(feet)
+        else:
+            self.pads.set_offsets(pads)
+            anchors = [c.a.local_to_world(c.anchor_a) for c in s.tangential_springs]
+            self.springs.set_segments([((a.x, a.y), (p[0], p[1])) for a, p in zip(anchors, pads)])
+        wear = getattr(s, "wear", None)
+        if wear is not None and wear.count:
+            xy, r, state = wear.snapshot()
+            if self.particles is None:
+                self.particles = EllipseCollection(2 * r, 2 * r, 0.0, units="xy", offsets=xy,
+                                                   offset_transform=self.ax.transData, zorder=4)
+                self.ax.add_collection(self.particles)
+            self.particles.set_offsets(xy)
+            self.particles.set_facecolor(_STATE_COLORS[state])
+        half = (s.width / 2) if self.asperities else 2.5
+        self.block.set_x(bx - half)
+        self.block.set_width(2 * half)
         self.ax.set_xlim(lo, hi)
         self.text.set_text(f"t = {s.time:.3f} s   x = {bx:.3f} mm   v = {s.block.velocity.x * 1e3:.3f} mm/s")
         self.fig.canvas.draw()

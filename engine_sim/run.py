@@ -26,6 +26,7 @@ def _version() -> str:
 
 def _snapshot(scene, rec, k) -> bytes:
     state = {"scene": scene, "t": rec.t, "out": rec.out, "pad_force": rec.pad_force, "n_contact": rec.n_contact,
+             "p_state": rec.p_state, "p_force": rec.p_force, "recycle": rec.recycle, "part": rec._part,
              "rec_k": rec.k, "x0": rec.x0, "k": k}
     return pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
 
@@ -37,6 +38,7 @@ def _restore(data: bytes, n_out: int):
         tr.restore_neighbors()
     rec = Recorder(scene, n_out)
     rec.t, rec.out, rec.pad_force, rec.n_contact = state["t"], state["out"], state["pad_force"], state["n_contact"]
+    rec.p_state, rec.p_force, rec.recycle, rec._part = state["p_state"], state["p_force"], state["recycle"], state["part"]
     rec.k, rec.x0 = state["rec_k"], state["x0"]
     return scene, rec, state["k"]
 
@@ -85,9 +87,9 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     else:
         scene = Scene(sc, seed)
         for k in range(n_warm):
-            scene.advance(scene.n_sub)
             if k % _MAINTAIN_EVERY == 0:
                 scene.maintain()
+            scene.advance(scene.n_sub)
         rec = Recorder(scene, n_out)
         k0 = 0
     n_sub = scene.n_sub
@@ -96,12 +98,15 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     try:
         while k < n_out:
             rec.sample()
-            if k + 1 < n_out:
-                scene.advance(n_sub)
+            # maintenance (substrate streaming, particle recycling) right after a sample and before the next
+            # steps: pymunk recomputes a cached arbiter's contact points from the bodies' current positions,
+            # so a particle moved between a step and a sample would report a bogus overlap
             if k % _MAINTAIN_EVERY == 0:
                 scene.maintain()
                 if progress is not None and k % (_MAINTAIN_EVERY * 16) == 0:
                     progress((n_warm + k) * sc.run.dt_out, total)
+            if k + 1 < n_out:
+                scene.advance(n_sub)
             k += 1
             if every and k % every == 0 and k < n_out:
                 data = _snapshot(scene, rec, k)
@@ -123,4 +128,9 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
         "segments_live": sum(len(t.segments) for t in scene.tracks),
         "partial": partial, "resumed_from_checkpoint": resumed,
     }
+    if scene.wear is not None:
+        w = scene.wear
+        meta["wear"] = {"count": w.count, "recycled": w.recycled, "left_interface": w.lost,
+                        "radii_m": (w.r / 1e3).tolist(), "track": w.track.tolist(),
+                        "asleep_at_end": int(sum(b.is_sleeping for b in w.bodies))}
     return rec.trace(meta)

@@ -1,7 +1,7 @@
 """Scenarios: frozen SI parameter sets for the engine scene, loaded from TOML and validated once.
 
 A scenario file has a top-level ``name`` and ``description`` and the sections ``[block]``, ``[pads]``,
-``[friction]``, ``[substrate]``, ``[drive]`` and ``[run]``; every key is optional (defaults below, SI units).
+``[friction]``, ``[substrate]``, ``[drive]``, ``[wear]`` and ``[run]``; every key is optional (defaults below, SI units).
 Unknown sections or keys, wrong types and out-of-range values raise :class:`ScenarioError` naming the
 file, the field and the limit, including the time-step limit that the pad springs impose.
 """
@@ -13,7 +13,7 @@ from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
 __all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", "SubstrateSpec", "DriveSpec",
-           "RunSpec", "load_scenario", "scenario_from_dict", "shipped_scenarios", "SCENARIO_DIR"]
+           "WearSpec", "RunSpec", "load_scenario", "scenario_from_dict", "shipped_scenarios", "SCENARIO_DIR"]
 
 SCENARIO_DIR = Path(__file__).resolve().parent.parent / "scenarios"
 G = 9.81  # m/s^2
@@ -22,6 +22,11 @@ G = 9.81  # m/s^2
 SPRING_OMEGA_DT = 0.3
 # Spring damping is exact-exponential but its effect is slowed by x/(e^x - 1), x = c dt / m: keep x < 0.1.
 SPRING_DAMPING_X = 0.1
+# No continuous collision detection in pymunk: a particle crosses a surface once v dt exceeds about 1.2 radii
+# (DESIGN.md). Particles are held to WEAR_SPEED_FACTOR x the sliding speed x dt < WEAR_TUNNEL_FRACTION r_min;
+# the tracks' segment radius (50 um by default) adds to the margin.
+WEAR_SPEED_FACTOR = 10.0
+WEAR_TUNNEL_FRACTION = 0.25
 
 
 class ScenarioError(ValueError):
@@ -42,7 +47,13 @@ class PadSpec:
     N: number of pads; mass (kg); radius (m); k0: tangential spring to the block (N/m); c0: its damping
     (N s/m); k_normal: normal spring (N/m), pre-compressed to carry M g cos(theta) / N; k1: lateral spring
     between neighbouring pads (N/m, free ends); c1: its damping (N s/m); track_spacing: offset of the tracks
-    in y (m), which keeps each pad's broad phase to its own track.
+    in y (m), which keeps each pad's broad phase to its own track; c_normal: damping of the normal spring
+    (N s/m).
+
+    On an "asperities" substrate the pads are the elastic sole of a flat block instead: N flat feet of length
+    foot_length (m, ends rounded with ``radius``) side by side along one shared track, so the block's
+    contact width is w = N foot_length; the normal springs are not pre-compressed and the block is free
+    vertically, so its weight is shared by whichever feet stand on asperities (load redistribution).
     """
 
     N: int = 30
@@ -54,16 +65,29 @@ class PadSpec:
     k1: float = 0.0
     c1: float = 0.0
     track_spacing: float = 5e-3
+    c_normal: float = 0.0
+    foot_length: float = 1e-3
 
 
 @dataclass(frozen=True)
 class FrictionSpec:
-    """Pad-substrate friction, linear velocity strengthening: f = mu N_pad + c v_pad (model I's
-    f_kin + m eta1 v). mu is the local patch value (see SubstrateSpec); c in N s/m per pad."""
+    """Pad-substrate friction, velocity strengthening, per pad under load N_pad:
+
+    law "linear": f = mu N_pad + c v (model I's f_kin + m eta1 v), c > 0 in N s/m;
+    law "log": f = N_pad (mu + b ln(1 + v / v_c)) + c v, the rate-strengthening law of rubber and
+    polymers (mu rises by b per e-fold of speed above v_c; c >= 0 optional).
+
+    mu is the local patch value (see SubstrateSpec). The Coulomb part is solved by pymunk; the velocity
+    part is a drag: linear as an exactly corrected damper, logarithmic as a force computed once per step
+    from the pads' velocities (pymunk.batch), which is stable only for b N_pad dt / (v_c m_pad) < 0.5
+    (the explicit-update limit; checked at load).
+    """
 
     law: str = "linear"
     mu0: float = 0.6
     c: float = 10.0
+    b: float = 0.0
+    v_c: float = 1e-3
 
 
 @dataclass(frozen=True)
@@ -76,6 +100,13 @@ class SubstrateSpec:
     noise): Hurst exponent ``hurst``, roll-off wavelength ``lambda_r`` (flat spectrum above it), short
     cut-off ``lambda_s``, rms slope ``rms_slope``, grid spacing lambda_s / 4; friction mu0 everywhere.
     ``a`` is then the renewal length used for the fit band (default: lambda_r).
+    Patches may hold cavities where wear particles get trapped: with probability ``pit_p`` per patch, a
+    flat-bottomed pit of depth ``pit_depth``, width uniform in [pit_width_min, pit_width_max] (m, between the
+    walls' centre lines: the opening is narrower by 2 segment_radius).
+    kind "asperities": sparse random asperities (model III's substrate): cells of length ``cell``, each
+    holding with probability ``p`` a bump (a circular cap of radius ``bump_radius``, much larger than its height,
+    so caps may overlap) whose top stands r ``h_max`` above the datum (r uniform in [0, 1]); one track shared
+    by all feet (see PadSpec); ``a`` is unused.
     """
 
     kind: str = "patches"
@@ -86,6 +117,14 @@ class SubstrateSpec:
     lambda_r: float = 2e-3
     lambda_s: float = 0.1e-3
     rms_slope: float = 0.1
+    cell: float = 0.1e-3
+    p: float = 0.1
+    bump_radius: float = 0.04e-3
+    h_max: float = 0.02e-3
+    pit_p: float = 0.0
+    pit_width_min: float = 0.15e-3
+    pit_width_max: float = 0.35e-3
+    pit_depth: float = 0.06e-3
 
 
 @dataclass(frozen=True)
@@ -94,8 +133,11 @@ class DriveSpec:
 
     kind "force": constant force; "tilted": the same force from gravity on a slope, F = M g sin(theta) with
     the pad load M g cos(theta); "velocity": the block is pulled at constant speed v through a spring of
-    stiffness k_drive (N/m). ``force`` (N): if unset, chosen so the friction law slides the block at ``v``
-    (m/s): F = N (mu0 N_pad + c v). ``theta`` (rad) for "tilted".
+    stiffness k_drive (N/m); "leonardo": Leonardo da Vinci's slider (paper Fig. 7), a hanging mass
+    ``hanging_mass`` (kg) pulls the block through a rope over an ideal pulley, F = m_h g, the rope a
+    slack-capable joint of length ``rope_length`` (m). ``force`` (N): if unset (and for "leonardo" if
+    ``hanging_mass`` is unset), chosen so the friction law slides the block at ``v`` (m/s):
+    F = N f(v). ``theta`` (rad) for "tilted".
     """
 
     kind: str = "force"
@@ -103,6 +145,46 @@ class DriveSpec:
     force: float | None = None
     theta: float | None = None
     k_drive: float = 1e3
+    hanging_mass: float | None = None
+    rope_length: float = 0.2
+
+
+@dataclass(frozen=True)
+class WearSpec:
+    """Wear particles as rigid circles (section 5, Appendix B), on the pads' flat tracks (substrate "patches").
+
+    count: number of particles, dealt round-robin to the pads' tracks (each collides only with its own pad, its
+    track and the particles on that track). Radii (m) follow ``distribution``: "lognormal" with median
+    ``r_median`` and log-std ``sigma``, or "power" with P(r) ~ r^-``exponent``, both cut to [r_min, r_max].
+    density (kg/m^3, per unit depth of a 2D disc: mass = density pi r^2 depth, depth = 1 mm), raised to at
+    least ``min_mass`` (kg): pymunk's iterative contact solver loses a light grain squeezed by a heavy pad (mass
+    ratios above ~1e3 at a few iterations push grains through the track), while a grain's inertia is
+    negligible next to the contact forces either way (see pads_with_wear); mu_track,
+    mu_pad: friction with the track and with the pad; rotation: "locked" (moment = inf: the grain slides but
+    does not roll, as angular debris) or "free" (a rolling disc: squeezed under a sliding pad it rolls at v / 2
+    and is never trapped; measured). A particle is "trapped" when it touches its pad and its mean speed over the
+    last output step is below ``trapped_speed`` x the sliding speed (at rest relative to the substrate), "moving" when it touches its pad
+    and moves faster, and "idle" when it does not touch its pad. Particles more than ``behind`` (m) behind their
+    pad are recycled to a random place up to ``ahead`` (m) in front of it, at rest on the track; particles
+    that leave the interface (above their pad or below the track surface) are counted and recycled too.
+    Idle particles at rest fall asleep (pymunk sleeping), so they cost nothing until a pad reaches them.
+    """
+
+    count: int = 0
+    distribution: str = "lognormal"
+    r_min: float = 20e-6
+    r_max: float = 150e-6
+    r_median: float = 50e-6
+    sigma: float = 0.6
+    exponent: float = 2.0
+    density: float = 2500.0
+    min_mass: float = 0.0
+    mu_track: float = 0.8
+    mu_pad: float = 0.4
+    rotation: str = "locked"
+    trapped_speed: float = 0.1
+    ahead: float = 2e-3
+    behind: float = 1e-3
 
 
 @dataclass(frozen=True)
@@ -127,6 +209,7 @@ class Scenario:
     friction: FrictionSpec = field(default_factory=FrictionSpec)
     substrate: SubstrateSpec = field(default_factory=SubstrateSpec)
     drive: DriveSpec = field(default_factory=DriveSpec)
+    wear: WearSpec = field(default_factory=WearSpec)
     run: RunSpec = field(default_factory=RunSpec)
 
     # ------------------------------------------------------------------ derived quantities (SI)
@@ -136,21 +219,61 @@ class Scenario:
         cos_t = math.cos(self.drive.theta) if self.drive.kind == "tilted" and self.drive.theta else 1.0
         return self.block.M * G * cos_t / self.pads.N + self.pads.mass * G
 
+    def law_force(self, v: float) -> float:
+        """The friction law's steady force per pad at sliding speed v >= 0 (N), with mu = mu0."""
+        fr, Np = self.friction, self.normal_load_per_pad
+        f = fr.mu0 * Np + fr.c * v
+        if fr.law == "log":
+            f += fr.b * Np * math.log1p(v / fr.v_c)
+        return f
+
+    def friction_slope(self, v: float) -> float:
+        """dF/dv of the law per pad at speed v (N s/m): c, plus b N_pad / (v_c + v) for the log law."""
+        fr = self.friction
+        extra = fr.b * self.normal_load_per_pad / (fr.v_c + v) if fr.law == "log" else 0.0
+        return fr.c + extra
+
     @property
     def drive_force(self) -> float:
         """The constant drive force (N)."""
-        if self.drive.kind == "tilted":
-            return self.block.M * G * math.sin(self.drive.theta)
-        if self.drive.force is not None:
-            return self.drive.force
-        return self.pads.N * (self.friction.mu0 * self.normal_load_per_pad + self.friction.c * self.drive.v)
+        d = self.drive
+        if d.kind == "tilted":
+            return self.block.M * G * math.sin(d.theta)
+        if d.kind == "leonardo" and d.hanging_mass is not None:
+            return d.hanging_mass * G
+        if d.force is not None:
+            return d.force
+        return self.pads.N * self.law_force(d.v)
+
+    @property
+    def hanging_mass(self) -> float:
+        """Leonardo's slider: the hanging mass (kg) whose weight is the drive."""
+        d = self.drive
+        return d.hanging_mass if d.hanging_mass is not None else self.drive_force / G
 
     @property
     def steady_velocity(self) -> float:
-        """The friction law's steady speed under the drive: F / N = mu0 N_pad + c v (m/s)."""
+        """The friction law's steady speed under the drive, N f(v) = F (m/s); <= 0 if F does not exceed the
+        kinetic friction."""
         if self.drive.kind == "velocity":
             return self.drive.v
-        return (self.drive_force / self.pads.N - self.friction.mu0 * self.normal_load_per_pad) / self.friction.c
+        target = self.drive_force / self.pads.N
+        f0 = self.law_force(0.0)
+        if target <= f0:
+            return (target - f0) / max(self.friction_slope(0.0), 1e-300)
+        hi = 1e-6
+        while self.law_force(hi) < target:
+            hi *= 2.0
+            if hi > 1e6:
+                return math.inf
+        lo = 0.0
+        for _ in range(200):  # bisection: f is increasing; 200 halvings reach double precision
+            mid = 0.5 * (lo + hi)
+            if self.law_force(mid) < target:
+                lo = mid
+            else:
+                hi = mid
+        return 0.5 * (lo + hi)
 
     @property
     def dt_limit(self) -> float:
@@ -159,13 +282,17 @@ class Scenario:
         p = self.pads
         k = p.k0 + p.k_normal + 4 * p.k1
         lim = SPRING_OMEGA_DT / math.sqrt(k / p.mass)
-        c = p.c0 + 2 * p.c1
+        c = p.c0 + p.c_normal + 2 * p.c1
         if c > 0:
             lim = min(lim, SPRING_DAMPING_X * p.mass / c)
         return lim
 
     def with_run(self, **kw) -> "Scenario":
         return replace(self, run=replace(self.run, **kw))
+
+    def with_wear(self, **kw) -> "Scenario":
+        """A copy with [wear] fields replaced, e.g. ``with_wear(count=0)`` for the particle-free twin of a paired run."""
+        return replace(self, wear=replace(self.wear, **kw))
 
     def to_dict(self) -> dict:
         out = {"name": self.name, "description": self.description}
@@ -176,16 +303,23 @@ class Scenario:
 
 
 _SECTIONS = {"block": BlockSpec, "pads": PadSpec, "friction": FrictionSpec, "substrate": SubstrateSpec,
-             "drive": DriveSpec, "run": RunSpec}
-_CHOICES = {("friction", "law"): ("linear",), ("substrate", "kind"): ("patches", "self_affine"),
-            ("drive", "kind"): ("force", "tilted", "velocity")}
+             "drive": DriveSpec, "wear": WearSpec, "run": RunSpec}
+_CHOICES = {("friction", "law"): ("linear", "log"), ("substrate", "kind"): ("patches", "self_affine", "asperities"),
+            ("drive", "kind"): ("force", "tilted", "velocity", "leonardo"),
+            ("wear", "distribution"): ("lognormal", "power"), ("wear", "rotation"): ("locked", "free")}
 _POSITIVE = {("block", "M"), ("pads", "N"), ("pads", "mass"), ("pads", "radius"), ("pads", "k0"),
-             ("pads", "k_normal"), ("pads", "track_spacing"), ("friction", "c"), ("substrate", "a"),
+             ("pads", "k_normal"), ("pads", "track_spacing"), ("friction", "v_c"), ("substrate", "a"),
              ("substrate", "segment_radius"), ("substrate", "lambda_r"), ("substrate", "lambda_s"),
-             ("substrate", "rms_slope"), ("drive", "v"), ("drive", "k_drive"), ("run", "dt"), ("run", "dt_out"),
-             ("run", "duration"), ("run", "iterations")}
-_NON_NEGATIVE = {("pads", "c0"), ("pads", "k1"), ("pads", "c1"), ("friction", "mu0"), ("substrate", "alpha"),
-                 ("run", "warmup"), ("run", "seed")}
+             ("substrate", "rms_slope"), ("substrate", "cell"),
+             ("substrate", "p"), ("substrate", "bump_radius"), ("pads", "foot_length"), ("drive", "v"), ("drive", "k_drive"), ("drive", "hanging_mass"),
+             ("drive", "rope_length"), ("run", "dt"), ("run", "dt_out"),
+             ("run", "duration"), ("run", "iterations"),
+             ("wear", "r_min"), ("wear", "r_max"), ("wear", "r_median"), ("wear", "sigma"), ("wear", "density"),
+             ("wear", "trapped_speed"), ("wear", "ahead"), ("wear", "behind")}
+_NON_NEGATIVE = {("pads", "c0"), ("pads", "k1"), ("pads", "c1"), ("pads", "c_normal"), ("substrate", "h_max"), ("friction", "mu0"), ("friction", "c"), ("friction", "b"),
+                 ("substrate", "alpha"),
+                 ("run", "warmup"), ("run", "seed"),
+                 ("substrate", "pit_p"), ("substrate", "pit_depth"), ("wear", "count"), ("wear", "exponent"), ("wear", "min_mass"), ("wear", "mu_track"), ("wear", "mu_pad")}
 
 
 def _err(where: str, msg: str) -> ScenarioError:
@@ -261,7 +395,19 @@ def _check_consistency(sc: Scenario, where: str):
     if sc.drive.kind == "tilted":
         if sc.drive.theta is None or not 0 < sc.drive.theta < math.pi / 2:
             raise _err(where, f"drive.theta must lie in (0, pi/2) rad for a tilted plane (got {sc.drive.theta!r})")
-    if sc.drive.kind in ("force", "tilted"):
+    fr = sc.friction
+    if fr.law == "linear" and not fr.c > 0:
+        raise _err(where, f"friction.c must be > 0 for the linear law (got {fr.c!r}): without velocity "
+                          "strengthening the block has no steady sliding speed")
+    if fr.law == "log":
+        if not (fr.b > 0 or fr.c > 0):
+            raise _err(where, "friction.b must be > 0 for the log law (or friction.c > 0)")
+        x = fr.b * sc.normal_load_per_pad * r.dt / (fr.v_c * p.mass)
+        if x > 0.5:
+            v_min = fr.b * sc.normal_load_per_pad * r.dt / (0.5 * p.mass)
+            raise _err(where, f"friction.v_c = {fr.v_c:.3g} m/s is below the explicit-update limit {v_min:.3g} m/s "
+                              f"(b N_pad dt / (v_c m_pad) = {x:.3g} must be < 0.5, or the pads chatter)")
+    if sc.drive.kind in ("force", "tilted", "leonardo"):
         v = sc.steady_velocity
         if not v > 0:
             raise _err(where, f"drive force {sc.drive_force:.4g} N does not exceed the kinetic friction "
@@ -277,6 +423,34 @@ def _check_consistency(sc: Scenario, where: str):
             raise _err(where, f"substrate.rms_slope = {sub.rms_slope!r} exceeds the sliding limit {limit:.3g} = 1/(6 mu0): "
                               "the steepest flanks (~4 rms slopes) near the locking slope 1/mu0 pin the pads "
                               "(measured on pads_rough_profile: rms slope 0.4 pins the block, 0.3 slides unsteadily)")
+    if sub.kind == "asperities":
+        if sub.p > 1:
+            raise _err(where, f"substrate.p = {sub.p!r} is a probability per cell and must be <= 1")
+        if sub.bump_radius < 5 * sub.h_max:
+            raise _err(where, f"substrate.bump_radius = {sub.bump_radius!r} m must exceed 5 h_max = {5 * sub.h_max:.3g} m: "
+                              "a foot meeting a bump up to h_max above it must climb a flank less steep than 1/mu0")
+        if p.foot_length < 2.5 * p.radius:
+            raise _err(where, f"pads.foot_length = {p.foot_length!r} m must exceed 2.5 pad radii = {2.5 * p.radius:.3g} m")
+    w = sc.wear
+    if w.count > 0:
+        if sub.kind != "patches":
+            raise _err(where, f"wear particles need flat pad tracks (substrate.kind 'patches'; got {sub.kind!r})")
+        if not w.r_min < w.r_max:
+            raise _err(where, f"wear.r_min = {w.r_min!r} m must be below wear.r_max = {w.r_max!r} m")
+        if w.r_max > p.radius:
+            raise _err(where, f"wear.r_max = {w.r_max!r} m must not exceed the pad radius {p.radius!r} m")
+        v_max = WEAR_SPEED_FACTOR * max(sc.steady_velocity, 1e-12)
+        if v_max * r.dt > WEAR_TUNNEL_FRACTION * w.r_min:
+            raise _err(where, f"run.dt = {r.dt:.3g} s lets the smallest particle (wear.r_min = {w.r_min:.3g} m) tunnel: "
+                              f"{WEAR_SPEED_FACTOR:g} x the sliding speed x dt must stay below {WEAR_TUNNEL_FRACTION} r_min, "
+                              f"so dt <= {WEAR_TUNNEL_FRACTION * w.r_min / v_max:.3g} s")
+        if w.ahead < 2 * p.radius or w.behind < p.radius:
+            raise _err(where, f"wear.ahead (>= 2 pad radii) and wear.behind (>= 1 pad radius) must reach past the pad "
+                              f"(got {w.ahead!r}, {w.behind!r} m)")
+    if sub.pit_p > 0:
+        if sub.pit_p > 1 or not 0 < sub.pit_width_min <= sub.pit_width_max or sub.pit_width_max > 0.45 * sub.a:
+            raise _err(where, f"substrate pits: pit_p must lie in [0, 1] and 0 < pit_width_min <= pit_width_max <= 0.45 a "
+                              f"(got {sub.pit_p!r}, {sub.pit_width_min!r}, {sub.pit_width_max!r} m)")
     if sc.substrate.alpha >= 2:
         raise _err(where, f"substrate.alpha = {sc.substrate.alpha!r} must be < 2 (patch friction stays positive)")
 

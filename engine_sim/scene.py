@@ -15,12 +15,15 @@ from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 import pymunk
+import pymunk.batch as B
 
 from . import units as U
 from .scenario import G, Scenario
-from .substrate import PatchTrack, SelfAffineTrack, self_affine_kernel
+from .wear import Wear, pad_friction_split
+from .substrate import BumpTrack, PatchTrack, SelfAffineTrack, self_affine_kernel
 
 __all__ = ["Scene", "corrected_drag"]
 
@@ -45,7 +48,8 @@ class Scene:
         space = pymunk.Space()
         space.gravity = (0.0, -G * U.ACCEL)
         space.iterations = sc.run.iterations
-        space.collision_slop = 1e-4  # mm; pymunk's default 0.1 mm is larger than the physics here
+        self.slop = 1e-4  # mm; pymunk's default 0.1 mm is larger than the physics here
+        space.collision_slop = self.slop
         self.space = space
 
         m_p = p.mass * U.MASS
@@ -55,51 +59,88 @@ class Scene:
         self.y_block = 10.0
         v0 = sc.steady_velocity * U.VELOCITY
 
+        self.asperities = sub.kind == "asperities"
         block = pymunk.Body(sc.block.M * U.MASS, float("inf"))
         block.position = (0.0, self.y_block)
         block.velocity = (v0, 0.0)
-        groove = pymunk.GrooveJoint(space.static_body, block, (-_FAR, self.y_block), (_FAR, self.y_block), (0, 0))
-        space.add(block, groove)
+        space.add(block)
+        if not self.asperities:  # guided horizontally; on asperities the block rests on its feet (free in y)
+            space.add(pymunk.GrooveJoint(space.static_body, block, (-_FAR, self.y_block), (_FAR, self.y_block), (0, 0)))
         self.block = block
 
         load = sc.normal_load_per_pad - p.mass * G  # carried by the normal spring (N)
         k0 = p.k0 * U.STIFFNESS
         kn = p.k_normal * U.STIFFNESS
-        Lt, Ln = 5.0, 5.0  # spring lengths (mm); only their direction matters
-        pre = load / kn  # pre-compression (mm)
+        # Spring lengths (mm). The normal spring is long so that a pad's tangential lag (f / k0, about 0.05 mm)
+        # tilts it negligibly: at 5 mm the tilt lengthened it enough to drop the load by 0.13 % and added a
+        # geometric tangential stiffness F_n / Ln of 1.5 % of k0; at 100 mm both are 20x smaller.
+        Lt, Ln = 5.0, 100.0
+        # pre-compression (mm); the pads rest one collision slop into their tracks, which the rest length absorbs.
+        # On asperities the springs are relaxed: the feet that stand on bumps carry the block between them.
+        pre = 0.0 if self.asperities else load / kn + self.slop
         c_set = corrected_drag(fr.c * U.DAMPING, m_p, self.dt)
-        seeds = np.random.SeedSequence(self.seed).spawn(p.N)
+        seeds = np.random.SeedSequence(self.seed).spawn(p.N + 1)  # one per track, the last for the wear particles
+        wear = sc.wear
+        # pymunk multiplies shape frictions: with particles the pads carry q and the tracks mu / q (see wear.py)
+        q_pad, f_particle = pad_friction_split(fr.mu0, wear.mu_pad, wear.mu_track) if wear.count else (1.0, 0.0)
+        mu_track = fr.mu0 / q_pad
         if sub.kind == "self_affine":
             dx_s = sub.lambda_s * U.LENGTH / 4
             kernel = self_affine_kernel(sub.hurst, sub.lambda_r * U.LENGTH, sub.lambda_s * U.LENGTH, dx_s, sub.rms_slope)
-        self.pads, self.tracks, self.pad_y = [], [], []
+        foot = p.foot_length * U.LENGTH
+        self.width = p.N * foot if self.asperities else 0.0  # the block's contact width w (mm)
+        self.pads, self.tracks, self.pad_y, self.pad_x, self.tangential_springs = [], [], [], [], []
+        self.track_surface, self.track_filter = [], []
         for i in range(p.N):
-            yt = -i * dy
-            yp = yt + rs + R
-            flt = pymunk.ShapeFilter(categories=1 << (i % 32), mask=1 << (i % 32))
             pad = pymunk.Body(m_p, float("inf"))
-            pad.position = (0.0, yp)
+            if self.asperities:
+                xp = (i - (p.N - 1) / 2) * foot
+                yp = sub.h_max * U.LENGTH + R + 1e-3  # the feet start just above the highest bump
+                flt = pymunk.ShapeFilter(group=1)  # feet do not collide with each other
+                half = foot / 2 - R - 0.05 * foot  # a small gap between neighbouring feet
+                shape = pymunk.Segment(pad, (-half, 0.0), (half, 0.0), R)
+            else:
+                xp, yt = 0.0, -i * dy
+                yp = yt + rs + R
+                flt = pymunk.ShapeFilter(categories=1 << (i % 32), mask=1 << (i % 32))
+                shape = pymunk.Circle(pad, R)
+            pad.position = (xp, yp)
             pad.velocity = (v0, 0.0)
-            shape = pymunk.Circle(pad, R)
-            shape.friction = 1.0  # arbiter friction = pad x patch: the patch carries mu
+            shape.friction = q_pad  # arbiter friction = pad x substrate: the substrate carries mu (/ q_pad)
             shape.filter = flt
             space.add(pad, shape)
             ry = yp - self.y_block
-            space.add(pymunk.DampedSpring(block, pad, (-Lt, ry), (0, 0), Lt, k0, p.c0 * U.DAMPING))
-            space.add(pymunk.DampedSpring(block, pad, (0.0, ry + Ln), (0, 0), Ln + pre, kn, 0.0))
-            space.add(pymunk.DampedSpring(pad, space.static_body, (0, 0), (_FAR, yp), 0.0, 0.0, c_set))
+            tangential = pymunk.DampedSpring(block, pad, (xp - Lt, ry), (0, 0), Lt, k0, p.c0 * U.DAMPING)
+            self.tangential_springs.append(tangential)
+            space.add(tangential)
+            space.add(pymunk.DampedSpring(block, pad, (xp, ry + Ln), (0, 0), Ln + pre, kn, p.c_normal * U.DAMPING))
+            if fr.c > 0:
+                space.add(pymunk.DampedSpring(pad, space.static_body, (0, 0), (_FAR, yp), 0.0, 0.0, c_set))
             if sub.kind == "self_affine":
-                track = SelfAffineTrack(space, yt, kernel, dx_s, fr.mu0, rs, flt, np.random.default_rng(seeds[i]),
+                track = SelfAffineTrack(space, yt, kernel, dx_s, mu_track, rs, flt, np.random.default_rng(seeds[i]),
                                         x_start=-4.0 * p.radius * U.LENGTH, chunk_points=64)
-            else:
-                track = PatchTrack(space, yt, sub.a * U.LENGTH, fr.mu0, sub.alpha, rs, flt,
-                                   np.random.default_rng(seeds[i]), x_start=-10 * sub.a * U.LENGTH)
+            elif sub.kind == "patches":
+                track = PatchTrack(space, yt, sub.a * U.LENGTH, mu_track, sub.alpha, rs, flt,
+                                   np.random.default_rng(seeds[i]), x_start=-10 * sub.a * U.LENGTH, pit_p=sub.pit_p,
+                                   pit_width=(sub.pit_width_min * U.LENGTH, sub.pit_width_max * U.LENGTH),
+                                   pit_depth=sub.pit_depth * U.LENGTH)
+            elif i == 0:  # one shared track of sparse bumps
+                track = BumpTrack(space, 0.0, sub.cell * U.LENGTH, sub.p, sub.bump_radius * U.LENGTH,
+                                  sub.h_max * U.LENGTH, fr.mu0, pymunk.ShapeFilter(),
+                                  np.random.default_rng(seeds[0]), x_start=-self.width)
+            if not self.asperities or i == 0:
+                self.tracks.append(track)
             self.pads.append(pad)
-            self.tracks.append(track)
             self.pad_y.append(yp)
+            self.pad_x.append(xp)
+            self.track_filter.append(flt)
+            self.track_surface.append(yp - R)
         if p.k1 > 0 or p.c1 > 0:
             for i in range(p.N - 1):
                 a, b = self.pads[i], self.pads[i + 1]
+                if self.asperities:  # side by side: a spring of rest length foot between foot centres
+                    space.add(pymunk.DampedSpring(a, b, (0, 0), (0, 0), foot, p.k1 * U.STIFFNESS, p.c1 * U.DAMPING))
+                    continue
                 # anchor on pad i+1 at pad i's height so the coupling acts along x (tracks are offset in y)
                 off = self.pad_y[i] - self.pad_y[i + 1]
                 space.add(pymunk.DampedSpring(a, b, (0, 0), (-Lt, off), Lt, p.k1 * U.STIFFNESS, p.c1 * U.DAMPING))
@@ -108,7 +149,8 @@ class Scene:
         # _FAR behind, compressed by _FAR so it pushes with F; over a metre of sliding its force changes
         # by 1 m / _FAR = 1e-6 relative (no per-step Python needed). For a constant velocity, the anchor
         # is a kinematic body moving at v with the spring stiffness k_drive.
-        if sc.drive.kind in ("force", "tilted"):
+        self.hanging = None
+        if sc.drive.kind in ("force", "tilted", "leonardo"):
             F = sc.drive_force * U.FORCE
             kd = F / _FAR
             anchor = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
@@ -116,22 +158,52 @@ class Scene:
             rest = _FAR + _FAR  # length _FAR, compression _FAR: force kd * _FAR = F
         else:
             kd = sc.drive.k_drive * U.STIFFNESS
-            F_ss = p.N * (fr.mu0 * sc.normal_load_per_pad + fr.c * sc.drive.v)
+            F_ss = p.N * sc.law_force(sc.drive.v)
             anchor = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
             anchor.position = (Lt + F_ss / kd, self.y_block)
             anchor.velocity = (v0, 0.0)
             rest = Lt
-        self.drive_spring = pymunk.DampedSpring(block, anchor, (0, 0), (0, 0), rest, kd, 0.0)
+        pulled = block
+        if sc.drive.kind == "leonardo":
+            # Leonardo's slider: the hanging mass m_h pulls a rope over an ideal (massless, frictionless)
+            # pulley, which turns the rope without changing its tension. The hanging mass's motion along the
+            # rope is therefore represented unfolded, on a horizontal groove ahead of the block: its weight
+            # m_h g is the far constant-force spring (its vertical weight is carried by the groove), its
+            # inertia m_h is a real body, and the rope is a SlideJoint that holds at most rope_length (it can
+            # go slack, as a rope does).
+            L_rope = sc.drive.rope_length * U.LENGTH
+            hang = pymunk.Body(sc.hanging_mass * U.MASS, float("inf"))
+            hang.position = (L_rope, self.y_block)
+            hang.velocity = (v0, 0.0)
+            space.add(hang, pymunk.GrooveJoint(space.static_body, hang, (-_FAR, self.y_block), (_FAR, self.y_block), (0, 0)),
+                      pymunk.SlideJoint(block, hang, (0, 0), (0, 0), 0.0, L_rope))
+            self.hanging = hang
+            pulled = hang
+        self.drive_spring = pymunk.DampedSpring(pulled, anchor, (0, 0), (0, 0), rest, kd, 0.0)
         space.add(anchor, self.drive_spring)
         self.driver = anchor
         if sub.kind == "patches":
             self.ahead = 8 * sub.a * U.LENGTH + 200 * v0 * self.dt * self.n_sub
             self.behind = 4 * sub.a * U.LENGTH
+        elif self.asperities:  # around the whole sole
+            self.ahead = self.width / 2 + 2 * R + 200 * v0 * self.dt * self.n_sub
+            self.behind = self.width / 2 + 2 * R
         else:  # a pad touches the profile within its radius; keep a few radii either side
             self.ahead = 4 * p.radius * U.LENGTH + 200 * v0 * self.dt * self.n_sub
             self.behind = 2 * p.radius * U.LENGTH
+        self.wear = None
+        if wear.count:
+            self.wear = Wear(self, wear, np.random.default_rng(seeds[-1]), f_particle)
+            # idle particles at rest sleep until a pad reaches them (pads and block never rest)
+            space.sleep_time_threshold = 20.0  # ms
+            space.idle_speed_threshold = 2e-3  # mm/ms = 2 mm/s: a resting grain gains g dt = 1e-3 mm/ms per step before its contact stops it
         self.maintain()
         self.steps = 0
+        # log law: the velocity part b N_pad ln(1 + v / v_c) per pad, applied as a force each step
+        self.log_law = None
+        if fr.law == "log":
+            self.log_law = (fr.b * (sc.normal_load_per_pad * U.FORCE), fr.v_c * U.VELOCITY)
+        self._pad_ids = np.array(sorted(pad.id for pad in self.pads), dtype=np.int64)
 
     @property
     def time(self) -> float:
@@ -140,12 +212,45 @@ class Scene:
 
     def maintain(self):
         """Generate substrate ahead of each pad and drop it behind (call at least every few output steps)."""
+        if self.asperities:
+            self.tracks[0].maintain(self.block.position.x, self.ahead, self.behind)
+            return
+        if self.wear is not None:  # first: grains behind their pad leave before the track under them is dropped
+            self.wear.maintain()
         for pad, tr in zip(self.pads, self.tracks):
             tr.maintain(pad.position.x, self.ahead, self.behind)
 
     def advance(self, n: int):
-        """n pymunk steps; no Python runs inside a step (the drive is a spring)."""
+        """n pymunk steps. With the linear law no Python runs inside a step (drive and drag are springs);
+        the log law reads the bodies' velocities and writes the pads' friction forces in bulk each step."""
         step, dt = self.space.step, self.dt
-        for _ in range(n):
-            step(dt)
+        if self.log_law is None:
+            for _ in range(n):
+                step(dt)
+        else:
+            bN, vc = self.log_law
+            space, rd, wr = self.space, B.Buffer(), B.Buffer()
+            B.get_space_bodies(space, B.BodyFields.BODY_ID, rd)
+            is_pad = np.isin(np.frombuffer(rd.int_buf(), dtype=np.int64), self._pad_ids)
+            f = np.zeros(2 * is_pad.size)
+            for _ in range(n):
+                rd.clear()
+                B.get_space_bodies(space, B.BodyFields.VELOCITY, rd)
+                _log_forces(np.frombuffer(rd.float_buf()), is_pad, bN, vc, f)
+                wr.clear()
+                wr.set_float_buf(f.tobytes())
+                B.set_space_bodies(space, B.BodyFields.FORCE, wr)
+                step(dt)
         self.steps += n
+
+
+@numba.njit(cache=True)
+def _log_forces(vel, is_pad, bN, vc, out):
+    """out[2i] = -b N_pad ln(1 + |v_x| / v_c) sign(v_x) for pads (the log law's velocity part), 0 otherwise."""
+    for i in range(is_pad.shape[0]):
+        out[2 * i + 1] = 0.0
+        if is_pad[i]:
+            vx = vel[2 * i]
+            out[2 * i] = -np.sign(vx) * bN * np.log1p(abs(vx) / vc)
+        else:
+            out[2 * i] = 0.0

@@ -10,7 +10,7 @@ from collections import deque
 import numpy as np
 import pymunk
 
-__all__ = ["PatchTrack", "SelfAffineTrack", "self_affine_kernel"]
+__all__ = ["PatchTrack", "SelfAffineTrack", "BumpTrack", "self_affine_kernel"]
 
 _CHUNK = 32  # patches generated at a time
 
@@ -45,12 +45,17 @@ class _StreamedTrack:
         while self._frontier() < x + ahead:
             self._extend()
         old = []
-        while self.segments and self.segments[0].b.x < x - behind:
+        while self.segments and self._end_x(self.segments[0]) < x - behind:
             old.append(self.segments.popleft())
-            self.neighbors.popleft()
+            if self.neighbors:
+                self.neighbors.popleft()
         if old:
             self.space.remove(*old)
             self.removed += len(old)
+
+    @staticmethod
+    def _end_x(shape) -> float:
+        return shape.b.x
 
     def restore_neighbors(self):
         """Re-apply set_neighbors after unpickling (pymunk does not save them)."""
@@ -59,41 +64,65 @@ class _StreamedTrack:
 
 
 class PatchTrack(_StreamedTrack):
-    """A flat track of friction patches (model I's renewal, section 3).
+    """A flat track of friction patches (model I's renewal, section 3), optionally with cavities.
 
     Patch boundaries lie at (j + r_j) a, so the distance between renewals is a (1 + r - r'), exactly the
     interval law behind eq. (A8); each patch has mu = mu0 (1 + alpha (r - 1/2)), so the force on a pad
     sliding under load N_pad changes to mu0 N_pad + alpha mu0 N_pad (r - 1/2) (eq. 5).
 
+    Cavities (for wear particles): with probability ``pit_p`` a patch holds a flat-bottomed pit of depth
+    ``pit_depth`` at a random place, its width (between the wall centre lines; the walls are as thick as the
+    segments) uniform in ``pit_width`` = (min, max), in the patch's friction. (V-shaped pits were tried first:
+    a grain wedged between two walls under a pad sank up to 65 um into them at 2 solver iterations.)
+
     Parameters are in scene units (mm). ``rng`` is this track's own generator.
     """
 
     def __init__(self, space: pymunk.Space, y: float, a: float, mu0: float, alpha: float, radius: float,
-                 shape_filter: pymunk.ShapeFilter, rng: np.random.Generator, x_start: float):
+                 shape_filter: pymunk.ShapeFilter, rng: np.random.Generator, x_start: float,
+                 pit_p: float = 0.0, pit_width: tuple = (0.0, 0.0), pit_depth: float = 0.0):
         self._init_stream(space, shape_filter, rng)
         self.y, self.a, self.mu0, self.alpha, self.radius = y, a, mu0, alpha, radius
+        self.pit_p, self.pit_width, self.pit_depth = pit_p, pit_width, pit_depth
+        self.pits = 0
         self._j = int(np.floor(x_start / a)) - 2
         self._x_end = (self._j + rng.random()) * a
 
     def _frontier(self) -> float:
         return self._x_end
 
+    def _segment(self, p0, p1, mu):
+        s = pymunk.Segment(self.space.static_body, p0, p1, self.radius)
+        s.friction = float(mu)
+        s.filter = self.filter
+        return s
+
     def _extend(self):
         j = self._j + 1 + np.arange(_CHUNK)
         bounds = (j + self.rng.random(_CHUNK)) * self.a
         mus = self.mu0 * (1.0 + self.alpha * (self.rng.random(_CHUNK) - 0.5))
+        if self.pit_p > 0:  # drawn only when pits exist, so a pit-free track keeps its random stream
+            has_pit = self.rng.random(_CHUNK) < self.pit_p
+            widths = self.pit_width[0] + self.rng.random(_CHUNK) * (self.pit_width[1] - self.pit_width[0])
+            where = self.rng.random(_CHUNK)
         new = []
         x0 = self._x_end
-        for x1, mu in zip(bounds, mus):
-            s = pymunk.Segment(self.space.static_body, (x0, self.y), (x1, self.y), self.radius)
-            s.friction = float(mu)
-            s.filter = self.filter
-            new.append(s)
+        y = self.y
+        for c, (x1, mu) in enumerate(zip(bounds, mus)):
+            if self.pit_p > 0 and has_pit[c] and x1 - x0 > 2 * widths[c]:
+                w, d = widths[c], self.pit_depth
+                xa = x0 + 0.5 * w + where[c] * (x1 - x0 - 2 * w)
+                xb = xa + w
+                new += [self._segment((x0, y), (xa, y), mu), self._segment((xa, y), (xa, y - d), mu),
+                        self._segment((xa, y - d), (xb, y - d), mu), self._segment((xb, y - d), (xb, y), mu),
+                        self._segment((xb, y), (x1, y), mu)]
+                self.pits += 1
+            else:
+                new.append(self._segment((x0, y), (x1, y), mu))
             x0 = x1
         self._link_and_add(new)
         self._j = int(j[-1])
         self._x_end = float(bounds[-1])
-
 
 
 def self_affine_kernel(hurst: float, lambda_r: float, lambda_s: float, dx: float, rms_slope: float):
@@ -146,3 +175,38 @@ class SelfAffineTrack(_StreamedTrack):
         self._link_and_add(new)
         self._last = pts[-1]
         self._x_next = float(xs[-1] + self.dx)
+
+
+class BumpTrack(_StreamedTrack):
+    """Sparse random asperities (the substrate of model III, section 6): the axis is cut into cells of length
+    ``cell``; each cell holds a bump with probability p, a static circle of radius ``bump_radius`` centred in
+    the cell whose top stands r h_max above the datum y (r uniform in [0, 1], as model III's cell force
+    r f0). There is no floor between bumps: a pad touches the substrate only on a bump. Friction mu0."""
+
+    def __init__(self, space, y, cell, p, bump_radius, h_max, mu0, shape_filter, rng, x_start):
+        self._init_stream(space, shape_filter, rng)
+        self.y, self.cell, self.p, self.r, self.h_max, self.mu0 = y, cell, p, bump_radius, h_max, mu0
+        self._j = int(np.floor(x_start / cell))
+
+    def _frontier(self) -> float:
+        return self._j * self.cell
+
+    @staticmethod
+    def _end_x(shape) -> float:
+        return shape.body.local_to_world(shape.offset).x + shape.radius
+
+    def _extend(self):
+        j = self._j + np.arange(_CHUNK * 8)
+        hit = self.rng.random(j.size) < self.p
+        heights = self.rng.random(j.size) * self.h_max
+        new = []
+        for jj, h in zip(j[hit], heights[hit]):
+            c = pymunk.Circle(self.space.static_body, self.r, ((jj + 0.5) * self.cell, self.y + h - self.r))
+            c.friction = self.mu0
+            c.filter = self.filter
+            new.append(c)
+        if new:
+            self.space.add(*new)
+        self.segments.extend(new)
+        self.generated += len(new)
+        self._j = int(j[-1]) + 1

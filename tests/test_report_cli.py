@@ -41,7 +41,27 @@ def test_summary_holds_every_shipped_scenario(quick_report):
     for name, sc in s["scenarios"].items():
         assert abs(sc["force_balance_rel"]) < 0.02 and abs(sc["energy_balance_rel"]) < 0.02
         assert set(["gamma", "gamma_err", "band"]) <= set(sc) and sc["gamma_err"] > 0
+        if name == "asperity_field":
+            # Against model III with the same p, f0, w (24 s): load redistribution. Measured: C_F 1.1e-4 of model
+            # III below 2 pi v / w and 3.3e-3 above; the rigid-block counterfactual (f0/2 per contact) reads 0.29,
+            # so load sharing accounts for a factor ~2700. Force exponent above v/w 0.23 +- 0.31 (model III 1.8).
+            assert sc["C_F_ratio_below_v_over_w"] < 1e-2 and sc["C_F_ratio_above_v_over_w"] < 0.1
+            assert sc["rigid_counterfactual_ratio_below_v_over_w"] > 0.1
+            assert sc["rigid_counterfactual_ratio_below_v_over_w"] / sc["C_F_ratio_below_v_over_w"] > 100
+            f3, f = sc["model_III_force_fit"], sc["force_fit"]
+            assert f["gamma"] + f["gamma_err"] < f3["gamma"] - f3["gamma_err"]
+            assert abs(f3["gamma"] - 2.0) < 0.5
+            continue
         ratios = np.array([b["ratio"] for b in sc["band_ratios_vs_model_I"]])
+        if name == "leonardo_slider":
+            # Model I with M = block + hanging mass (the rope taut) agrees within 1.5 up to ~1000 rad/s (measured
+            # 0.81-1.09); the top band (above the bare block's resonance on its pads, sqrt(N k0 / M) = 1000 rad/s)
+            # reads 18.6x: the rope joint stretches by up to 0.33 um (solver compliance), so there the block
+            # vibrates apart from the hanging mass. Asserted as measured, said in the report.
+            assert np.all(np.abs(np.log(ratios[:-1])) < np.log(1.5)), ratios
+            assert ratios[-1] > 1.5
+            assert abs(sc["gamma"] - 4.0) < 0.4 + sc["gamma_err"], (name, sc["gamma"], sc["gamma_err"])
+            continue
         if name == "pads_rough_profile":
             assert not sc["model_I_within_factor_1p5"]
             assert np.all(ratios[-2:] < 0.5) and ratios.min() < 1 / 1.5, ratios
@@ -65,6 +85,7 @@ def test_html_embeds_non_blank_figures(quick_report):
         assert arr.std() > 0.05  # a blank figure has (almost) no variance
     assert len(list((quick_report / "figures").glob("*.png"))) == n_fig
     assert "Models II and III do not apply to this scene" in page  # said, not left out silently
+    assert "Models I and II do not apply to this scene" in page
 
 
 def test_output_path_that_is_a_file_is_a_user_error(tmp_path, capsys):

@@ -1,0 +1,155 @@
+"""Wear particles: rigid discs kept in the interface of each pad (section 5, Appendix B; the model II analogue).
+
+Each particle belongs to one pad's track and collides only with that pad, that track and the particles on it
+(the track's ShapeFilter category). A pad that reaches a particle either slides over it while the particle
+stays at rest on the track (trapped) or drags it along (moving); which happens depends on the particle's
+size, the contact angle and the two friction coefficients. By default a grain does not rotate (moment = inf),
+as angular debris does not roll: a free disc squeezed between a sliding pad and the track rolls at v / 2 and is
+never trapped. (A rotary damper to the ground was tried instead: it doubled the step cost and, stiff against
+the grains' tiny moments of inertia, let the contact solver squeeze particles through the track.)
+
+Confinement: particles left more than ``behind`` behind their pad, pushed more than 3 ``ahead`` ahead of it,
+or out of the interface (below the track surface or above the pad) are recycled to a random free place up to
+``ahead`` in front of the pad, at rest on the track. The energy this moves in or out of the scene (the
+particle's kinetic energy and the change of its potential energy) is accounted for in ``recycle_work``, so the
+energy balance still closes. Idle particles at rest fall asleep (pymunk sleeping) and cost nothing until a
+pad reaches them. Works in scene units (mm, g, ms).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pymunk
+
+from . import units as U
+
+__all__ = ["draw_radii", "pad_friction_split", "Wear"]
+
+_DEPTH = 1e-3  # m: the depth of a 2D disc, for its mass
+
+
+def draw_radii(spec, n: int, rng: np.random.Generator) -> np.ndarray:
+    """n radii (m): log-normal (median r_median, log-std sigma) or power law P(r) ~ r^-exponent, in [r_min, r_max]."""
+    lo, hi = spec.r_min, spec.r_max
+    if spec.distribution == "lognormal":
+        out = np.empty(0)
+        while out.size < n:  # truncated by rejection
+            r = spec.r_median * np.exp(spec.sigma * rng.standard_normal(2 * n + 8))
+            out = np.concatenate([out, r[(r >= lo) & (r <= hi)]])
+        return out[:n]
+    u = rng.random(n)
+    a = 1.0 - spec.exponent
+    if abs(a) < 1e-12:
+        return lo * (hi / lo) ** u
+    return (lo**a + u * (hi**a - lo**a)) ** (1.0 / a)
+
+
+def pad_friction_split(mu0: float, mu_pad: float, mu_track: float) -> tuple[float, float]:
+    """Shape frictions (q for the pads, f for the particles) so that pymunk's products give the wanted pairs.
+
+    pymunk's arbiter friction is the product of the two shapes' values. With the pads at q, the track at
+    mu / q (so pad-track stays mu), and the particles at f: particle-pad = f q = mu_pad and particle-track
+    = f mu0 / q = mu_track at the mean patch value mu0; hence q = sqrt(mu_pad mu0 / mu_track), f = mu_pad / q."""
+    if mu_pad <= 0 or mu_track <= 0 or mu0 <= 0:
+        return 1.0, max(mu_pad, 0.0)
+    q = math.sqrt(mu_pad * mu0 / mu_track)
+    return q, mu_pad / q
+
+
+class Wear:
+    """The particles of a scene; built by :class:`~engine_sim.scene.Scene` when ``wear.count > 0``."""
+
+    def __init__(self, scene, spec, rng: np.random.Generator, particle_friction: float):
+        self.scene, self.spec, self.rng = scene, spec, rng
+        space = scene.space
+        sc = scene.sc
+        N = len(scene.pads)
+        radii_m = draw_radii(spec, spec.count, rng)
+        self.r = radii_m * U.LENGTH
+        self.mass = np.maximum(spec.density * math.pi * radii_m**2 * _DEPTH, spec.min_mass) * U.MASS
+        locked = spec.rotation == "locked"
+        self.moment = np.full(spec.count, np.inf) if locked else 0.5 * self.mass * self.r**2
+        self.track = np.arange(spec.count) % N
+        self.surface = np.array([scene.track_surface[i] for i in self.track])  # track top (y, mm)
+        self.ahead = spec.ahead * U.LENGTH
+        self.behind = spec.behind * U.LENGTH
+        self.R_pad = sc.pads.radius * U.LENGTH
+        self.floor_depth = (sc.substrate.pit_depth if sc.substrate.pit_p > 0 else 0.0) * U.LENGTH
+        self.bodies, self.shapes = [], []
+        self.recycled = 0
+        self.lost = 0  # left the interface (above the pad or below the track) rather than falling behind
+        self.recycle_work = 0.0  # scene energy units
+        for j in range(spec.count):
+            b = pymunk.Body(float(self.mass[j]), float(self.moment[j]))
+            s = pymunk.Circle(b, float(self.r[j]))
+            s.friction = particle_friction
+            s.filter = scene.track_filter[self.track[j]]
+            b.position = (0.0, -1e3)  # placed by _place below
+            space.add(b, s)
+            self.bodies.append(b)
+            self.shapes.append(s)
+        for j in range(spec.count):  # spread over [pad + R, pad + ahead] of their tracks at the start
+            self._place(j, initial=True)
+
+    @property
+    def count(self) -> int:
+        return len(self.bodies)
+
+    def _free(self, j, x) -> bool:
+        r, tr = self.r[j], self.track[j]
+        for k in np.flatnonzero(self.track == tr):
+            if k != j and abs(self.bodies[k].position.x - x) < r + self.r[k] and self.bodies[k].position.y < self.surface[k] + 3 * self.R_pad:
+                return False
+        return True
+
+    def _place(self, j, initial=False) -> bool:
+        """Put particle j at rest on its track at a random free place ahead of its pad; False if none found."""
+        b = self.bodies[j]
+        pad = self.scene.pads[self.track[j]]
+        r = self.r[j]
+        x0 = pad.position.x + self.R_pad + r
+        for _ in range(8):
+            x = x0 + self.rng.random() * (self.ahead - self.R_pad - r)
+            if self._free(j, x):
+                y = self.surface[j] + r
+                if not initial:
+                    g = -self.scene.space.gravity.y
+                    v, w = b.velocity, b.angular_velocity
+                    ke = 0.5 * b.mass * (v.x**2 + v.y**2) + (0.5 * b.moment * w * w if w else 0.0)
+                    self.recycle_work += b.mass * g * (y - b.position.y) - ke
+                b.position = (x, y)
+                b.velocity = (0.0, 0.0)
+                b.angular_velocity = 0.0
+                b.angle = 0.0
+                if not initial:
+                    b.activate()
+                return True
+        return False
+
+    def maintain(self):
+        """Recycle particles left behind, pushed far ahead, or out of the interface (every few output steps)."""
+        for j, b in enumerate(self.bodies):  # asleep ones too: a grain left behind must go before its track does
+            pad = self.scene.pads[self.track[j]]
+            x, y = b.position
+            below = y < self.surface[j] - self.floor_depth  # fell through the track (deeper than any pit)
+            above = y > pad.position.y + self.R_pad + 2 * self.r[j]
+            if below or above:
+                if self._place(j):
+                    self.lost += 1
+                    self.recycled += 1
+            elif x < pad.position.x - self.behind or x > pad.position.x + 3 * self.ahead:
+                if self._place(j):
+                    self.recycled += 1
+
+    def snapshot(self):
+        """(positions (n, 2), radii, state codes) in scene units, for rendering; state: 0 idle, 1 trapped, 2 moving."""
+        xy = np.array([(b.position.x, b.position.y) for b in self.bodies])
+        v_slide = self.scene.sc.steady_velocity * U.VELOCITY
+        state = np.zeros(self.count, dtype=int)
+        for j, b in enumerate(self.bodies):
+            pad = self.scene.pads[self.track[j]]
+            touching = (b.position - pad.position).length < self.r[j] + self.R_pad + 1e-3
+            if touching:
+                state[j] = 1 if b.velocity.length < self.spec.trapped_speed * v_slide else 2
+        return xy, self.r, state
