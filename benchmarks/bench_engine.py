@@ -67,6 +67,16 @@ def main(argv=None):
         sc = load_scenario(path)
         b, f = loop_ratio(sc, steps)
         print(f"| {name} | {b:.1f} | {f:.1f} | {f / b:.3f} | {sc.run.dt / (f * 1e-6):.2f} |")
+    # what the wear particles cost (issue target: 50 particles at most 2x the particle-free step)
+    wear = load_scenario(shipped_scenarios()["pads_with_wear"])
+    patches = load_scenario(shipped_scenarios()["pads_friction_patches"])
+    print("\n| wear particles | loop us/step | vs. no particles, same settings | vs. pads_friction_patches |")
+    print("|---|---|---|---|")
+    _, f_ref = loop_ratio(patches, steps)
+    _, f0 = loop_ratio(wear.with_wear(count=0), steps)
+    for n in (0, 50, 200):
+        _, f = loop_ratio(wear.with_wear(count=n, ahead=max(wear.wear.ahead, 2.5e-3 + 4e-4 * -(-n // wear.pads.N))), steps)
+        print(f"| {n} | {f:.1f} | {f / f0:.2f} | {f / f_ref:.2f} |")
     if not a.smoke:
         sc = load_scenario(shipped_scenarios()["pads_friction_patches"])
         t0 = time.perf_counter()

@@ -12,7 +12,7 @@ import numpy as np  # noqa: E402
 
 from .spectra import Spectrum, log_bin  # noqa: E402
 
-__all__ = ["spectrum_figure", "save_figure", "figure_png_bytes"]
+__all__ = ["spectrum_figure", "save_figure", "figure_png_bytes", "episode_histogram_figure"]
 
 
 def spectrum_figure(measured: list, theory: list = (), *, title: str = "", ylabel: str = r"$C_x$ (m$^2$ s)",
@@ -91,5 +91,30 @@ def work_precision_figure(rows):
     ax.set_xlabel("wall s per simulated s")
     ax.set_ylabel(r"band-averaged $|\ln C_x / C_{x,\mathrm{ref}}|$ (floor 1e-4)")
     ax.set_title("Engine work-precision (red: Pareto front)", fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def episode_histogram_figure(ep: dict, title: str = ""):
+    """Trap/release episode durations (log bins) and episode forces, by state."""
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(8.0, 3.6), dpi=110)
+    tau = ep["tau"]
+    bins = np.logspace(np.log10(max(tau.min(), 1e-4)), np.log10(tau.max() * 1.01), 30) if tau.size else 10
+    for code, name, col in ((1, "trapped", "tab:blue"), (2, "moving", "tab:red"), (0, "idle", "0.5")):
+        sel = ep["state"] == code
+        if not np.any(sel):
+            continue
+        a1.hist(tau[sel], bins=bins, histtype="step", lw=1.4, color=col, label=f"{name} ({sel.sum()})")
+        if code:
+            a2.hist(ep["force"][sel] * 1e3, bins=40, histtype="step", lw=1.4, color=col, label=name)
+    a1.set_xscale("log")
+    a1.set_yscale("log")
+    a1.set_xlabel("episode duration (s)")
+    a1.set_ylabel("count")
+    a1.legend(fontsize=7)
+    a2.set_yscale("log")
+    a2.set_xlabel("mean force on the pad in the episode (mN)")
+    a2.legend(fontsize=7)
+    fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     return fig

@@ -146,23 +146,22 @@ class Recorder:
         af = np.frombuffer(self._abuf.float_buf())
         if self.x0 is None:
             self.x0 = float(sc.block.position.x)
-        drive_k, drive_x, drive_rest, drive_v = self._drive_state()
-        prm = self._prm
-        prm[0], prm[1], prm[2], prm[3], prm[4] = drive_k, drive_x, drive_rest, drive_v, self.x0
+        self._prm[0:5] = (*self._drive_state(), self.x0)
         if sc.wear is not None:  # recycling moved particles since the last sample: their new places
             for j, b in enumerate(sc.wear.bodies):
                 self._part[j, 3] = b.is_sleeping
             self.recycle[k] = sc.wear.recycle_work
-        _reduce(ids, fl, ai, af, self._tab, self._part, self._bs, self._pp, prm, k,
+        _reduce(ids, fl, ai, af, self._tab, self._part, self._bs, self._pp, self._prm, k,
                 self.out, self.pad_force, self.n_contact, self.p_state, self.p_force)
         self.t[k] = sc.steps * sc.dt / U.TIME
         self.k += 1
 
     def _drive_state(self):
-        """(stiffness, anchor x, rest length, anchor speed) of the drive spring, scene units."""
+        """(stiffness, anchor x, rest length, anchor speed) of the drive spring, scene units (its anchor body
+        does not rotate, so the anchor point is the body's position plus the fixed offset)."""
         s = self._drive_spring
-        anchor = s.b.local_to_world(s.anchor_b).x
-        return s.stiffness, anchor, s.rest_length, s.b.velocity.x
+        b = s.b
+        return s.stiffness, b.position.x + s.anchor_b.x, s.rest_length, b.velocity.x
 
     def trace(self, metadata: dict) -> EngineTrace:
         n = self.k
@@ -193,6 +192,7 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, k, out, pad_force, n_contac
     N = pad_force.shape[1]
     n_p = part.shape[0]
     n_tab = tab.shape[0]
+    tab_ids = tab[:, 0].copy()
     P = np.zeros((N, 4))
     Q = np.zeros((n_p, 5))  # particles: x, y, vx, vy, w
     for j in range(n_p):
@@ -202,8 +202,8 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, k, out, pad_force, n_contac
     hx = hvx = 0.0
     has_hanging = False
     for r in range(ids.shape[0]):
-        t = np.searchsorted(tab[:, 0], ids[r])
-        if t >= n_tab or tab[t, 0] != ids[r]:
+        t = np.searchsorted(tab_ids, ids[r])
+        if t >= n_tab or tab_ids[t] != ids[r]:
             continue
         kind, i = tab[t, 1], tab[t, 2]
         f = fl[5 * r: 5 * r + 5]
@@ -231,6 +231,8 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, k, out, pad_force, n_contac
     p_pen = 0.0
     pairs = 0
     pout = 0.0
+    kinds = np.empty(2, dtype=np.int64)  # per arbiter: kind and index of bodies A and B (-1: static)
+    idx = np.empty(2, dtype=np.int64)
     for r in range(ai.shape[0] // 3):
         if ai[3 * r + 2] <= 0:
             continue
@@ -238,11 +240,10 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, k, out, pad_force, n_contac
         Fx, Fy = af[a0] / dt, af[a0 + 1] / dt  # on A; B feels minus this
         tx, ty = -af[a0 + 3], af[a0 + 2]  # contact tangent
         px, py = af[a0 + 4], af[a0 + 5]
-        kinds = np.full(2, -1)
-        idx = np.zeros(2, dtype=np.int64)
         for s in range(2):
-            t = np.searchsorted(tab[:, 0], ai[3 * r + s])
-            if t < n_tab and tab[t, 0] == ai[3 * r + s]:
+            kinds[s], idx[s] = -1, 0
+            t = np.searchsorted(tab_ids, ai[3 * r + s])
+            if t < n_tab and tab_ids[t] == ai[3 * r + s]:
                 kinds[s], idx[s] = tab[t, 1], tab[t, 2]
         # a sleeping grain's cached arbiter holds stale contact data (overlaps of tens of mm were read);
         # asleep, a grain only rests on its track: skip its arbiters

@@ -30,8 +30,10 @@ class SceneRenderer:
         self.scene = scene
         sc = scene.sc
         self.asperities = scene.asperities
+        self.zoom = scene.wear is not None  # grains of tens of um: zoom onto the first pad's track
         if window is None:
-            window = 0.65 * sc.pads.N * sc.pads.foot_length if self.asperities else 12 * sc.substrate.a
+            window = (0.65 * sc.pads.N * sc.pads.foot_length if self.asperities
+                      else 0.6 * sc.wear.ahead if self.zoom else 12 * sc.substrate.a)
         self.window = window * U.LENGTH  # mm either side of the block
         self.fig, self.ax = plt.subplots(figsize=(7.0, 5.0), dpi=dpi)
         ax = self.ax
@@ -40,12 +42,18 @@ class SceneRenderer:
             h = sc.substrate.h_max * U.LENGTH
             self.ylim = (-3 * h, 4 * h)
             ax.set_ylabel("y (mm): asperity caps and feet")
+        elif self.zoom:
+            surf = scene.track_surface[0]
+            self.ylim = (surf - 0.3, surf + 0.9)
+            ax.set_ylabel("y (mm): the first pad's track")
+            ax.set_aspect("equal", adjustable="box")
         else:
             self.ylim = (ys.min() - 3.0, scene.y_block + 4.0)
             ax.set_ylabel("y (mm): one track per pad")
         ax.set_ylim(*self.ylim)
         ax.set_xlabel("x (mm)")
         mu0, al = sc.friction.mu0, sc.substrate.alpha if sc.substrate.kind == "patches" else 0.0
+        self.q_pad = scene.q_pad  # pad-track friction = shape friction x q_pad
         self.norm = matplotlib.colors.Normalize(mu0 * (1 - al / 2), mu0 * (1 + al / 2) + 1e-12)
         self.tracks = LineCollection([], cmap="viridis", norm=self.norm, linewidths=3 if not self.asperities else 1.5)
         ax.add_collection(self.tracks)
@@ -82,7 +90,7 @@ class SceneRenderer:
                     segs.append(((sh.a.x, sh.a.y), (sh.b.x, sh.b.y)))
                 else:
                     continue
-                mus.append(sh.friction)
+                mus.append(sh.friction * self.q_pad)
         return segs, mus
 
     def frame(self) -> np.ndarray:
@@ -101,6 +109,13 @@ class SceneRenderer:
                     a, b = p.local_to_world(sh.a), p.local_to_world(sh.b)
                     feet.append(((a.x, a.y - sh.radius), (b.x, b.y - sh.radius)))  # the sole's underside
             self.feet.set_segments(feet)
+        elif self.zoom:  # pads at their true size
+            if not hasattr(self, "_pad_disc"):
+                d = 2 * s.sc.pads.radius * 1e3
+                self._pad_disc = EllipseCollection(d, d, 0.0, units="xy", offsets=pads, offset_transform=self.ax.transData,
+                                                   facecolors="tab:orange", alpha=0.6, zorder=3)
+                self.ax.add_collection(self._pad_disc)
+            self._pad_disc.set_offsets(pads)
         else:
             self.pads.set_offsets(pads)
             anchors = [c.a.local_to_world(c.anchor_a) for c in s.tangential_springs]

@@ -444,6 +444,11 @@ def _check_consistency(sc: Scenario, where: str):
             raise _err(where, f"run.dt = {r.dt:.3g} s lets the smallest particle (wear.r_min = {w.r_min:.3g} m) tunnel: "
                               f"{WEAR_SPEED_FACTOR:g} x the sliding speed x dt must stay below {WEAR_TUNNEL_FRACTION} r_min, "
                               f"so dt <= {WEAR_TUNNEL_FRACTION * w.r_min / v_max:.3g} s")
+        per_track = math.ceil(w.count / p.N)
+        need = p.radius + per_track * 4 * w.r_max
+        if w.ahead < need:
+            raise _err(where, f"wear.ahead = {w.ahead:.3g} m cannot hold {per_track} particles per track: it must reach "
+                              f"past the pad by 4 r_max per particle, at least {need:.3g} m")
         if w.ahead < 2 * p.radius or w.behind < p.radius:
             raise _err(where, f"wear.ahead (>= 2 pad radii) and wear.behind (>= 1 pad radius) must reach past the pad "
                               f"(got {w.ahead!r}, {w.behind!r} m)")

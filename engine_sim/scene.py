@@ -84,6 +84,7 @@ class Scene:
         # pymunk multiplies shape frictions: with particles the pads carry q and the tracks mu / q (see wear.py)
         q_pad, f_particle = pad_friction_split(fr.mu0, wear.mu_pad, wear.mu_track) if wear.count else (1.0, 0.0)
         mu_track = fr.mu0 / q_pad
+        self.q_pad = q_pad
         if sub.kind == "self_affine":
             dx_s = sub.lambda_s * U.LENGTH / 4
             kernel = self_affine_kernel(sub.hurst, sub.lambda_r * U.LENGTH, sub.lambda_s * U.LENGTH, dx_s, sub.rms_slope)
@@ -183,7 +184,7 @@ class Scene:
         space.add(anchor, self.drive_spring)
         self.driver = anchor
         if sub.kind == "patches":
-            self.ahead = 8 * sub.a * U.LENGTH + 200 * v0 * self.dt * self.n_sub
+            self.ahead = max(8 * sub.a, sc.wear.ahead + 2 * sub.a) * U.LENGTH + 200 * v0 * self.dt * self.n_sub
             self.behind = 4 * sub.a * U.LENGTH
         elif self.asperities:  # around the whole sole
             self.ahead = self.width / 2 + 2 * R + 200 * v0 * self.dt * self.n_sub

@@ -90,7 +90,9 @@ class Wear:
             self.bodies.append(b)
             self.shapes.append(s)
         for j in range(spec.count):  # spread over [pad + R, pad + ahead] of their tracks at the start
-            self._place(j, initial=True)
+            if not self._place(j, initial=True, tries=200):
+                raise ValueError(f"wear: no free place for particle {j} ahead of pad {self.track[j]} "
+                                 f"(wear.ahead = {spec.ahead} m is too short for wear.count = {spec.count})")
 
     @property
     def count(self) -> int:
@@ -103,13 +105,13 @@ class Wear:
                 return False
         return True
 
-    def _place(self, j, initial=False) -> bool:
+    def _place(self, j, initial=False, tries=8) -> bool:
         """Put particle j at rest on its track at a random free place ahead of its pad; False if none found."""
         b = self.bodies[j]
         pad = self.scene.pads[self.track[j]]
         r = self.r[j]
         x0 = pad.position.x + self.R_pad + r
-        for _ in range(8):
+        for _ in range(tries):
             x = x0 + self.rng.random() * (self.ahead - self.R_pad - r)
             if self._free(j, x):
                 y = self.surface[j] + r

@@ -20,14 +20,20 @@ def test_shipped_scenario_slides_steadily(name):
         assert (tr.x[q[-1]] - tr.x[q[0]]) / (tr.t[q[-1]] - tr.t[q[0]]) == pytest.approx(v_all, rel=0.05)
     # friction (Coulomb + viscous) balances the drive within 2 % (measured within 1e-5)
     assert np.mean(tr.F_t + tr.F_drag) == pytest.approx(np.mean(tr.F_drive), rel=0.02)
-    # energy balance within 2 % (measured within 5e-5)
-    assert (tr.work_drive[-1] - tr.dissipated[-1] - tr.mech_energy[-1]) / tr.work_drive[-1] == pytest.approx(0, abs=0.02)
+    # energy balance within 2 % (measured within 5e-5 without particles, 1.5-1.8 % with them; recycled grains
+    # carry their energy change in work_recycle)
+    resid = tr.work_drive[-1] + tr.work_recycle[-1] - tr.dissipated[-1] - tr.mech_energy[-1]
+    assert resid / tr.work_drive[-1] == pytest.approx(0, abs=0.02)
     # overlap with the track: the collision slop (1e-7 m) on flat tracks; on the rough profile impacts on
-    # flanks reach 1.2 um (measured); bound 3 um
-    assert tr.penetration.max() < 3e-6
-    # the speed follows the friction law within 10 %; the patch noise lowers it (tilted_plane: 9 %):
-    # pads dwell longer on high-friction patches, so the time-averaged mu exceeds mu0 (0.618 vs 0.6)
-    assert v_all == pytest.approx(sc.steady_velocity, rel=0.10)
+    # flanks reach 1.2 um, pads riding over grains 5.2 um (measured); bound 8 um. Grains: 4.1 um, bound 8 um.
+    assert tr.penetration.max() < (8e-6 if sc.wear.count else 3e-6) and tr.particle_penetration.max() < 8e-6
+    if sc.wear.count:
+        # grains add friction: the block slides slower than the bare law (measured 3.8-3.9 vs 5.0 mm/s)
+        assert v_all < sc.steady_velocity and tr.metadata["wear"]["left_interface"] == 0
+    else:
+        # the speed follows the friction law within 10 %; the patch noise lowers it (tilted_plane: 9 %):
+        # pads dwell longer on high-friction patches, so the time-averaged mu exceeds mu0 (0.618 vs 0.6)
+        assert v_all == pytest.approx(sc.steady_velocity, rel=0.10)
 
 
 def test_constant_force_and_constant_velocity_drives():
