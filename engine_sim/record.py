@@ -5,7 +5,7 @@ Per output sample: the block's position and velocity; per pad, the tangential an
 dissipated by the friction law (Coulomb part -f_t v and viscous part c v^2), integrated by trapezoids, and
 the mechanical energy, for the energy balance W_drive (+ W_recycle) = dissipated + change of mechanical energy.
 Dissipation is measured, not inferred: at every contact the friction power -F_t (v_A(p) - v_B(p))_t (tangential
-force times slip at the contact point p, rotation included), plus the friction law's drag and the springs' and rotary dampers' damping. With the
+force times slip at the contact point p, rotation included), plus the friction law's drag and the springs' damping. With the
 log law the velocity part b N_pad ln(1 + v/v_c) enters the drag force and its power. With wear particles: per
 particle and sample its state (0 idle: not touching its pad; 1 trapped: touching and slower than the trapped
 threshold; 2 moving) and the tangential force it exerts on its pad.
