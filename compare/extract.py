@@ -48,7 +48,7 @@ def model_I_parameters(trace, scenario) -> dict:
     rms = float(np.mean(np.std(f, axis=0)))
     Lc = _correlation_length(trace.x, f, 10 * sc.substrate.a)
     a = 12.0 / 7.0 * Lc
-    c_law = sc.friction_slope(float((trace.x[-1] - trace.x[0]) / (trace.t[-1] - trace.t[0])))
+    c_law = sc.friction_slope(v)
     c_meas = float(np.mean(trace.F_drag) / (N_contact * v))
     if sc.drive.kind == "leonardo":  # the taut rope moves the hanging mass with the block
         M, M_prov = sc.block.M + sc.hanging_mass, "scenario: block + hanging mass (Leonardo's slider, rope taut)"

@@ -46,6 +46,11 @@ def _log_err(ratios):
     return float(np.mean([abs(math.log(b["ratio"])) for b in ratios]))
 
 
+def _param_rows(ex: dict) -> list:
+    """Table rows (name, value, unit, provenance) of an extracted-parameter dict."""
+    return [[k, f"{v['value']:.4g}", html.escape(v["unit"]), html.escape(v["provenance"])] for k, v in ex.items()]
+
+
 def _timed(fn, *a, **k):
     t0 = time.perf_counter()
     out = fn(*a, **k)
@@ -324,7 +329,7 @@ def _engine_section(name, sc, quick, seed, summary, timings, trace=None, duratio
             f"the bare block's resonance on its pads, sqrt(N k0 / M_block) = {math.sqrt(ex['N']['value'] * sc.pads.k0 / sc.block.M):.0f} "
             "rad/s, the block moves apart from the hanging mass: the rope joint is not perfectly rigid in pymunk's "
             "solver (it stretched by up to 0.33 um, measured), so the top band exceeds model I (see the ratio table).")
-    rows = [[k, f"{v['value']:.4g}", html.escape(v["unit"]), html.escape(v["provenance"])] for k, v in ex.items()]
+    rows = _param_rows(ex)
     sec.tables.append(("Model I parameters extracted from the scene", ["parameter", "value", "unit", "provenance"], rows))
     sec.tables.append(("C_x(scene) / C_x(model I, A10), per log band", ["band (rad/s)", "ratio"], _ratio_rows(ratios)))
     sec.figures.append((f"scene_{name}.png", plots.figure_png_bytes(fig),
@@ -408,7 +413,7 @@ def _asperity_section(name, sc, quick, seed, summary, timings, trace, duration, 
         "velocity strengthening would give an inertial band but no steady sliding under constant force.",
         "Models I and II do not apply to this scene: its feet see no friction patches, and it has no wear particles.",
     ]
-    rows = [[k, f"{v['value']:.4g}", html.escape(v["unit"]), html.escape(v["provenance"])] for k, v in ex.items()]
+    rows = _param_rows(ex)
     sec.tables.append(("Model III parameters extracted from the scene", ["parameter", "value", "unit", "provenance"], rows))
     sec.tables.append(("C_F(scene) / C_F(model III closed form), per log band", ["band (rad/s)", "ratio"], _ratio_rows(ratios)))
     sec.figures.append((f"scene_{name}.png", plots.figure_png_bytes(fig),

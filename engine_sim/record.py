@@ -112,12 +112,11 @@ class Recorder:
         self.x0 = None
         bN, vc = scene.log_law if scene.log_law is not None else (0.0, 1.0)
         m_h = scene.hanging.mass if scene.hanging is not None else 0.0
-        c_rot = 0.0  # no rotary dampers (see wear.py); kept as a kernel input
         v_trap = sc.wear.trapped_speed * sc.steady_velocity * U.VELOCITY
         # scalars for the kernel: drive k, anchor x, rest, anchor v, x0, dt, c, m_p, M, g, b N_pad, v_c, m_h,
-        # rotary damping, trapped-speed threshold, output step
+        # trapped-speed threshold, output step
         self._prm = np.array([0.0, 0.0, 0.0, 0.0, 0.0, scene.dt, self.c, self.m_p, self.M, -scene.space.gravity.y,
-                              bN, vc, m_h, c_rot, v_trap, scene.dt * scene.n_sub])
+                              bN, vc, m_h, v_trap, scene.dt * scene.n_sub])
         # Springs with energy, as (pad, anchors, rest length, stiffness, damping) arrays for vectorised lengths;
         # drag springs (stiffness 0) store none. Pad-pad springs use both pad positions.
         bs, pp = [], []
@@ -188,7 +187,7 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, k, out, pad_force, n_contac
     particle, penetrations, powers, mechanical energy. Bodies absent from the buffer are asleep (at rest)."""
     dk, dx_anchor, drest, dv, x0 = prm[0], prm[1], prm[2], prm[3], prm[4]
     dt, c, m_p, M, g = prm[5], prm[6], prm[7], prm[8], prm[9]
-    bN, vc, m_h, c_rot, v_trap, dt_out = prm[10], prm[11], prm[12], prm[13], prm[14], prm[15]
+    bN, vc, m_h, v_trap, dt_out = prm[10], prm[11], prm[12], prm[13], prm[14]
     N = pad_force.shape[1]
     n_p = part.shape[0]
     n_tab = tab.shape[0]
@@ -311,7 +310,6 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, k, out, pad_force, n_contac
         m, I = part[j, 0], part[j, 1]
         ke += 0.5 * m * (Q[j, 2] ** 2 + Q[j, 3] ** 2) + 0.5 * I * Q[j, 4] ** 2
         pe += m * g * Q[j, 1]
-        pout += c_rot * Q[j, 4] ** 2
         if p_touch[j]:  # trapped: its mean speed over the last output step below the threshold
             speed = np.sqrt((Q[j, 0] - prev[j, 0]) ** 2 + (Q[j, 1] - prev[j, 1]) ** 2) / dt_out
             p_state[k, j] = 1 if speed < v_trap else 2
