@@ -67,7 +67,10 @@ def test_sigint_writes_checkpoint_and_partial_trace(tmp_path):
     out = tmp_path / "run"
     cmd = [sys.executable, "-m", "compare.cli", "run", str(PATCHES), "--duration", "60", "--checkpoint-every", "1",
            "-o", str(out)]
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    # a shell that starts pytest in the background sets SIGINT to 'ignore', the child would inherit it and Python
+    # then installs no KeyboardInterrupt handler (the run completes with status 0): restore the default first
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     t_end = time.time() + 120
     while time.time() < t_end and not (out / "checkpoint.pkl").exists():
         time.sleep(0.01)
