@@ -21,6 +21,9 @@ def _build_parser() -> argparse.ArgumentParser:
     rep.add_argument("-o", "--output", default="frictionnoise-report", help="output folder (default: %(default)s)")
     rep.add_argument("--quick", action="store_true", help="shorter runs (under a minute)")
     rep.add_argument("--seed", type=int, default=0, help="random seed (default: %(default)s)")
+    rep.add_argument("--workers", type=int, default=None, metavar="N",
+                     help="run the report's stages in N processes (default: the usable cores, at most 4; 1: in this "
+                          "process); the numbers do not depend on it")
     rep.set_defaults(func=_cmd_report)
 
     run = sub.add_parser("run", help="run a scenario and write its trace (.npz + .json)")
@@ -267,6 +270,13 @@ def _cmd_compare(args) -> int:
     return 0
 
 
+def _usable_cores(cap: int) -> int:
+    import os
+
+    n = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    return max(1, min(cap, n))
+
+
 def _cmd_report(args) -> int:
     from pathlib import Path
 
@@ -277,6 +287,9 @@ def _cmd_report(args) -> int:
     out = Path(args.output)
     if out.exists() and not out.is_dir():
         raise UserError(f"{out}: exists and is not a folder")
+    if args.workers is not None and args.workers < 1:
+        raise UserError(f"--workers must be at least 1 (got {args.workers})")
+    workers = args.workers or _usable_cores(cap=4)
     from engine_sim import shipped_scenarios
 
     stages = (["model I reference", "model I variations", "model III", "model II"] + list(shipped_scenarios())
@@ -286,7 +299,7 @@ def _cmd_report(args) -> int:
         def progress(stage):
             bar.set_postfix_str(stage)
             bar.update(1)
-        sections, summary = build_report(quick=args.quick, seed=args.seed, progress=progress)
+        sections, summary = build_report(quick=args.quick, seed=args.seed, progress=progress, workers=workers)
     path = write_report(out, sections, summary)
     print(f"wrote {path / 'index.html'} ({summary['total_wall_s']:.1f} s)")
     for key in ("model_I", "model_III", "model_II"):

@@ -265,6 +265,9 @@ def _engine_section(name, sc, quick, seed, summary, timings, trace=None, duratio
         # its corner 2 pi v / w lies near 4 rad/s: resolving below it takes 8 s segments
         duration = duration or (16.0 if quick else None)
         return _asperity_section(name, sc, quick, seed, summary, timings, trace, duration, progress)
+    if sc.substrate.kind == "self_affine":
+        # quick: 8 s, not 12: streaming its short segments makes it ~1 wall s per simulated s (4x the patches)
+        duration = duration or (8.0 if quick else None)
     from reduced_models import spring_block
 
     from . import plots
@@ -466,7 +469,12 @@ def _wear_section(name, sc, quick, seed, summary, timings, trace, duration, prog
     bal = {k: _balances(tr) for k, tr in runs.items()}
     timings.append([f"scene {name} (paired)", f"2 x {T:g} s, dt = {sc.run.dt:g} s, {sc.run.iterations} iterations",
                     f"{wall_w + wall_0:.2f}", "n/a (paired comparison)"])
-    cost_ratio = tw.metadata["us_per_step"] / t0.metadata["us_per_step"]
+    # the particles' cost, measured with both scenes taking turns (the runs' own wall times depend on what the
+    # report runs beside them)
+    from engine_sim.timing import step_costs
+
+    us_w, us_0 = step_costs([sc, sc.with_wear(count=0)], seed=seed)
+    cost_ratio = us_w / us_0
     band_rows = [{"band": [float(edges[i]), float(edges[i + 1])], "C_x_ratio": float(level[i]), "C_F_ratio": float(levelF[i]),
                   "particle_force_over_B2": float(r_b2[i]), "delta_C_F_over_B2": float(r_dCF[i])} for i in range(len(level))]
     summary["scenarios"][name] = {
@@ -478,7 +486,7 @@ def _wear_section(name, sc, quick, seed, summary, timings, trace, duration, prog
         "mean_velocity": vw, "mean_velocity_without": v0, "law_velocity": sc.steady_velocity,
         **bal["with"], "without_balances": bal["without"], "wall_s": wall_w + wall_0, "duration_s": T,
         "us_per_step": tw.metadata["us_per_step"], "us_per_step_without": t0.metadata["us_per_step"],
-        "cost_ratio_particles": cost_ratio,
+        "cost_ratio_particles": cost_ratio, "cost_us_per_step_interleaved": [us_w, us_0],
     }
     w = np.logspace(np.log10(sp.omega_min), np.log10(sp.omega_max), 200)
     fig1 = plots.spectrum_figure([(specs["with"], f"with {sc.wear.count} particles"), (specs["without"], "without (same seed, substrate)")],
@@ -495,8 +503,8 @@ def _wear_section(name, sc, quick, seed, summary, timings, trace, duration, prog
     sec.paragraphs += [
         html.escape(sc.description.replace("\n", " ")),
         f"Paired runs of {T:g} s (same seed and substrate): {wall_w:.1f} s with particles ({tw.metadata['us_per_step']:.0f} us "
-        f"per step), {wall_0:.1f} s without ({t0.metadata['us_per_step']:.0f} us), a cost ratio of {cost_ratio:.2f} at "
-        f"{sc.run.iterations} solver iterations. Mean speed {1e3 * vw:.3f} mm/s with particles, {1e3 * v0:.3f} mm/s without "
+        f"per step), {wall_0:.1f} s without ({t0.metadata['us_per_step']:.0f} us); measured side by side, {us_w:.0f} and "
+        f"{us_0:.0f} us per step, a cost ratio of {cost_ratio:.2f} at {sc.run.iterations} solver iterations. Mean speed {1e3 * vw:.3f} mm/s with particles, {1e3 * v0:.3f} mm/s without "
         f"(law: {1e3 * sc.steady_velocity:.3f}): the grains add friction. Energy balance with particles "
         f"{100 * d['energy_balance_rel']:+.3f} % (recycling moved {100 * float(tw.work_recycle[-1] / tw.work_drive[-1]):+.4f} % of the "
         f"drive's work); deepest grain overlap with a track {1e6 * d['particle_penetration_max_m']:.2f} um; "
@@ -578,27 +586,91 @@ def build_scene_report(sc, trace=None, duration=None, seed=None, progress=None):
     return [sec, speed], summary
 
 
-def build_report(quick: bool = False, seed: int = 0, progress=lambda stage: None):
-    """Compute every section and the summary (no files written). Returns (sections, summary)."""
-    summary = {"version": package_version(), "quick": quick, "seed": seed,
-               "conventions": "C(omega) two-sided in angular frequency, eq. (2); gamma_err = 95 % half-width"}
-    timings: list = []
-    t0 = time.perf_counter()
-    sections = _model_I(quick, seed, summary, timings, progress)
-    sections.append(_model_III(quick, seed, summary, timings, progress))
-    sections.append(_model_II(quick, seed, summary, timings, progress))
-    summary["scenarios"] = {}
-    from engine_sim import load_scenario, shipped_scenarios
+# the report's independent stages, in page order: (stage, progress labels); scenes are added per shipped scenario
+_MODEL_STAGES = [("model I", ["model I reference", "model I variations"]), ("model III", ["model III"]),
+                 ("model II", ["model II"])]
+# relative wall cost, to hand the longest stages to workers first (measured in the quick report: the wear pair
+# 18 s, the rough profile 9 s, the asperity field 7 s, every other stage 0.5-3 s)
+_COST_HINT = {"scene pads_with_wear": 18.0, "scene pads_rough_profile": 9.0, "scene asperity_field": 7.0}
 
-    for name, path in shipped_scenarios().items():
-        sections.append(_engine_section(name, load_scenario(path), quick, seed, summary, timings))
-        progress(f"scene {name}")
+
+def _stage(stage: str, quick: bool, seed: int):
+    """Run one report stage; returns (sections, summary entries, timing rows). Module-level, so that a worker
+    process can run it: every stage draws its own seeded random numbers, so where it runs does not change it."""
+    summary: dict = {"scenarios": {}}
+    timings: list = []
+    quiet = lambda label: None  # noqa: E731
+    if stage == "model I":
+        sections = _model_I(quick, seed, summary, timings, quiet)
+    elif stage == "model III":
+        sections = [_model_III(quick, seed, summary, timings, quiet)]
+    elif stage == "model II":
+        sections = [_model_II(quick, seed, summary, timings, quiet)]
+    else:
+        from engine_sim import load_scenario, shipped_scenarios
+
+        name = stage.removeprefix("scene ")
+        sections = [_engine_section(name, load_scenario(shipped_scenarios()[name]), quick, seed, summary, timings)]
+    return sections, summary, timings
+
+
+def _run_stages(stages, quick, seed, workers, progress):
+    """Results of every stage, in the given order; with workers > 1 in that many spawned processes, longest
+    first (a stage only reports when it has finished)."""
+    if workers <= 1:
+        out = []
+        for stage, labels in stages:
+            out.append(_stage(stage, quick, seed))
+            for label in labels:
+                progress(label)
+        return out
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    # spawn, not fork: the parent may hold threads (a progress bar's monitor) whose locks a fork would copy held
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"))
+    try:
+        order = sorted(range(len(stages)), key=lambda i: -_COST_HINT.get(stages[i][0], 1.0))
+        futures = {pool.submit(_stage, stages[i][0], quick, seed): i for i in order}
+        out = [None] * len(stages)
+        for fut in as_completed(futures):
+            i = futures[fut]
+            out[i] = fut.result()
+            for label in stages[i][1]:
+                progress(label)
+    except BaseException:
+        pool.shutdown(wait=False, cancel_futures=True)
+        raise
+    pool.shutdown()
+    return out
+
+
+def build_report(quick: bool = False, seed: int = 0, progress=lambda stage: None, workers: int = 1):
+    """Compute every section and the summary (no files written). Returns (sections, summary).
+
+    ``workers`` > 1 runs the model and scene stages in that many processes (identical numbers: each stage is
+    seeded on its own); the engine work-precision stage (full report only) measures speed and runs alone."""
+    summary = {"version": package_version(), "quick": quick, "seed": seed, "workers": workers,
+               "conventions": "C(omega) two-sided in angular frequency, eq. (2); gamma_err = 95 % half-width"}
+    from engine_sim import shipped_scenarios
+
+    stages = _MODEL_STAGES + [(f"scene {name}", [f"scene {name}"]) for name in shipped_scenarios()]
+    t0 = time.perf_counter()
+    sections: list = []
+    timings: list = []
+    summary["scenarios"] = {}
+    for secs, part, rows in _run_stages(stages, quick, seed, workers, progress):
+        sections += secs
+        summary["scenarios"].update(part.pop("scenarios"))
+        summary.update(part)
+        timings += rows
     speed = Section("Speed against error")
     speed.paragraphs.append(
         "Wall time of each run in this report (after JIT warm-up) and its band-averaged |ln(simulation / exact "
         "theory)|, which for the exact reduced-model simulators is sampling noise; for the scenes it is the "
         "distance to model I built from the scene's measured parameters. The explicit baseline for model I, the "
-        "engine's loop overhead and the work-precision tables are in benchmarks/ (see the README).")
+        "engine's loop overhead and the work-precision tables are in benchmarks/ (see the README)."
+        + (f" The runs ran {workers} at a time, each in its own process." if workers > 1 else ""))
     speed.tables.append(("Runs in this report", ["model", "run", "wall (s)", "mean |ln ratio|"], timings))
     sections.append(speed)
     if not quick:

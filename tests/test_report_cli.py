@@ -30,7 +30,7 @@ def test_summary_holds_the_model_exponents(quick_report):
 
 
 def test_summary_holds_every_shipped_scenario(quick_report):
-    # Quick mode: 12 s per scene, 6 bands. The friction-patch scenes are in model I's regime: gamma near 4 and
+    # Quick mode: 12 s per scene (pads_rough_profile 8 s), 6 bands. The friction-patch scenes are in model I's regime: gamma near 4 and
     # model I built from the scene's own measured parameters within a factor 1.5 per band (measured
     # 0.80-1.05). The rough profile is not: its pad forces follow the local slope smoothly, and model I
     # (abrupt renewals) overpredicts its noise in the top bands by 3-5x (measured ratios 0.22-0.30).

@@ -1,0 +1,40 @@
+"""Step costs of scenes measured side by side, so that a ratio of costs does not depend on what else the
+machine is doing (a report's stages may run in parallel processes)."""
+from __future__ import annotations
+
+import time
+
+from .record import Recorder
+from .run import _MAINTAIN_EVERY
+from .scene import Scene
+
+__all__ = ["step_costs"]
+
+
+def step_costs(scenarios, seed: int | None = None, warmup: float = 1.0, chunks: int = 8) -> list[float]:
+    """Microseconds per step of each scenario's loop (steps, recording at the output rate, maintenance).
+
+    Every scene is first run ``warmup`` simulated seconds (to its steady state: grains placed ahead of the pads
+    need that long to meet them and fall asleep), then the scenes take turns in chunks of _MAINTAIN_EVERY
+    output steps, ``chunks`` turns each; a scene's cost is its fastest chunk. Taking turns every few tens of ms
+    exposes all scenes to the same load from other processes, and the fastest chunk drops the moments of
+    contention."""
+    scenes = [Scene(sc, seed) for sc in scenarios]
+    recs = []
+    for s in scenes:
+        n_warm = int(round(warmup / s.sc.run.dt_out))
+        for k in range(n_warm):
+            if k % _MAINTAIN_EVERY == 0:
+                s.maintain()
+            s.advance(s.n_sub)
+        recs.append(Recorder(s, chunks * _MAINTAIN_EVERY + 1))
+    best = [float("inf")] * len(scenes)
+    for _ in range(chunks):
+        for i, (s, rec) in enumerate(zip(scenes, recs)):
+            t0 = time.perf_counter()
+            s.maintain()
+            for _ in range(_MAINTAIN_EVERY):
+                s.advance(s.n_sub)
+                rec.sample()
+            best[i] = min(best[i], (time.perf_counter() - t0) / (_MAINTAIN_EVERY * s.n_sub))
+    return [b * 1e6 for b in best]
