@@ -15,6 +15,7 @@ import time
 
 import engine_sim
 from benchmarks.bench_engine import loop_ratio
+from compare.report import _balances
 from engine_sim import load_scenario, shipped_scenarios
 
 ITERATIONS = (4, 8, 10, 12, 15, 20, 30)
@@ -27,8 +28,8 @@ def grain_runs(sc, iterations, seeds, duration):
     for it in iterations:
         for seed in seeds:
             tr = engine_sim.run(sc.with_run(iterations=it), duration=duration, seed=seed)
-            resid = (tr.work_drive[-1] + tr.work_recycle[-1] - tr.dissipated[-1] - tr.mech_energy[-1]) / tr.work_drive[-1]
-            out[it, seed] = (float(tr.p_force.sum(axis=1).mean()), float(tr.v.mean()), float(resid))
+            resid = _balances(tr)["energy_balance_rel"]
+            out[it, seed] = (float(tr.p_force.sum(axis=1).mean()), float(tr.v.mean()), resid)
     return out
 
 

@@ -24,6 +24,14 @@ def _version() -> str:
         return "0+unknown"
 
 
+def _warm_up(scene, n_out: int):
+    """Run n_out output steps unrecorded, maintaining the substrate as the recorded loop does."""
+    for k in range(n_out):
+        if k % _MAINTAIN_EVERY == 0:
+            scene.maintain()
+        scene.advance(scene.n_sub)
+
+
 def _snapshot(scene, rec, k) -> bytes:
     state = {"scene": scene, "t": rec.t, "out": rec.out, "pad_force": rec.pad_force, "n_contact": rec.n_contact,
              "p_state": rec.p_state, "p_force": rec.p_force, "recycle": rec.recycle, "part": rec._part,
@@ -86,10 +94,7 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
         resumed = True
     else:
         scene = Scene(sc, seed)
-        for k in range(n_warm):
-            if k % _MAINTAIN_EVERY == 0:
-                scene.maintain()
-            scene.advance(scene.n_sub)
+        _warm_up(scene, n_warm)
         rec = Recorder(scene, n_out)
         k0 = 0
     n_sub = scene.n_sub

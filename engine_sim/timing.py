@@ -5,7 +5,7 @@ from __future__ import annotations
 import time
 
 from .record import Recorder
-from .run import _MAINTAIN_EVERY
+from .run import _MAINTAIN_EVERY, _warm_up
 from .scene import Scene
 
 __all__ = ["step_costs"]
@@ -22,11 +22,7 @@ def step_costs(scenarios, seed: int | None = None, warmup: float = 1.0, chunks: 
     scenes = [Scene(sc, seed) for sc in scenarios]
     recs = []
     for s in scenes:
-        n_warm = int(round(warmup / s.sc.run.dt_out))
-        for k in range(n_warm):
-            if k % _MAINTAIN_EVERY == 0:
-                s.maintain()
-            s.advance(s.n_sub)
+        _warm_up(s, int(round(warmup / s.sc.run.dt_out)))
         recs.append(Recorder(s, chunks * _MAINTAIN_EVERY + 1))
     best = [float("inf")] * len(scenes)
     for _ in range(chunks):
