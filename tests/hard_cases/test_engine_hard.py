@@ -69,10 +69,11 @@ def test_cost_flat_and_substrate_bounded_over_two_metres():
     t = np.array([m[0] for m in marks])
     w = np.array([m[1] for m in marks])
     rate = np.diff(w) / np.diff(t)  # wall s per simulated s between progress calls (every ~1 s)
-    # medians of the ~1 s intervals over 6 s early and late: the rate has no trend (measured 0.26-0.29) but
-    # periodic spikes to 0.35 (garbage collection of dropped segments) that a short window can catch
-    early = np.median(rate[(t[1:] > 0.5) & (t[1:] <= 7.0)])
-    late = np.median(rate[t[1:] > 13.5])
+    # the floor (fastest ~1 s interval) over 6 s early and late: the rate has no trend (measured 0.25-0.28) but
+    # spikes to 0.34 (garbage collection of dropped segments, a busy VM) that only add time; medians of six
+    # intervals once read late/early = 1.25 in a fresh CI clone (0.272 -> 0.340) with no trend behind it
+    early = np.min(rate[(t[1:] > 0.5) & (t[1:] <= 7.0)])
+    late = np.min(rate[t[1:] > 13.5])
     # The requirement guards against cost growing with track length, so the check is one-sided: in a cold
     # process (a fresh CI clone) the first seconds ran up to 40 % *slower* (0.43 vs 0.31), never faster.
     assert late <= 1.20 * early, (early, late)
