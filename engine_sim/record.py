@@ -135,6 +135,8 @@ class Recorder:
 
     def sample(self):
         sc, k = self.scene, self.k
+        if not 0 <= k < self.t.shape[0]:  # _reduce writes row k unchecked (numba): never past the buffers
+            raise IndexError(f"recorder full: sample {k} of {self.t.shape[0]}")
         self._bbuf.clear()
         B.get_space_bodies(sc.space, self._BODY, self._bbuf)
         self._abuf.clear()

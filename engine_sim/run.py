@@ -3,8 +3,11 @@ from __future__ import annotations
 
 import os
 import pickle
+import signal
 import tempfile
+import threading
 import time
+from contextlib import contextmanager
 from importlib import metadata as _md
 from pathlib import Path
 
@@ -24,15 +27,46 @@ def _version() -> str:
         return "0+unknown"
 
 
-def _warm_up(scene, n_out: int):
+def _warm_up(scene, n_out: int, interrupts=None):
     """Run n_out output steps unrecorded, maintaining the substrate as the recorded loop does."""
     for k in range(n_out):
+        if interrupts is not None:
+            interrupts.check()
         if k % _MAINTAIN_EVERY == 0:
             scene.maintain()
         scene.advance(scene.n_sub)
 
 
+class _Interrupts:
+    """SIGINT deferred to the loop's consistent points (between output steps, where the loop's counter and the
+    recorder's agree and no pymunk step is half done). A KeyboardInterrupt raised anywhere else left a checkpoint
+    whose counters disagreed by one sample; resuming from it wrote past the recorder's buffers (heap corruption)."""
+
+    def __init__(self):
+        self.pending = False
+
+    def _handler(self, signum, frame):
+        self.pending = True
+
+    @contextmanager
+    def deferred(self):
+        if threading.current_thread() is not threading.main_thread():
+            yield self  # signals reach the main thread only; nothing to defer here
+            return
+        old = signal.signal(signal.SIGINT, self._handler)
+        try:
+            yield self
+        finally:
+            signal.signal(signal.SIGINT, old)
+
+    def check(self):
+        if self.pending:
+            raise KeyboardInterrupt
+
+
 def _snapshot(scene, rec, k) -> bytes:
+    if rec.k != k:
+        raise RuntimeError(f"snapshot at an inconsistent point (loop at sample {k}, recorder at {rec.k})")
     state = {"scene": scene, "t": rec.t, "out": rec.out, "pad_force": rec.pad_force, "n_contact": rec.n_contact,
              "p_state": rec.p_state, "p_force": rec.p_force, "recycle": rec.recycle, "part": rec._part,
              "rec_k": rec.k, "x0": rec.x0, "k": k}
@@ -48,6 +82,9 @@ def _restore(data: bytes, n_out: int):
     rec.t, rec.out, rec.pad_force, rec.n_contact = state["t"], state["out"], state["pad_force"], state["n_contact"]
     rec.p_state, rec.p_force, rec.recycle, rec._part = state["p_state"], state["p_force"], state["recycle"], state["part"]
     rec.k, rec.x0 = state["rec_k"], state["x0"]
+    if not (rec.k == state["k"] and 0 <= rec.k < n_out and rec.t.shape[0] == n_out):
+        raise ValueError(f"checkpoint is inconsistent (loop at sample {state['k']}, recorder at {rec.k}, "
+                         f"{n_out} samples): delete it and run again")
     return scene, rec, state["k"]
 
 
@@ -85,43 +122,55 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     key = {"scenario": sc.to_dict(), "seed": seed, "n_out": n_out, "every": every}
     t0 = time.perf_counter()
     resumed = False
-    if ck_path is not None and ck_path.exists():
-        with open(ck_path, "rb") as fh:
-            saved = pickle.load(fh)
-        if saved.get("key") != key:
-            raise ValueError(f"{ck_path}: checkpoint of a different run (scenario, duration, seed or interval differ)")
-        scene, rec, k0 = _restore(saved["data"], n_out)
-        resumed = True
-    else:
-        scene = Scene(sc, seed)
-        _warm_up(scene, n_warm)
-        rec = Recorder(scene, n_out)
-        k0 = 0
-    n_sub = scene.n_sub
-    partial = False
-    k = k0
-    try:
-        while k < n_out:
-            rec.sample()
-            # maintenance (substrate streaming, particle recycling) right after a sample and before the next
-            # steps: pymunk recomputes a cached arbiter's contact points from the bodies' current positions,
-            # so a particle moved between a step and a sample would report a bogus overlap
-            if k % _MAINTAIN_EVERY == 0:
-                scene.maintain()
-                if progress is not None and k % (_MAINTAIN_EVERY * 16) == 0:
-                    progress((n_warm + k) * sc.run.dt_out, total)
-            if k + 1 < n_out:
-                scene.advance(n_sub)
-            k += 1
-            if every and k % every == 0 and k < n_out:
-                data = _snapshot(scene, rec, k)
-                if ck_path is not None:
-                    _write_atomic(ck_path, key, data)
-                scene, rec, k = _restore(data, n_out)  # continue from the copy, exactly as a resumed run will
-    except KeyboardInterrupt:
-        partial = True
-        if ck_path is not None and every:
-            _write_atomic(ck_path, key, _snapshot(scene, rec, k))
+    intr = _Interrupts()
+    with intr.deferred():
+        if ck_path is not None and ck_path.exists():
+            try:
+                with open(ck_path, "rb") as fh:
+                    saved = pickle.load(fh)
+                if not isinstance(saved, dict) or "data" not in saved:
+                    raise ValueError("not a checkpoint")
+            except (OSError, EOFError, ValueError, TypeError, AttributeError, ImportError, pickle.UnpicklingError) as e:
+                raise ValueError(f"{ck_path}: not a readable checkpoint ({type(e).__name__}: {e}); delete it and run "
+                                 "again") from None
+            if saved.get("key") != key:
+                raise ValueError(f"{ck_path}: checkpoint of a different run (scenario, duration, seed or interval "
+                                 "differ)")
+            scene, rec, k0 = _restore(saved["data"], n_out)
+            resumed = True
+        else:
+            scene = Scene(sc, seed)
+            _warm_up(scene, n_warm, intr)
+            rec = Recorder(scene, n_out)
+            k0 = 0
+        n_sub = scene.n_sub
+        partial = False
+        k = k0
+        try:
+            while k < n_out:
+                intr.check()  # the one place a Ctrl-C takes effect: here k == rec.k
+                rec.sample()
+                # maintenance (substrate streaming, particle recycling) right after a sample and before the next
+                # steps: pymunk recomputes a cached arbiter's contact points from the bodies' current positions,
+                # so a particle moved between a step and a sample would report a bogus overlap
+                if k % _MAINTAIN_EVERY == 0:
+                    scene.maintain()
+                    if progress is not None and k % (_MAINTAIN_EVERY * 16) == 0:
+                        progress((n_warm + k) * sc.run.dt_out, total)
+                if k + 1 < n_out:
+                    scene.advance(n_sub)
+                k += 1
+                if every and k % every == 0 and k < n_out:
+                    data = _snapshot(scene, rec, k)
+                    if ck_path is not None:
+                        _write_atomic(ck_path, key, data)
+                    scene, rec, k = _restore(data, n_out)  # continue from the copy, exactly as a resumed run will
+        except KeyboardInterrupt:
+            if rec.k == 0:
+                raise  # nothing recorded yet
+            partial = True
+            if ck_path is not None and every:
+                _write_atomic(ck_path, key, _snapshot(scene, rec, k))
     wall = time.perf_counter() - t0
     if progress is not None and not partial:
         progress(total, total)
