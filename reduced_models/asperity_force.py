@@ -24,7 +24,16 @@ from ._version import package_version
 from .trace import ModelTrace
 
 __all__ = ["AsperityForceParams", "simulate", "theory_force_spectrum", "theory_spectrum",
-           "theory_spectrum_sampled", "grid_force_variance"]
+           "theory_spectrum_sampled", "grid_force_variance", "RESPONSE", "fit_band"]
+
+RESPONSE = "inertial"  # C_x = C_F / (M^2 omega^4), eq. (3): no velocity-strengthening friction on the block
+
+
+def fit_band(params: "AsperityForceParams", dt_out: float | None = None) -> tuple[float, float]:
+    """The omega^-6 band: 30 v / w (well above the window's first zero 2 pi v / w) to a quarter of the output
+    Nyquist pi / dt_out (the grid's, by default) (Units: rad/s)."""
+    dt = params.dt if dt_out is None else dt_out
+    return 30 * params.v / params.w, math.pi / dt / 4
 
 
 @dataclass(frozen=True)
@@ -132,18 +141,28 @@ def _run(seed, n, Nw, p, f0, F_f, M, dt, v, x_out, F_out):
     return hits
 
 
-def simulate(params: AsperityForceParams, duration: float, seed=None) -> ModelTrace:
+def simulate(params: AsperityForceParams, duration: float, dt_out: float | None = None, seed=None) -> ModelTrace:
     """Grid forces, the moving-window friction force and the exact block trajectory (one numba pass).
 
-    Returns a ModelTrace sampled every ``params.dt``: ``force`` is F(t) on [t_k, t_k + dt), ``x`` the block
-    position v t + zeta with M zeta'' = F_f - F, zeta(0) = zeta'(0) = 0.
+    The step is set by the grid, ``params.dt = dx / v``. ``dt_out`` (default: the grid step) samples it: it
+    must be a whole number s of grid steps; ``x`` is then every s-th position and ``force`` the mean of F over
+    each output interval (same convention as the other models). Returns a ModelTrace: ``force`` is F(t) on
+    [t_k, t_k + dt_out), ``x`` the block position v t + zeta with M zeta'' = F_f - F, zeta(0) = zeta'(0) = 0.
     """
     if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
         raise ValueError(f"duration must be a positive number of seconds (got {duration!r})")
     dt, Nw = params.dt, params.N_w
+    stride = 1
+    if dt_out is not None:
+        if not (isinstance(dt_out, (int, float)) and math.isfinite(dt_out) and dt_out > 0):
+            raise ValueError(f"dt_out must be a positive number of seconds (got {dt_out!r})")
+        stride = int(round(dt_out / dt))
+        if stride < 1 or abs(stride * dt - dt_out) > 1e-9 * dt_out:
+            raise ValueError(f"dt_out = {dt_out!r} s must be a whole number of grid steps dt = {dt!r} s "
+                             "(model III's step is set by its grid, dx / v)")
     n = int(round(duration / dt))
-    if n < 2:
-        raise ValueError(f"duration {duration!r} s holds fewer than two steps of dt = {dt:.3g} s")
+    if n < 2 * stride:
+        raise ValueError(f"duration {duration!r} s holds fewer than two steps of dt = {dt * stride:.3g} s")
     rng = np.random.default_rng(seed)
     F = np.empty(n)
     x = np.empty(n)
@@ -151,9 +170,13 @@ def simulate(params: AsperityForceParams, duration: float, seed=None) -> ModelTr
     n_hits = _run(kernel_seed, n, Nw, params.p, params.f0, params.F_f, params.M, dt, params.v, x, F)
     n_cells = n + Nw
     t = np.arange(n) * dt
+    if stride > 1:
+        m = n // stride
+        t, x = t[: m * stride : stride], x[: m * stride : stride]
+        F = F[: m * stride].reshape(m, stride).mean(axis=1)
     meta = {
         "model": "III (asperity force)", "params": params.to_dict(), "seed": seed if isinstance(seed, (int, type(None))) else "Generator",
-        "duration": n * dt, "dt_out": dt, "version": package_version(),
+        "duration": len(t) * dt * stride, "dt_out": dt * stride, "grid_dt": dt, "version": package_version(),
         "method": "moving-window sum of i.i.d. cell forces (numba, ring buffer); exact double integration of piecewise-constant force",
     }
     return ModelTrace(t=t, x=x, force=F, events={"n_contacts_mean": n_hits / n_cells * Nw},

@@ -33,7 +33,15 @@ from ._version import package_version
 from .trace import ModelTrace
 
 __all__ = ["DurationLaw", "WearParticleParams", "simulate", "theory_force_spectrum", "theory_spectrum",
-           "power_law_prediction"]
+           "power_law_prediction", "RESPONSE", "fit_band"]
+
+RESPONSE = "inertial"  # C_x = C_F / (M^2 omega^4), eq. (3): the block has no velocity-strengthening friction
+
+
+def fit_band(params: "WearParticleParams", dt_out: float | None = None):
+    """None: the exponent depends on the duration laws (eq. B2), so the automatic straight-stretch band of
+    ``compare.fits.fit_power_law`` is used."""
+    return None
 
 _LAWS = ("exponential", "fixed", "pareto")
 _MODES = ("independent", "telegraph")
@@ -253,7 +261,7 @@ def _run(seed, n, dt, kinds, shapes, tauA, tauB, cA, cB, telegraph, out_i, out_m
         out_m[k] += acc_m
 
 
-def simulate(params: WearParticleParams, duration: float, dt_out: float, seed=None) -> ModelTrace:
+def simulate(params: WearParticleParams, duration: float, dt_out: float = 1e-3, seed=None) -> ModelTrace:
     """Event-driven simulation; the force is an exact sum of rectangles, returned as interval averages.
 
     The block moves by M zeta'' = -(F - <F>) integrated exactly over each interval, using each interval's
