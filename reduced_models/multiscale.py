@@ -1,0 +1,440 @@
+"""Model Ib: the multiscale spring-block model the paper proposes (Xu, Zhou & Persson 2025, Fig. 1c and
+sections 10-11): model I (eqs. A1-A2) with n microblocks elastically tied to each miniblock.
+
+    M x''     = F_drive - sum_i [k0 (x - x_i) + m eta0 (x' - x_i')]
+    m x_i''   = -k0 (x_i - x) - m eta0 (x_i' - x') - m eta1 x_i' - f_kin - f_i(t)
+                - sum_j [k2 (x_i - y_ij) + m2 eta2 (x_i' - y_ij')]
+    m2 y_ij'' = -k2 (y_ij - x_i) - m2 eta2 (y_ij' - x_i') - m2 eta3 y_ij' - f_kin2 - f_ij(t)
+
+f_i renews as in model I (once at a uniformly random point of each window a of the block's sliding, to
+alpha f_kin (r - 0.5), eq. 5); f_ij renews the same way over windows a2, to alpha2 f_kin2 (r - 0.5). Steady
+sliding: F_drive = N (m eta1 v + f_kin) + N n (m2 eta3 v + f_kin2). With n = 0 this is model I.
+
+Exact simulation (O(1) per renewal)
+-----------------------------------
+In deviations about steady sliding, with S = sum_i zeta_i and U = sum_ij (y_ij - steady), the sums of the
+equations over identical blocks close on (zeta, S, U) (the lateral springs k1 cancel in the sum):
+
+    M zeta'' = -k0 (N zeta - S) - m eta0 (N zeta' - S')
+    m S''    = -k0 (S - N zeta) - m eta0 (S' - N zeta') - m eta1 S' - k2 (n S - U) - m2 eta2 (n S' - U') - F1
+    m2 U''   = -k2 (U - n S) - m2 eta2 (U' - n S') - m2 eta3 U' - F2
+
+driven only by the force sums F1 = sum_i f_i and F2 = sum_ij f_ij. Renewal times are keyed to the block's
+displacement, which this 3-DOF system alone determines; so a renewal costs a Newton solve on 6 modes and
+an update of one force sum, whatever N and n (:mod:`reduced_models._two_level`).
+
+Theory: the transfer-function route of Appendix A, one level down
+------------------------------------------------------------------
+Fourier transform, per microblock (zeta_ij its deviation):  Q2 zeta_ij = P2 zeta_i - f_ij, with
+Q2 = -m2 w^2 + k2 + i w m2 (eta2 + eta3), P2 = k2 + i w m2 eta2. Per miniblock, (A3) gains the micro
+springs: (Q1 + n P2) zeta_i = P1 zeta + P2 sum_j zeta_ij - f_i. Eliminating zeta_ij,
+
+    Q1~ zeta_i = P1 zeta - (f_i + T2 sum_j f_ij),    Q1~ = Q1 + n P2 (Q2 - P2) / Q2,   T2 = P2 / Q2,
+
+i.e. the miniblock carries, in series, the micro spring P2 and the microblock's own impedance
+Q2 - P2 = -m2 w^2 + i w m2 eta3 (n of them in parallel), and the micro forces reach it filtered by T2. (A4)
+is unchanged, so (A5) holds with Q1 -> Q1~: zeta = Z~ (1/N) sum_i (f_i + T2 sum_j f_ij), Z~ = -P0 / (Q0 Q1~
+- P0 P1). With all forces independent, (A10) becomes
+
+    C_x(w) = |Z~(w)|^2 / N * [ C_f1(w) + n |T2(w)|^2 C_f2(w) ],
+
+C_f1 and C_f2 from (A8) with (a, alpha f_kin) and (a2, alpha2 f_kin2). n = 0 gives (A10) exactly.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from . import spring_block as _m1
+from ._exact import Modes, first_order, modal_decomposition
+from ._two_level import run_two_level, sort_windows
+from ._version import package_version
+from .trace import ModelTrace
+
+__all__ = ["MultiscaleParams", "simulate", "theory_spectrum", "theory_components", "transfer_functions",
+           "asymptotic_spectrum", "micro_macro_ratio", "crossover_frequency", "regime_frequencies", "RESPONSE",
+           "fit_band"]
+
+RESPONSE = "viscous"  # below omega_c the block follows Z~ = -1/(i omega (m eta1 + n m2 eta3))
+_WINDOWS = 256  # renewal windows generated at a time per level (memory independent of the run's length)
+_TOL = 1e-6  # renewal crossings located to 1e-6 a2 (a different uniform draw at the 20th bit; the motion between them stays exact)
+
+
+@dataclass(frozen=True)
+class MultiscaleParams:
+    """Parameters of model Ib, SI units. Defaults are :meth:`reference`.
+
+    Model I's fields keep their names and meaning (see :class:`~reduced_models.spring_block.SpringBlockParams`;
+    k1 and eta_lat do not act on the block). Added:
+
+    n_micro : int
+        Microblocks (micro-asperity contacts) per miniblock; 0 is model I.
+    m2 : float
+        Microblock mass (Units: kg).
+    k2 : float
+        Spring between a miniblock and each of its microblocks (Units: N/m).
+    eta2 : float
+        Damping rate of that spring; force m2 eta2 (relative velocity) (Units: 1/s).
+    eta3 : float
+        Damping rate of the microblock's friction; force m2 eta3 y' (Units: 1/s).
+    a2 : float
+        Micro renewal length (Units: m).
+    alpha2 : float
+        Micro random force amplitude, f_ij = alpha2 f_kin2 (r - 0.5).
+    F_kin2 : float
+        Total micro kinetic friction N n f_kin2 (Units: N); must be 0 when n_micro = 0.
+    eta1 : float or None
+        None: derived from F_drive = N (m eta1 v + f_kin) + N n (m2 eta3 v + f_kin2).
+    """
+
+    N: int = 30
+    v: float = 0.5e-3
+    a: float = 1e-3
+    k0: float = 1e4
+    k1: float = 1e2
+    M: float = 1.0
+    m: float = 1e-5
+    eta0: float = 0.8e4
+    eta1: float | None = None
+    eta_lat: float = 0.0
+    alpha: float = 1.0
+    F_drive: float = 10.0
+    F_kin: float = 5.0
+    n_micro: int = 10
+    m2: float = 1e-11
+    k2: float = 100.0
+    eta2: float = 5e6
+    eta3: float = 2e10
+    a2: float = 1e-5
+    alpha2: float = 1.0
+    F_kin2: float = 0.03
+    eta1_derived: bool = field(default=False, repr=False)
+
+    def __post_init__(self):
+        n = self.n_micro
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
+            raise ValueError(f"n_micro must be an integer >= 0 (got {n!r})")
+        for name in ("m2", "k2", "a2"):
+            val = getattr(self, name)
+            if not (isinstance(val, (int, float)) and math.isfinite(val) and val > 0):
+                raise ValueError(f"{name} must be a positive finite number (got {val!r})")
+        for name in ("eta2", "eta3", "alpha2", "F_kin2"):
+            val = getattr(self, name)
+            if not (isinstance(val, (int, float)) and math.isfinite(val) and val >= 0):
+                raise ValueError(f"{name} must be a non-negative finite number (got {val!r})")
+        if n == 0 and self.F_kin2 != 0:
+            raise ValueError(f"F_kin2 = N n f_kin2 must be 0 when n_micro = 0 (got {self.F_kin2!r})")
+        micro = self.N * n * self.m2 * self.eta3 * self.v + self.F_kin2 if n else 0.0
+        if self.eta1 is None or self.eta1_derived:
+            if not self.F_drive > self.F_kin + micro:
+                raise ValueError(f"F_drive = {self.F_drive!r} N must exceed F_kin + N n (m2 eta3 v + f_kin2) = "
+                                 f"{self.F_kin + micro:.6g} N for steady sliding with eta1 > 0")
+            eta1 = (self.F_drive - self.F_kin - micro) / (self.N * self.m * self.v)
+            object.__setattr__(self, "eta1", eta1)
+            object.__setattr__(self, "eta1_derived", True)
+        self.macro  # model I's own checks (names the field)
+        total = self.N * (self.m * self.eta1 * self.v + self.f_kin) + micro
+        if not math.isclose(total, self.F_drive, rel_tol=1e-6):
+            raise ValueError(f"eta1 = {self.eta1!r} 1/s does not give steady sliding: N (m eta1 v + f_kin) + "
+                             f"N n (m2 eta3 v + f_kin2) = {total:.6g} N != F_drive = {self.F_drive!r} N "
+                             "(leave eta1 unset to derive it)")
+
+    @classmethod
+    def reference(cls) -> "MultiscaleParams":
+        """The paper's reference case (section 4) with a micro level, from contact mechanics.
+
+        Each macro contact (D = 1 mm) holds n = 10 micro contacts of D2 = 10 um. As the paper does for the
+        miniblocks: k2 ~ E D2 = 1e7 Pa * 1e-5 m = 100 N/m; m2 = 1e-11 kg, ten times rho D2^3 (the paper's
+        m = 1e-5 kg is ten times rho D^3); a2 = D2 (sliding one contact diameter renews it). eta2 = 5e6 1/s is
+        0.79 of critical damping 2 sqrt(k2 / m2) = 6.3e6 1/s. A micro contact carries the frictional shear
+        stress tau_f ~ 1 MPa over D2^2: f_kin2 = 1e-4 N, so F_kin2 = N n f_kin2 = 0.03 N; its velocity
+        dependence mirrors the paper's macro choice m eta1 v = f_kin: m2 eta3 v = f_kin2, eta3 = 2e10 1/s;
+        alpha2 = 1 as alpha. eta1 = 3.29e7 1/s follows from steady sliding.
+
+        Fairness of renewals keyed to the block's sliding: a micro contact's deflection f_kin2 / k2 =
+        (tau_f / E) D2 = 1e-6 m = 0.1 a2 (0.2 a2 with its viscous force, 0.05 a2 for the random part), so it
+        slides with its miniblock and renews once per a2 of sliding. This stops holding when tau_f approaches
+        E (F_kin2 -> N n k2 a2 = 0.3 N here), or when alpha2 f_kin2 / (2 k2) approaches a2: the contact then
+        sticks over distances beyond its size and its renewals follow its own stick-slip, not the block.
+        A weaker caveat: the miniblock itself moves against the block by up to alpha f_kin / (2 k0) =
+        8e-6 m = 0.8 a2 after a macro renewal, so micro renewal phases (not their rate) are off by up to one
+        micro interval.
+        """
+        return cls()
+
+    @property
+    def f_kin(self) -> float:
+        """Kinetic friction per miniblock (Units: N)."""
+        return self.F_kin / self.N
+
+    @property
+    def f_kin2(self) -> float:
+        """Kinetic friction per microblock, F_kin2 / (N n) (Units: N); 0 when n = 0."""
+        return self.F_kin2 / (self.N * self.n_micro) if self.n_micro else 0.0
+
+    @property
+    def tau0(self) -> float:
+        """Mean renewal interval of one miniblock, a / v (Units: s)."""
+        return self.a / self.v
+
+    @property
+    def tau2(self) -> float:
+        """Mean renewal interval of one microblock, a2 / v (Units: s)."""
+        return self.a2 / self.v
+
+    @property
+    def macro(self) -> _m1.SpringBlockParams:
+        """Model I's parameters with this eta1: the macro level alone (F_drive reduced by the micro friction)."""
+        micro = self.N * self.n_micro * self.m2 * self.eta3 * self.v + self.F_kin2 if self.n_micro else 0.0
+        return _m1.SpringBlockParams(N=self.N, v=self.v, a=self.a, k0=self.k0, k1=self.k1, M=self.M, m=self.m,
+                                     eta0=self.eta0, eta1=self.eta1, eta_lat=self.eta_lat, alpha=self.alpha,
+                                     F_drive=self.F_drive - micro, F_kin=self.F_kin)
+
+    def to_dict(self) -> dict:
+        d = asdict(self)
+        d.pop("eta1_derived")
+        d["eta1_derived_from_steady_sliding"] = self.eta1_derived
+        d.update(f_kin=self.f_kin, f_kin2=self.f_kin2)
+        return d
+
+
+# ----------------------------------------------------------------------------- linear system
+def _second_order(p: MultiscaleParams):
+    """Mass, damping and stiffness of the closed (zeta, S, U) system (module docstring)."""
+    n = p.n_micro
+    Md = np.array([p.M, p.m, p.m2])
+    K = np.array([[p.N * p.k0, -p.k0, 0.0],
+                  [-p.N * p.k0, p.k0 + n * p.k2, -p.k2],
+                  [0.0, -n * p.k2, p.k2]])
+    D = np.array([[p.N * p.m * p.eta0, -p.m * p.eta0, 0.0],
+                  [-p.N * p.m * p.eta0, p.m * (p.eta0 + p.eta1) + n * p.m2 * p.eta2, -p.m2 * p.eta2],
+                  [0.0, -n * p.m2 * p.eta2, p.m2 * (p.eta2 + p.eta3)]])
+    return Md, D, K
+
+
+def _modal(p: MultiscaleParams) -> Modes:
+    """Modes of the 3-DOF system; column 0 of B is F1 (on S), column 1 is F2 (on U)."""
+    Md, D, K = _second_order(p)
+    B = np.zeros((6, 2))
+    B[4, 0] = -1.0 / p.m
+    B[5, 1] = -1.0 / p.m2
+    return modal_decomposition(first_order(Md, D, K), B)
+
+
+def _micro_windows(p: MultiscaleParams, rng: np.random.Generator, b: int):
+    """Micro renewal events for windows b*W .. (b+1)*W - 1 of length a2: each of the N n microblocks renews once
+    per window at a uniform position, to alpha2 f_kin2 (r - 0.5). Sorted by position."""
+    nm = p.N * p.n_micro
+    r_pos = rng.random((_WINDOWS, nm))
+    r_val = rng.random((_WINDOWS, nm))
+    pos, val, idx = np.empty(_WINDOWS * nm), np.empty(_WINDOWS * nm), np.empty(_WINDOWS * nm, dtype=np.int64)
+    sort_windows(r_pos, r_val, float(b * _WINDOWS), p.a2, p.alpha2 * p.f_kin2, pos, idx, val)
+    return pos, idx, val, (b + 1) * _WINDOWS * p.a2
+
+
+def simulate(params: MultiscaleParams, duration: float, dt_out: float = 1e-3, seed=None, *,
+             micro_events: bool = False) -> ModelTrace:
+    """Simulate model Ib exactly between renewals and sample the block position every ``dt_out`` seconds.
+
+    The macro renewals use the same random numbers as :func:`reduced_models.spring_block.simulate` with the
+    same seed; the micro ones a child stream (``Generator.spawn``). With n_micro = 0 the run is model I's
+    (same solver, same trace bit for bit).
+
+    Returns
+    -------
+    ModelTrace
+        ``x`` the block's position, ``force`` the summed random force F1 + F2 averaged over each output
+        interval; ``events``: ``times``, ``index`` of the macro renewals, ``force_micro`` (F2 averaged per
+        interval), ``n_micro_renewals``, and ``micro_times`` if ``micro_events``.
+    """
+    _m1._check_run(duration, dt_out)
+    if params.n_micro == 0:
+        tr = _m1.simulate(params.macro, duration, dt_out, seed=seed)
+        meta = {**tr.metadata, "model": "Ib (multiscale), n = 0: model I", "params": params.to_dict()}
+        return ModelTrace(t=tr.t, x=tr.x, force=tr.force, events={**tr.events, "force_micro": np.zeros(len(tr.t)),
+                          "n_micro_renewals": 0}, metadata=meta)
+    return _simulate_two_level(params, duration, dt_out, seed, micro_events)
+
+
+def _simulate_two_level(p: MultiscaleParams, duration, dt_out, seed, micro_events):
+    n = int(round(duration / dt_out))
+    md = _modal(p)
+    rng = np.random.default_rng(seed)
+    rng2 = rng.spawn(1)[0]  # does not consume rng: the macro stream stays model I's
+    f1 = p.alpha * p.f_kin * (rng.random(p.N) - 0.5)
+    f2 = p.alpha2 * p.f_kin2 * (rng2.random(p.N * p.n_micro) - 0.5)
+    sums = np.array([f1.sum(), f2.sum()])
+    qr = np.zeros(len(md.lam_r))
+    qc = np.zeros(len(md.lam_c), dtype=np.complex128)
+    gr = md.B_r @ sums
+    gc = md.B_c @ sums.astype(np.complex128)
+    B1r, B2r = np.ascontiguousarray(md.B_r[:, 0]), np.ascontiguousarray(md.B_r[:, 1])
+    B1c, B2c = np.ascontiguousarray(md.B_c[:, 0]), np.ascontiguousarray(md.B_c[:, 1])
+    ilr = np.divide(1.0, md.lam_r, out=np.zeros_like(md.lam_r), where=md.lam_r != 0.0)
+    lcr, lci, ilc = md.lam_c.real.copy(), md.lam_c.imag.copy(), 1.0 / md.lam_c
+    x, F, F2 = np.empty(n), np.empty(n), np.empty(n)
+    n1_est = int(p.N * (p.v * duration * 1.5 / p.a + 2 * _m1._BLOCK_INTERVALS)) + 16
+    ev_time = np.empty(n1_est)
+    ev_index = np.empty(n1_est, dtype=np.int64)
+    n2_est = int(p.N * p.n_micro * (p.v * duration * 1.5 / p.a2 + 2 * _WINDOWS)) + 16 if micro_events else 1
+    ev2_time = np.empty(n2_est)
+    tol = _TOL * p.a2  # position tolerance of a renewal crossing (Units: m)
+    pos1 = pos2 = val1 = val2 = np.empty(0)
+    idx1 = idx2 = np.empty(0, dtype=np.int64)
+    ptr1 = ptr2 = 0
+    b1 = b2 = 0
+    bound1 = bound2 = -np.inf
+    k, ev_count, ev2_count = 0, 0, 0
+    stats = np.zeros(1, dtype=np.int64)
+    reach = -np.inf  # the kernel stops 4 output steps before the nearer loaded boundary
+    while k < n:
+        while bound1 <= reach or bound1 == -np.inf:
+            new = _m1._renewal_block(p.macro, rng, b1)
+            b1 += 1
+            pos1, idx1, val1 = (np.concatenate([pos1[ptr1:], new[0]]), np.concatenate([idx1[ptr1:], new[1]]),
+                                np.concatenate([val1[ptr1:], new[2]]))
+            bound1, ptr1 = new[3], 0
+            if ev_count + len(pos1) > len(ev_time):
+                ev_time = np.concatenate([ev_time, np.empty(len(pos1) + len(ev_time))])
+                ev_index = np.concatenate([ev_index, np.empty(len(pos1) + len(ev_index), dtype=np.int64)])
+        while bound2 <= reach or bound2 == -np.inf:
+            new = _micro_windows(p, rng2, b2)
+            b2 += 1
+            pos2, idx2, val2 = (np.concatenate([pos2[ptr2:], new[0]]), np.concatenate([idx2[ptr2:], new[1]]),
+                                np.concatenate([val2[ptr2:], new[2]]))
+            bound2, ptr2 = new[3], 0
+            if micro_events and ev2_count + len(pos2) > len(ev2_time):
+                ev2_time = np.concatenate([ev2_time, np.empty(len(pos2) + len(ev2_time))])
+        start1 = ptr1
+        k, ptr1, ptr2, new_count, ev2_count = run_two_level(
+            md.lam_r, ilr, md.c0_r, B1r, B2r, lcr, lci, ilc, md.c0_c, B1c, B2c, qr, gr, qc, gc, f1, f2, sums, p.v, dt_out,
+            k, n, pos1, idx1, val1, ptr1, pos2, idx2, val2, ptr2, min(bound1, bound2), tol, x, F, F2,
+            ev_time, ev_count, micro_events, ev2_time, ev2_count, stats)
+        ev_index[ev_count:new_count] = idx1[start1:ptr1]
+        ev_count = new_count
+        if k < n:
+            reach = x[k] + 4.0 * p.v * dt_out
+    if not np.all(np.isfinite(x)):
+        raise FloatingPointError("model Ib produced non-finite positions; please report the parameters")
+    meta = {
+        "model": "Ib (multiscale)", "params": p.to_dict(), "seed": seed if isinstance(seed, (int, type(None))) else "Generator",
+        "duration": n * dt_out, "dt_out": dt_out, "version": package_version(), "n_renewals": ev_count,
+        "n_micro_renewals": ev2_count, "n_evaluations": int(stats[0]),
+        "method": "exact modal propagation of the 3-DOF system block + sum of miniblocks + sum of microblocks "
+                  "between renewals; renewal times by Newton on the exact solution; force sums updated per renewal",
+    }
+    events = {"times": ev_time[:ev_count].copy(), "index": ev_index[:ev_count].copy(), "force_micro": F2,
+              "n_micro_renewals": ev2_count}
+    if micro_events:
+        events["micro_times"] = ev2_time[:ev2_count].copy()
+    return ModelTrace(t=np.arange(n) * dt_out, x=x, force=F, events=events, metadata=meta)
+
+
+# ----------------------------------------------------------------------------- theory
+def transfer_functions(params: MultiscaleParams, omega):
+    """(Z~, T2): zeta = Z~ (1/N) sum_i (f_i + T2 sum_j f_ij) (module docstring; (A5) with Q1 -> Q1~)
+    (Units: m/N and 1)."""
+    w = np.asarray(omega, dtype=float)
+    p = params
+    iw = 1j * w
+    Q0 = -p.M * w**2 + p.N * p.k0 + iw * p.N * p.m * p.eta0
+    P0 = p.N * p.k0 + iw * p.N * p.m * p.eta0
+    Q1 = -p.m * w**2 + p.k0 + iw * p.m * (p.eta0 + p.eta1)
+    P1 = p.k0 + iw * p.m * p.eta0
+    Q2 = -p.m2 * w**2 + p.k2 + iw * p.m2 * (p.eta2 + p.eta3)
+    P2 = p.k2 + iw * p.m2 * p.eta2
+    Q1t = Q1 + p.n_micro * P2 * (Q2 - P2) / Q2
+    return -P0 / (Q0 * Q1t - P0 * P1), P2 / Q2
+
+
+def _force_spectrum(v, a, amp, omega, closure):
+    """C_f of one contact's renewing force, eq. (A8) (Units: N^2 s); closure "cumulant" is the paper's
+    <cos w tau> = exp(-s^2 w^2 / 2) cos(w tau0), s^2 = tau0^2 / 6; "exact" the triangular law of
+    tau = tau0 (1 + r - r'): cos(w tau0) sinc^2(w tau0 / 2)."""
+    w = np.asarray(omega, dtype=float)
+    tau0 = a / v
+    if closure == "cumulant":
+        mean_cos = np.exp(-(tau0**2 / 6.0) * w**2 / 2.0) * np.cos(w * tau0)
+    elif closure == "exact":
+        mean_cos = np.cos(w * tau0) * np.sinc(w * tau0 / (2 * np.pi)) ** 2
+    else:
+        raise ValueError(f"closure must be 'cumulant' or 'exact' (got {closure!r})")
+    return v / (12.0 * np.pi * a) * amp**2 / w**2 * (1.0 - mean_cos)
+
+
+def theory_components(params: MultiscaleParams, omega, closure: str = "cumulant"):
+    """(macro, micro) parts of C_x: |Z~|^2 C_f1 / N and |Z~|^2 n |T2|^2 C_f2 / N (Units: m^2 s)."""
+    p = params
+    Z, T2 = transfer_functions(p, omega)
+    Cf1 = _force_spectrum(p.v, p.a, p.alpha * p.f_kin, omega, closure)
+    Cf2 = _force_spectrum(p.v, p.a2, p.alpha2 * p.f_kin2, omega, closure)
+    return np.abs(Z) ** 2 * Cf1 / p.N, np.abs(Z) ** 2 * p.n_micro * np.abs(T2) ** 2 * Cf2 / p.N
+
+
+def theory_spectrum(params: MultiscaleParams, omega, closure: str = "cumulant") -> np.ndarray:
+    """C_x(omega) = |Z~|^2 / N [C_f1 + n |T2|^2 C_f2], the generalisation of eq. (A10) (Units: m^2 s).
+    With n = 0 it equals :func:`reduced_models.spring_block.theory_spectrum` (closure "cumulant")."""
+    c1, c2 = theory_components(params, omega, closure)
+    return c1 + c2
+
+
+def micro_macro_ratio(params: MultiscaleParams) -> float:
+    """R = n (a / a2) (alpha2 f_kin2 / (alpha f_kin))^2: the micro part of C_x over the macro part where both
+    forces are white (omega >> v/a2) and T2 ~ 1 (omega << omega3 = k2 / (m2 eta3))."""
+    p = params
+    if p.alpha * p.f_kin == 0:
+        return math.inf
+    return p.n_micro * (p.a / p.a2) * (p.alpha2 * p.f_kin2 / (p.alpha * p.f_kin)) ** 2
+
+
+def crossover_frequency(params: MultiscaleParams) -> float:
+    """omega_x where the micro part overtakes the macro part below v/a2 (Units: rad/s), or nan if it never
+    does (R < 12/7). There the micro force is still flat (C_f2 -> <tau2^2> ... = 7 a2 (alpha2 f_kin2)^2 /
+    (144 pi v)) while the macro one falls as v (alpha f_kin)^2 / (12 pi a omega^2) (A9), so their ratio is
+    R (7/12) (omega a2 / v)^2 and omega_x = (v / a2) sqrt(12 / (7 R)) (valid for R >> 1, omega_x >> v/a)."""
+    R = micro_macro_ratio(params)
+    if not R > 12.0 / 7.0:
+        return math.nan
+    return params.v / params.a2 * math.sqrt(12.0 / (7.0 * R))
+
+
+def regime_frequencies(params: MultiscaleParams) -> dict:
+    """The corner frequencies that bound the regimes (Units: rad/s): v/a and v/a2 (renewal), omega3 =
+    k2 / (m2 eta3) (micro contact relaxes through its own friction: T2 falls as omega3/omega above), omega_c
+    (block resonance sqrt(N k0 / M) or viscous N c / M, as in model I), omega2 = sqrt(k2/m2) (micro
+    resonance; overdamped when eta3 > omega2), and omega_x (crossover, nan if none)."""
+    p = params
+    c = p.m * p.eta1 + p.n_micro * p.m2 * p.eta3
+    return {"v_over_a": p.v / p.a, "v_over_a2": p.v / p.a2, "omega3": p.k2 / (p.m2 * p.eta3) if p.eta3 else math.inf,
+            "omega_c": min(math.sqrt(p.N * p.k0 / p.M), p.N * c / p.M), "omega2": math.sqrt(p.k2 / p.m2),
+            "omega_x": crossover_frequency(p)}
+
+
+def asymptotic_spectrum(params: MultiscaleParams, omega, regime: str) -> np.ndarray:
+    """Power-law asymptotes of the two parts of C_x, with c = m eta1 + n m2 eta3 (Z~ -> -1/(i omega c)):
+
+    - "macro": v/a << omega << omega_c: alpha^2 v f_kin^2 / (12 pi N a c^2 omega^4) (eq. A11), gamma = 4;
+    - "micro_low": omega << v/a2, omega_c: 7 n a2 (alpha2 f_kin2)^2 / (144 pi N v c^2 omega^2), gamma = 2;
+    - "micro_white": v/a2 << omega << omega3, omega_c: n alpha2^2 v f_kin2^2 / (12 pi N a2 c^2 omega^4), 4;
+    - "micro_filtered": omega3, v/a2 << omega << omega_c: "micro_white" * (omega3 / omega)^2, gamma = 6.
+    (Units: m^2 s)."""
+    p = params
+    w = np.asarray(omega, dtype=float)
+    c = p.m * p.eta1 + p.n_micro * p.m2 * p.eta3
+    if regime == "macro":
+        return p.alpha**2 * p.v * p.f_kin**2 / (12 * np.pi * p.N * p.a * c**2 * w**4)
+    white = p.n_micro * p.alpha2**2 * p.v * p.f_kin2**2 / (12 * np.pi * p.N * p.a2 * c**2 * w**4)
+    if regime == "micro_low":
+        return 7 * p.n_micro * p.a2 * (p.alpha2 * p.f_kin2) ** 2 / (144 * np.pi * p.N * p.v * c**2 * w**2)
+    if regime == "micro_white":
+        return white
+    if regime == "micro_filtered":
+        return white * (regime_frequencies(p)["omega3"] / w) ** 2
+    raise ValueError(f"regime must be macro, micro_low, micro_white or micro_filtered (got {regime!r})")
+
+
+def fit_band(params: MultiscaleParams, dt_out: float | None = None) -> tuple[float, float]:
+    """The macro omega^-4 band as in model I: 10 v/a to omega_c / 10 (Units: rad/s)."""
+    return 10 * params.v / params.a, regime_frequencies(params)["omega_c"] / 10
