@@ -116,14 +116,12 @@ class MultiscaleParams:
         n = self.n_micro
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
             raise ValueError(f"n_micro must be an integer >= 0 (got {n!r})")
-        for name in ("m2", "k2", "a2"):
-            val = getattr(self, name)
-            if not (isinstance(val, (int, float)) and math.isfinite(val) and val > 0):
-                raise ValueError(f"{name} must be a positive finite number (got {val!r})")
-        for name in ("eta2", "eta3", "alpha2", "F_kin2"):
-            val = getattr(self, name)
-            if not (isinstance(val, (int, float)) and math.isfinite(val) and val >= 0):
-                raise ValueError(f"{name} must be a non-negative finite number (got {val!r})")
+        for names, lo, what in ((("m2", "k2", "a2"), 0.0, "a positive"), (("eta2", "eta3", "alpha2", "F_kin2"), None,
+                                                                          "a non-negative")):
+            for name in names:
+                val = getattr(self, name)
+                if not (isinstance(val, (int, float)) and math.isfinite(val) and (val > 0 if lo is not None else val >= 0)):
+                    raise ValueError(f"{name} must be {what} finite number (got {val!r})")
         if n == 0 and self.F_kin2 != 0:
             raise ValueError(f"F_kin2 = N n f_kin2 must be 0 when n_micro = 0 (got {self.F_kin2!r})")
         micro = self.N * n * self.m2 * self.eta3 * self.v + self.F_kin2 if n else 0.0
