@@ -161,7 +161,7 @@ def _to_event(lr, ilr, cr, qr, gr, lcr, lci, ilc, cc, qc, gc, v, t, x0, dz0, acc
         z, dz = _eval(lr, ilr, cr, qr, gr, lcr, lci, ilc, cc, qc, gc, h, er, pr, ec, pc)
         stats[0] += 1
         f = v * (t + h) + z - s
-        if abs(f) <= tol or hi - lo <= 1e-15 * h_left:
+        if abs(f) <= tol or abs(f) <= 4.4e-16 * abs(s) or hi - lo <= 1e-15 * h_left:  # tol or rounding of s
             break
         if f < 0.0:
             lo = h

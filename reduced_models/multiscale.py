@@ -233,12 +233,14 @@ def _micro_windows(p: MultiscaleParams, rng: np.random.Generator, b: int):
 
 
 def simulate(params: MultiscaleParams, duration: float, dt_out: float = 1e-3, seed=None, *,
-             micro_events: bool = False) -> ModelTrace:
+             micro_events: bool = False, crossing_tol: float = _TOL) -> ModelTrace:
     """Simulate model Ib exactly between renewals and sample the block position every ``dt_out`` seconds.
 
     The macro renewals use the same random numbers as :func:`reduced_models.spring_block.simulate` with the
     same seed; the micro ones a child stream (``Generator.spawn``). With n_micro = 0 the run is model I's
-    (same solver, same trace bit for bit).
+    (same solver, same trace bit for bit). ``crossing_tol``: renewal crossings are located to this fraction of
+    a2 in position (default 1e-6, i.e. 2e-8 s at the reference; the motion between renewals is exact
+    whatever it is; benchmarks/bench_multiscale.py gives its cost against the trajectory error).
 
     Returns
     -------
@@ -253,10 +255,10 @@ def simulate(params: MultiscaleParams, duration: float, dt_out: float = 1e-3, se
         meta = {**tr.metadata, "model": "Ib (multiscale), n = 0: model I", "params": params.to_dict()}
         return ModelTrace(t=tr.t, x=tr.x, force=tr.force, events={**tr.events, "force_micro": np.zeros(len(tr.t)),
                           "n_micro_renewals": 0}, metadata=meta)
-    return _simulate_two_level(params, duration, dt_out, seed, micro_events)
+    return _simulate_two_level(params, duration, dt_out, seed, micro_events, crossing_tol)
 
 
-def _simulate_two_level(p: MultiscaleParams, duration, dt_out, seed, micro_events):
+def _simulate_two_level(p: MultiscaleParams, duration, dt_out, seed, micro_events, crossing_tol=_TOL):
     n = int(round(duration / dt_out))
     md = _modal(p)
     rng = np.random.default_rng(seed)
@@ -278,7 +280,7 @@ def _simulate_two_level(p: MultiscaleParams, duration, dt_out, seed, micro_event
     ev_index = np.empty(n1_est, dtype=np.int64)
     n2_est = int(p.N * p.n_micro * (p.v * duration * 1.5 / p.a2 + 2 * _WINDOWS)) + 16 if micro_events else 1
     ev2_time = np.empty(n2_est)
-    tol = _TOL * p.a2  # position tolerance of a renewal crossing (Units: m)
+    tol = crossing_tol * p.a2  # position tolerance of a renewal crossing (Units: m)
     pos1 = pos2 = val1 = val2 = np.empty(0)
     idx1 = idx2 = np.empty(0, dtype=np.int64)
     ptr1 = ptr2 = 0
