@@ -160,3 +160,26 @@ def test_same_seed_same_trace_and_micro_events_on_request():
     # the macro stream is model I's: same renewal indices as model I with the same seed
     c = m1.simulate(m1.SpringBlockParams.reference(), 2.0, 1e-3, seed=9)
     assert np.array_equal(a.events["index"], c.events["index"][: len(a.events["index"])])
+
+
+@pytest.mark.slow
+def test_study_answers_with_numbers():
+    # The report study in quick mode (~8 s of CPU): JSON-able numbers, PNGs, and the physics it states.
+    import json
+
+    import matplotlib
+
+    from compare.studies.multiscale import STUDY
+
+    backend = matplotlib.get_backend()
+    res = STUDY.run(True, 0)
+    assert matplotlib.get_backend() == backend  # object API only, the backend is left alone
+    assert STUDY.key == res.key == "model_Ib" and len(res.figures) == 3
+    assert all(f.png[:8] == b"\x89PNG\r\n\x1a\n" and f.caption for f in res.figures)
+    json.dumps(res.numbers)
+    ref = res.numbers["reference"]
+    assert ref["micro_share_max"] < 1e-3  # the fair reference: micro part < 0.1 % of C_x everywhere
+    for case in res.numbers["strong_micro"]["cases"].values():
+        # 120 s runs: the micro amplitude scatters by ~10 % (0.80-0.97 measured), omega_x by half that (it goes
+        # as A^-1/2); 25 % on omega_x
+        assert case["omega_x_measured"] == pytest.approx(case["omega_x_theory"], rel=0.25)

@@ -1,0 +1,1 @@
+"""Report studies: each module defines ``STUDY = Study(key, label, run)`` (see :mod:`compare.study`)."""
