@@ -17,38 +17,38 @@ import numpy as np
 __all__ = ["run_two_level", "sort_windows"]
 
 
-@numba.njit(cache=True)
-def _order(u):
-    """argsort of values in [0, 1): counting sort on floor(u n) (about one value per bucket), then insertion
-    sort, which finds the result nearly sorted: O(n) on average."""
-    n = u.shape[0]
-    count = np.zeros(n + 1, dtype=np.int64)
+@numba.njit(cache=True, inline="always", _nrt=False)
+def _order(u, w, count, order):
+    """argsort of row w of u (values in [0, 1)) into ``order``: counting sort on floor(u n) (about one value
+    per bucket), then insertion sort, which finds the result nearly sorted: O(n) on average."""
+    n = u.shape[1]
+    for b in range(n + 1):
+        count[b] = 0
     for i in range(n):
-        count[min(int(u[i] * n), n - 1) + 1] += 1
+        count[min(int(u[w, i] * n), n - 1) + 1] += 1
     for b in range(n):
         count[b + 1] += count[b]
-    order = np.empty(n, dtype=np.int64)
     for i in range(n):
-        b = min(int(u[i] * n), n - 1)
+        b = min(int(u[w, i] * n), n - 1)
         order[count[b]] = i
         count[b] += 1
     for i in range(1, n):
         o = order[i]
         j = i - 1
-        while j >= 0 and u[order[j]] > u[o]:
+        while j >= 0 and u[w, order[j]] > u[w, o]:
             order[j + 1] = order[j]
             j -= 1
         order[j + 1] = o
-    return order
 
 
-@numba.njit(cache=True)
-def sort_windows(r_pos, r_val, j0, length, amp, pos, idx, val):
+@numba.njit(cache=True, _nrt=False)
+def sort_windows(r_pos, r_val, j0, length, amp, pos, idx, val, count, order):
     """Renewal events of consecutive windows j0, j0 + 1, ... of ``length``: row w of r_pos holds each contact's
-    uniform position in window j0 + w; sorted within the window. val = amp (r_val - 0.5)."""
+    uniform position in window j0 + w; sorted within the window. val = amp (r_val - 0.5). count (n + 1) and
+    order (n): scratch."""
     n_w, nc = r_pos.shape
     for w in range(n_w):
-        order = _order(r_pos[w])
+        _order(r_pos, w, count, order)
         for c in range(nc):
             i = order[c]
             pos[w * nc + c] = (j0 + w + r_pos[w, i]) * length
@@ -56,7 +56,7 @@ def sort_windows(r_pos, r_val, j0, length, amp, pos, idx, val):
             val[w * nc + c] = amp * (r_val[w, i] - 0.5)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, inline="always", _nrt=False)
 def _eval(lr, ilr, cr, qr, gr, lcr, lci, ilc, cc, qc, gc, h, er, pr, ec, pc):
     """(zeta, zeta') a time h ahead; fills er/ec = e^{lambda h} and pr/pc = phi_1(lambda h) h = (e^{lambda h}
     - 1) / lambda for _commit. ilr, ilc: 1/lambda (0 for lambda = 0); lcr, lci: the complex modes' lambda.
@@ -122,7 +122,7 @@ def _eval(lr, ilr, cr, qr, gr, lcr, lci, ilc, cc, qc, gc, h, er, pr, ec, pc):
     return z, dz
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, inline="always", _nrt=False)
 def _commit(qr, gr, qc, gc, er, pr, ec, pc):
     for k in range(qr.shape[0]):
         qr[k] = er[k] * qr[k] + pr[k] * gr[k]
@@ -130,7 +130,7 @@ def _commit(qr, gr, qc, gc, er, pr, ec, pc):
         qc[k] = ec[k] * qc[k] + pc[k] * gc[k]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, inline="always", _nrt=False)
 def _to_event(lr, ilr, cr, qr, gr, lcr, lci, ilc, cc, qc, gc, v, t, x0, dz0, acc, s, h_left, er, pr, ec, pc, tol,
               stats):
     """Advance the state to the first time in (0, h_left] at which v t + zeta reaches s, or to h_left if it
@@ -176,23 +176,22 @@ def _to_event(lr, ilr, cr, qr, gr, lcr, lci, ilc, cc, qc, gc, v, t, x0, dz0, acc
     return h, True, z, dz
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def run_two_level(lr, ilr, cr, B1r, B2r, lcr, lci, ilc, cc, B1c, B2c, qr, gr, qc, gc, f1, f2, sums, v, dt, k0, k1,
                   pos1, idx1, val1, ptr1, pos2, idx2, val2, ptr2, boundary, tol,
-                  x_out, f_out, f2_out, ev_time, ev_count, store2, ev2_time, ev2_count, stats):
+                  x_out, f_out, f2_out, ev_time, ev_count, store2, ev2_time, ev2_count, stats, er, pr, ec, pc):
     """Step output intervals k0..k1-1; stop early (return k) when the block nears the loaded boundary.
 
     f1, f2: each contact's current force (macro, micro); sums = [F1, F2], their sums, kept up to date.
     Returns (k_reached, ptr1, ptr2, ev_count, ev2_count). x_out[k]: position at t_k; f_out[k], f2_out[k]:
     mean of F1 + F2 and of F2 over [t_k, t_k + dt). Macro renewal times go to ev_time; micro ones to
-    ev2_time only if store2. stats[0] counts evaluations of the exact solution (Newton iterates).
+    ev2_time only if store2. stats[0] counts evaluations of the exact solution (Newton iterates). er, pr
+    (real, len nr), ec, pc (complex, len nc): scratch. Compiled without numba's reference counting (nothing is
+    allocated inside): with it, the atomic increments on every array passed to the inlined helpers took half
+    of the time per renewal (perf).
     """
     nr = lr.shape[0]
     nc = lcr.shape[0]
-    er = np.empty(nr)
-    pr = np.empty(nr)
-    ec = np.empty(nc, dtype=np.complex128)
-    pc = np.empty(nc, dtype=np.complex128)
     n1 = pos1.shape[0]
     n2 = pos2.shape[0]
     F1 = sums[0]

@@ -228,7 +228,8 @@ def _micro_windows(p: MultiscaleParams, rng: np.random.Generator, b: int):
     r_pos = rng.random((_WINDOWS, nm))
     r_val = rng.random((_WINDOWS, nm))
     pos, val, idx = np.empty(_WINDOWS * nm), np.empty(_WINDOWS * nm), np.empty(_WINDOWS * nm, dtype=np.int64)
-    sort_windows(r_pos, r_val, float(b * _WINDOWS), p.a2, p.alpha2 * p.f_kin2, pos, idx, val)
+    sort_windows(r_pos, r_val, float(b * _WINDOWS), p.a2, p.alpha2 * p.f_kin2, pos, idx, val,
+                 np.empty(nm + 1, dtype=np.int64), np.empty(nm, dtype=np.int64))
     return pos, idx, val, (b + 1) * _WINDOWS * p.a2
 
 
@@ -288,6 +289,8 @@ def _simulate_two_level(p: MultiscaleParams, duration, dt_out, seed, micro_event
     bound1 = bound2 = -np.inf
     k, ev_count, ev2_count = 0, 0, 0
     stats = np.zeros(1, dtype=np.int64)
+    scratch = (np.empty(len(md.lam_r)), np.empty(len(md.lam_r)), np.empty(len(md.lam_c), dtype=np.complex128),
+               np.empty(len(md.lam_c), dtype=np.complex128))
     reach = -np.inf  # the kernel stops 4 output steps before the nearer loaded boundary
     while k < n:
         while bound1 <= reach or bound1 == -np.inf:
@@ -311,7 +314,7 @@ def _simulate_two_level(p: MultiscaleParams, duration, dt_out, seed, micro_event
         k, ptr1, ptr2, new_count, ev2_count = run_two_level(
             md.lam_r, ilr, md.c0_r, B1r, B2r, lcr, lci, ilc, md.c0_c, B1c, B2c, qr, gr, qc, gc, f1, f2, sums, p.v, dt_out,
             k, n, pos1, idx1, val1, ptr1, pos2, idx2, val2, ptr2, min(bound1, bound2), tol, x, F, F2,
-            ev_time, ev_count, micro_events, ev2_time, ev2_count, stats)
+            ev_time, ev_count, micro_events, ev2_time, ev2_count, stats, *scratch)
         ev_index[ev_count:new_count] = idx1[start1:ptr1]
         ev_count = new_count
         if k < n:
