@@ -91,7 +91,7 @@ def _phi1_c(z):
     return (np.exp(z) - 1.0) / z
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def _state_at(lr, cr, qr, gr, lc, cc, qc, gc, h):
     """(zeta, zeta') of the big block a time h ahead of the modal state (exact, constant forcing)."""
     z = 0.0
@@ -107,7 +107,7 @@ def _state_at(lr, cr, qr, gr, lc, cc, qc, gc, h):
     return z, dz
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def _advance(lr, qr, gr, lc, qc, gc, h):
     for k in range(lr.shape[0]):
         z = lr[k] * h
@@ -117,7 +117,7 @@ def _advance(lr, qr, gr, lc, qc, gc, h):
         qc[k] = np.exp(z) * qc[k] + _phi1_c(z) * h * gc[k]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def _crossing(lr, cr, qr, gr, lc, cc, qc, gc, v, t, s, h_max, f_hi):
     """Time h in (0, h_max] at which v (t + h) + zeta(t + h) reaches s (safeguarded Newton).
 
@@ -147,32 +147,30 @@ def _crossing(lr, cr, qr, gr, lc, cc, qc, gc, v, t, s, h_max, f_hi):
     return min(max(h, lo), hi)
 
 
-@numba.njit(cache=True)
-def _outputs(Cr, qr, Cc, qc, row):
+@numba.njit(cache=True, _nrt=False)
+def _outputs(Cr, qr, Cc, qc, out, k):
     for i in range(Cr.shape[0]):
         s = 0.0
         for j in range(Cr.shape[1]):
             s += Cr[i, j] * qr[j]
         for j in range(Cc.shape[1]):
             s += (Cc[i, j] * qc[j]).real
-        row[i] = s
+        out[k, i] = s
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def run_renewals(lr, cr, Br, lc, cc, Bc, Cr, Cc, qr, gr, qc, gc, forces, v, dt, k0, k1, ev_pos, ev_idx, ev_val,
-                 ptr, boundary, x_out, f_out, xc_out, ev_time, ev_count):
+                 ptr, boundary, x_out, f_out, xc_out, ev_time, ev_count, Er, Pr, Ec, Pc, qnr, qnc):
     """Step output intervals k0..k1-1; stop early (return k) when the block nears the loaded boundary.
 
     Returns (k_reached, ptr, ev_count). x_out[k] = position at t_k, f_out[k] = mean summed force over
     [t_k, t_k + dt), xc_out[k] = the extra output rows (Cr, Cc) at t_k (none when Cr has no rows). Renewal i
-    changes the modal forcing by B[:, i] times its force change.
+    changes the modal forcing by B[:, i] times its force change. Er, Pr, qnr (real, len nr) and Ec, Pc, qnc
+    (complex, len nc): scratch. Compiled without numba's reference counting (nothing is allocated inside; the
+    atomic increments cost more than the arithmetic of the 4-mode reduced system).
     """
     nr = lr.shape[0]
     nc = lc.shape[0]
-    Er = np.empty(nr)
-    Pr = np.empty(nr)
-    Ec = np.empty(nc, dtype=np.complex128)
-    Pc = np.empty(nc, dtype=np.complex128)
     for k in range(nr):
         Er[k] = np.exp(lr[k] * dt)
         Pr[k] = _phi1_r(lr[k] * dt) * dt
@@ -184,8 +182,6 @@ def run_renewals(lr, cr, Br, lc, cc, Bc, Cr, Cc, qr, gr, qc, gc, forces, v, dt, 
         fsum += forces[i]
     n_ev = ev_pos.shape[0]
     n_rows = Cr.shape[0]
-    qnr = np.empty(nr)
-    qnc = np.empty(nc, dtype=np.complex128)
     zeta, _ = _state_at(lr, cr, qr, gr, lc, cc, qc, gc, 0.0)
     for k in range(k0, k1):
         t = k * dt
@@ -193,7 +189,7 @@ def run_renewals(lr, cr, Br, lc, cc, Bc, Cr, Cc, qr, gr, qc, gc, forces, v, dt, 
         if x_out[k] + 4.0 * v * dt > boundary:
             return k, ptr, ev_count
         if n_rows > 0:
-            _outputs(Cr, qr, Cc, qc, xc_out[k])
+            _outputs(Cr, qr, Cc, qc, xc_out, k)
         # Fast path: one exact step with the precomputed propagator, kept if no renewal is crossed.
         zn = 0.0
         for j in range(nr):
@@ -203,8 +199,10 @@ def run_renewals(lr, cr, Br, lc, cc, Bc, Cr, Cc, qr, gr, qc, gc, forces, v, dt, 
             qnc[j] = Ec[j] * qc[j] + Pc[j] * gc[j]
             zn += (cc[j] * qnc[j]).real
         if ptr >= n_ev or v * (t + dt) + zn < ev_pos[ptr]:
-            qr[:] = qnr
-            qc[:] = qnc
+            for j in range(nr):
+                qr[j] = qnr[j]
+            for j in range(nc):
+                qc[j] = qnc[j]
             zeta = zn
             f_out[k] = fsum
             continue

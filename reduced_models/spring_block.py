@@ -283,6 +283,9 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float = 1e-3, s
     k, b, pos, idx, val, ptr, boundary = st["k"], st["b"], st["pos"], st["idx"], st["val"], st["ptr"], st["boundary"]
     ev_time, ev_index, ev_count = st["ev_time"], st["ev_index"], st["ev_count"]
     need_block = st.get("need_block", True)
+    nr, nc = len(md.lam_r), len(md.lam_c)
+    scratch = (np.empty(nr), np.empty(nr), np.empty(nc, dtype=np.complex128), np.empty(nc, dtype=np.complex128),
+               np.empty(nr), np.empty(nc, dtype=np.complex128))
     next_ckpt = (k // every + 1) * every
     while k < n:
         if need_block:  # the kernel stopped near the end of the loaded renewals: load the next distance block
@@ -300,7 +303,7 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float = 1e-3, s
         k_stop = min(n, next_ckpt)
         k_new, ptr, new_count = run_renewals(md.lam_r, md.c0_r, md.B_r, md.lam_c, md.c0_c, md.B_c, md.C_r, md.C_c,
                                              qr, gr, qc, gc, forces, params.v, dt_out, k, k_stop, pos, idx, val, ptr,
-                                             boundary, x, f, xc, ev_time, ev_count)
+                                             boundary, x, f, xc, ev_time, ev_count, *scratch)
         ev_index[ev_count:new_count] = idx[start:ptr]
         ev_count = new_count
         need_block = k_new < k_stop
