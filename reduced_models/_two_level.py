@@ -176,6 +176,18 @@ def _to_event(lr, ilr, cr, qr, gr, lcr, lci, ilc, cc, qc, gc, v, t, x0, dz0, acc
     return h, True, z, dz
 
 
+@numba.njit(cache=True, inline="always", _nrt=False)
+def _renew(f, i, new, Br, Bc, gr, gc):
+    """Contact i's force becomes ``new``: the modal forcing moves by B df; returns df for the force sum."""
+    df = new - f[i]
+    f[i] = new
+    for j in range(gr.shape[0]):
+        gr[j] += Br[j] * df
+    for j in range(gc.shape[0]):
+        gc[j] += Bc[j] * df
+    return df
+
+
 @numba.njit(cache=True, _nrt=False)
 def run_two_level(lr, ilr, cr, B1r, B2r, lcr, lci, ilc, cc, B1c, B2c, qr, gr, qc, gc, f1, f2, sums, v, dt, k0, k1,
                   pos1, idx1, val1, ptr1, pos2, idx2, val2, ptr2, boundary, tol,
@@ -231,26 +243,12 @@ def run_two_level(lr, ilr, cr, B1r, B2r, lcr, lci, ilc, cc, B1c, B2c, qr, gr, qc
             if not hit:
                 break
             if s1 <= s2:
-                i = idx1[ptr1]
-                df = val1[ptr1] - f1[i]
-                f1[i] = val1[ptr1]
-                F1 += df
-                for j in range(nr):
-                    gr[j] += B1r[j] * df
-                for j in range(nc):
-                    gc[j] += B1c[j] * df
+                F1 += _renew(f1, idx1[ptr1], val1[ptr1], B1r, B1c, gr, gc)
                 ev_time[ev_count] = t
                 ev_count += 1
                 ptr1 += 1
             else:
-                i = idx2[ptr2]
-                df = val2[ptr2] - f2[i]
-                f2[i] = val2[ptr2]
-                F2 += df
-                for j in range(nr):
-                    gr[j] += B2r[j] * df
-                for j in range(nc):
-                    gc[j] += B2c[j] * df
+                F2 += _renew(f2, idx2[ptr2], val2[ptr2], B2r, B2c, gr, gc)
                 if store2:
                     ev2_time[ev2_count] = t
                 ev2_count += 1
