@@ -113,6 +113,9 @@ class MultiscaleParams:
     eta1_derived: bool = field(default=False, repr=False)
 
     def __post_init__(self):
+        _m1.SpringBlockParams(N=self.N, v=self.v, a=self.a, k0=self.k0, k1=self.k1, M=self.M, m=self.m,
+                              eta0=self.eta0, eta_lat=self.eta_lat, alpha=self.alpha, F_drive=self.F_drive,
+                              F_kin=0.0)  # model I's field checks first (each names its field)
         n = self.n_micro
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
             raise ValueError(f"n_micro must be an integer >= 0 (got {n!r})")
@@ -132,7 +135,7 @@ class MultiscaleParams:
             eta1 = (self.F_drive - self.F_kin - micro) / (self.N * self.m * self.v)
             object.__setattr__(self, "eta1", eta1)
             object.__setattr__(self, "eta1_derived", True)
-        self.macro  # model I's own checks (names the field)
+        self.macro  # model I's steady-sliding and F_kin checks
         total = self.N * (self.m * self.eta1 * self.v + self.f_kin) + micro
         if not math.isclose(total, self.F_drive, rel_tol=1e-6):
             raise ValueError(f"eta1 = {self.eta1!r} 1/s does not give steady sliding: N (m eta1 v + f_kin) + "

@@ -183,3 +183,11 @@ def test_study_answers_with_numbers():
         # 120 s runs: the micro amplitude scatters by ~10 % (0.80-0.97 measured), omega_x by half that (it goes
         # as A^-1/2); 25 % on omega_x
         assert case["omega_x_measured"] == pytest.approx(case["omega_x_theory"], rel=0.25)
+
+
+@pytest.mark.parametrize("kw, field", [({"N": 0}, "N"), ({"v": 0.0}, "v"), ({"m": -1.0}, "m"), ({"F_kin": -1.0}, "F_kin"),
+                                       ({"n_micro": -1}, "n_micro"), ({"n_micro": 2.5}, "n_micro"), ({"eta3": -1.0}, "eta3"),
+                                       ({"a2": 0.0}, "a2"), ({"eta1": 5.0}, "eta1")])
+def test_invalid_parameters_name_the_field(kw, field):
+    with pytest.raises(ValueError, match=field):
+        ms.MultiscaleParams(**kw)
