@@ -20,7 +20,8 @@ class ModelTrace:
         Block position x(t) = v t + zeta(t) relative to its start (Units: m).
     force : ndarray
         The model's fluctuating force on the block, averaged over [t_k, t_k + dt) (Units: N). Model I: the
-        summed random force sum_i f_i on the miniblocks; model II: sum of particle forces; model III: the
+        summed random force sum_i f_i on the miniblocks; model Ib: that plus the micro sum sum_ij f_ij (the
+        micro part alone in ``events["force_micro"]``); model II: sum of particle forces; model III: the
         friction force F(t).
     events : dict
         Model-specific event records (arrays), e.g. model I renewal times and miniblock indices.
