@@ -259,7 +259,8 @@ def series_spectrum(
     if detrend == "linear":
         v, y0 = _line_fit(t - t[0], y)
         z = y - (y0 + v * (t - t[0]))
-        steps.append(f"removed fitted line {name}0 + v t, v = {v:.6g} per s")
+        rate_unit = {"x": "m/s", "F": "N/s", "mu": "1/s"}.get(quantity, "per s")
+        steps.append(f"removed fitted line {name}0 + v t, v = {v:.6g} {rate_unit}")
     elif detrend == "constant":
         v = 0.0
         z = y - y.mean()
