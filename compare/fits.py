@@ -145,7 +145,7 @@ def _auto_band(lnw, lnC, var, w, min_decades):
 
 
 METHODS = ("whittle", "lsq")
-DEFAULT_METHOD = "lsq"  # set from the table in benchmarks/results/fit_methods.md (README, "Exponent fits")
+DEFAULT_METHOD = "whittle"  # chosen from the table in benchmarks/results/fit_methods.md (README, "Exponent fits")
 
 
 def _whittle_gamma(lnw: np.ndarray, P: np.ndarray) -> tuple[float, float, float, int]:
@@ -318,7 +318,9 @@ def fit_power_law(spectrum: Spectrum, band=None, *, bins_per_decade: int = 10,
         gamma, gamma_se, gamma_err, prefactor = -slope, se, tq * se, float(math.exp(a - bias))
         n_used = npts
     else:
-        gamma, gamma_se, lnA, band_out, n_used = wh
+        gamma, gamma_se, lnA, raw_band, n_used = wh
+        if band is None:
+            band_out = raw_band  # the first and last raw ordinates used
         gamma_err, prefactor = float(stats.norm.ppf(0.975)) * gamma_se, float(math.exp(lnA))
     flags = []
     decades = math.log10(band_out[1] / band_out[0])
