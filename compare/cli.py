@@ -132,15 +132,19 @@ def _cmd_analyze(args) -> int:
     from .measured import DataFileError, read_measured, units_line
     from .report import write_report
 
+    import math
+
     force = args.force_col is not None
-    if args.mass is not None and not args.mass > 0:
+    if args.mass is not None and not (args.mass > 0 and math.isfinite(args.mass)):
         raise UserError(f"--mass must be positive (got {args.mass})")
     if not force and args.mass is None:
         raise UserError("--mass is required for displacement data (or give --force-col for force data)")
-    if args.speed is not None and not args.speed > 0:
-        raise UserError(f"--speed must be positive (got {args.speed})")
-    if args.cut is not None and not args.cut >= 0:
-        raise UserError(f"--cut must be >= 0 (got {args.cut})")
+    if args.speed is not None and not (args.speed > 0 and math.isfinite(args.speed)):
+        raise UserError(f"--speed must be a positive number of m/s (got {args.speed})")
+    if args.cut is not None and not (args.cut >= 0 and math.isfinite(args.cut)):
+        raise UserError(f"--cut must be >= 0 s (got {args.cut})")
+    if args.band is not None and not all(math.isfinite(b) for b in args.band):
+        raise UserError(f"--band must be two finite frequencies in rad/s (got {args.band[0]} {args.band[1]})")
     if not force:
         for flag in ("normal_col", "direction_col", "speed", "cut", "method", "force_unit"):
             if getattr(args, flag) is not None:
@@ -151,7 +155,6 @@ def _cmd_analyze(args) -> int:
                              x_unit=args.x_unit, force_unit=args.force_unit, require_x=not force)
     except DataFileError as e:
         raise UserError(str(e)) from None
-    print(f"{args.data}: {units_line(data)}")
     if data.warning:
         print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)
     out = Path(args.output or f"analyze-{Path(args.data).stem}")
@@ -172,6 +175,7 @@ def _cmd_analyze(args) -> int:
     except ValueError as e:
         raise UserError(f"{args.data}: {e}") from None
     write_report(out, sections, summary)
+    print(f"{args.data}: {units_line(data)}")
     if force:
         st = summary["strokes"]
         f = summary["fit_F"]
