@@ -288,6 +288,18 @@ def build_force_report(an: ForceAnalysis):
     s.figures.append(("measured_force_CF.png", plots.figure_png_bytes(plots.spectrum_figure(
         [(an.C_F, "C_F (measured)")], fits=[(f, "")], band=f.band, ylabel=r"$C_F$ (N$^2$ s)",
         title="Friction-force spectrum")), "C_F averaged over strokes, with the fit."))
+    dt = float(d.t[1] - d.t[0])
+    rows = [[str(i + 1), f"{a * dt:.4g}", f"{b * dt:.4g}", "used"] for i, (a, b) in enumerate(st.segments)]
+    s.tables.append(("Strokes used (times after the cut; every used stroke trimmed to the same length) and dropped "
+                     "(stroke numbers count all strokes found)",
+                     ["#", "start (s)", "end (s)", "status"],
+                     rows + [[str(i), "", "", f"dropped: {r}"] for i, r in st.dropped]))
+    if an.C_F_distance is not None:
+        fig = plots.spectrum_figure([(an.C_F_distance, "C_F(q), q = omega / v")], ylabel=r"$C_F(q)$ (N$^2$ m)",
+                                    title=f"Friction force against sliding distance (v = {an.speed:g} m/s)")
+        fig.axes[0].set_xlabel(r"$q$ (rad/m)")
+        s.figures.append(("measured_force_CF_distance.png", plots.figure_png_bytes(fig),
+                          "C_F in the distance domain: the same spectrum against q = omega / v."))
     if an.C_mu is not None:
         s.figures.append(("measured_force_Cmu.png", plots.figure_png_bytes(plots.spectrum_figure(
             [(an.C_mu, "C_mu of F/N")], ylabel=r"$C_\mu$ (s)", title="Friction coefficient spectrum")), "C_mu."))
