@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = [
-    "MeasuredData", "DataFileError", "read_measured", "read_displacement_csv",
+    "MeasuredData", "DataFileError", "read_measured", "read_displacement_csv", "units_line",
     "TIME_UNITS", "X_UNITS", "FORCE_UNITS",
 ]
 
