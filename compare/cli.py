@@ -59,12 +59,29 @@ def _build_parser() -> argparse.ArgumentParser:
     sw.add_argument("--serial", action="store_true", help="run in this process, without dask")
     sw.set_defaults(func=_cmd_sweep)
 
-    an = sub.add_parser("analyze", help="analyse measured x(t) from a CSV file: spectra, gamma, rms, report")
-    an.add_argument("data", help="CSV with a header row: time [s] and displacement columns")
-    an.add_argument("--mass", type=float, required=True, help="block mass M (kg), for C_F = M^2 omega^4 C_x")
+    an = sub.add_parser("analyze", help="analyse measured x(t) or friction force F(t) from a text export: spectra, exponent, rms, report")
+    an.add_argument("data", help="text table (CSV, ;- or tab-separated; preamble, units row and decimal commas are read): "
+                                 "time and displacement or force columns")
+    an.add_argument("--mass", type=float, default=None,
+                    help="block mass M (kg): required for displacement data (C_F = M^2 omega^4 C_x, eq. 3); with force "
+                         "data it adds the equivalent C_x of a free block")
     an.add_argument("--time-col", default=None, help="time column name (default: the first)")
-    an.add_argument("--x-col", default=None, help="displacement column name (default: the second)")
-    an.add_argument("--x-unit", default="m", choices=["um", "mm", "m"], help="displacement unit (default: m)")
+    an.add_argument("--x-col", default=None, help="displacement column name (default: the second, unless --force-col)")
+    an.add_argument("--force-col", default=None, help="friction-force column: analyse force data (C_F, force exponent)")
+    an.add_argument("--normal-col", default=None, help="normal-force column (force data): adds C_mu of F/N")
+    an.add_argument("--direction-col", default=None, help="direction column of a reciprocating test (strokes)")
+    an.add_argument("--time-unit", default=None, choices=["s", "ms", "us", "min", "h"],
+                    help="time unit, when neither the header nor a units row names it")
+    an.add_argument("--x-unit", default=None, choices=["nm", "um", "mm", "m"],
+                    help="displacement unit, when neither the header (x_um, x [mm]) nor a units row names it")
+    an.add_argument("--force-unit", default=None, choices=["mN", "N", "kN"],
+                    help="force unit, when neither the header (F(N)) nor a units row names it")
+    an.add_argument("--speed", type=float, default=None, metavar="V",
+                    help="imposed sliding speed (m/s), force data: distance-domain spectrum and stroke length")
+    an.add_argument("--cut", type=float, default=None, metavar="S",
+                    help="seconds cut at each end of a stroke (default: 10 %% of the median stroke)")
+    an.add_argument("--method", default=None, choices=["whittle", "lsq"],
+                    help="exponent fit for force data (default: compare.fits.DEFAULT_METHOD)")
     an.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"), help="fit band (rad/s)")
     an.add_argument("-o", "--output", default=None, help="output folder (default: analyze-<file stem>)")
     an.set_defaults(func=_cmd_analyze)
@@ -112,13 +129,30 @@ def _cmd_sweep(args) -> int:
 def _cmd_analyze(args) -> int:
     from pathlib import Path
 
-    from .measured import DataFileError, read_displacement_csv
-    from .report import build_measured_report, write_report
+    from .measured import DataFileError, read_measured, units_line
+    from .report import write_report
 
-    if not args.mass > 0:
+    import math
+
+    force = args.force_col is not None
+    if args.mass is not None and not (args.mass > 0 and math.isfinite(args.mass)):
         raise UserError(f"--mass must be positive (got {args.mass})")
+    if not force and args.mass is None:
+        raise UserError("--mass is required for displacement data (or give --force-col for force data)")
+    if args.speed is not None and not (args.speed > 0 and math.isfinite(args.speed)):
+        raise UserError(f"--speed must be a positive number of m/s (got {args.speed})")
+    if args.cut is not None and not (args.cut >= 0 and math.isfinite(args.cut)):
+        raise UserError(f"--cut must be >= 0 s (got {args.cut})")
+    if args.band is not None and not all(math.isfinite(b) for b in args.band):
+        raise UserError(f"--band must be two finite frequencies in rad/s (got {args.band[0]} {args.band[1]})")
+    if not force:
+        for flag in ("normal_col", "direction_col", "speed", "cut", "method", "force_unit"):
+            if getattr(args, flag) is not None:
+                raise UserError(f"--{flag.replace('_', '-')} applies to force data only (give --force-col)")
     try:
-        data = read_displacement_csv(args.data, args.time_col, args.x_col, args.x_unit)
+        data = read_measured(args.data, time_col=args.time_col, x_col=args.x_col, force_col=args.force_col,
+                             normal_col=args.normal_col, direction_col=args.direction_col, time_unit=args.time_unit,
+                             x_unit=args.x_unit, force_unit=args.force_unit, require_x=not force)
     except DataFileError as e:
         raise UserError(str(e)) from None
     if data.warning:
@@ -126,13 +160,36 @@ def _cmd_analyze(args) -> int:
     out = Path(args.output or f"analyze-{Path(args.data).stem}")
     if out.exists() and not out.is_dir():
         raise UserError(f"{out}: exists and is not a folder")
+    band = tuple(args.band) if args.band else None
     try:
-        sections, summary = build_measured_report(data, args.mass, band=tuple(args.band) if args.band else None)
+        if force:
+            from .measured_report import analyze_force, build_force_report
+
+            an = analyze_force(data, band=band, mass=args.mass, speed=args.speed, cut=args.cut, method=args.method)
+            sections, summary = build_force_report(an)
+        else:
+            from .report import build_measured_report
+
+            sections, summary = build_measured_report(data, args.mass, band=band)
+            summary["units"] = data.units
     except ValueError as e:
         raise UserError(f"{args.data}: {e}") from None
     write_report(out, sections, summary)
-    print(f"wrote {out / 'index.html'}: gamma = {summary['gamma']:.3f} +- {summary['gamma_err']:.3f} over "
-          f"{summary['band'][0]:.3g}-{summary['band'][1]:.3g} rad/s")
+    print(f"{args.data}: {units_line(data)}")
+    if force:
+        st = summary["strokes"]
+        f = summary["fit_F"]
+        print(f"strokes ({st['method']}): {st['found']} found, {st['used']} used, {len(st['dropped'])} dropped; "
+              f"{st['cut_each_end_s']:.4g} s cut at each end")
+        print(f"wrote {out / 'index.html'}: force exponent {f['gamma']:.3f} +- {f['gamma_err']:.3f} (95 %, {f['method']}) "
+              f"over {f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s" + ("" if f["power_law"] else
+                                                                    f" [not a power law: {'; '.join(f['flags'])}]"))
+    else:
+        f = summary["fit"]
+        print(f"wrote {out / 'index.html'}: gamma = {summary['gamma']:.3f} +- {summary['gamma_err']:.3f} over "
+              f"{summary['band'][0]:.3g}-{summary['band'][1]:.3g} rad/s, mean velocity "
+              f"{summary['mean_velocity']:.4g} m/s" + ("" if f["power_law"] else
+                                                       f" [not a power law: {'; '.join(f['flags'])}]"))
     return 0
 
 

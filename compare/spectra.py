@@ -20,6 +20,7 @@ import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
+from scipy import fft as sp_fft
 from scipy import signal
 
 __all__ = [
@@ -32,6 +33,7 @@ __all__ = [
     "rms_from_spectrum",
     "log_bin",
     "band_average",
+    "average_spectra",
     "G_STANDARD",
 ]
 
@@ -60,6 +62,16 @@ class Spectrum:
         Equivalent chi-square degrees of freedom of one raw Welch ordinate.
     provenance : dict
         How the spectrum was made (the processing chain, every parameter that mattered).
+    periodogram : ndarray or None
+        The raw (rectangular-window) periodogram of the k-times differenced series, re-coloured by
+        ``|2 sin(omega dt/2)/dt|^-2k`` and in the same units and convention as ``C``, on the grid
+        ``omega_j = j * periodogram_domega`` (j = 1, 2, ...). The Whittle fit in :mod:`compare.fits`
+        uses it; ``None`` for spectra built from binned or stored data.
+    periodogram_domega : float
+        Frequency step of ``periodogram`` (Units: rad/s).
+    periodogram_count : int
+        Number of independent raw periodograms averaged into ``periodogram`` (e.g. strokes); each ordinate
+        is then a chi-square with ``2 * periodogram_count`` degrees of freedom.
     """
 
     omega: np.ndarray
@@ -69,6 +81,16 @@ class Spectrum:
     n_avg: np.ndarray
     dof: float
     provenance: dict = field(default_factory=dict)
+    periodogram: np.ndarray | None = field(default=None, repr=False, compare=False)
+    periodogram_domega: float = 0.0
+    periodogram_count: int = 1
+
+    @property
+    def periodogram_omega(self) -> np.ndarray | None:
+        """Frequencies of :attr:`periodogram` (Units: rad/s), or None."""
+        if self.periodogram is None:
+            return None
+        return self.periodogram_domega * np.arange(1, len(self.periodogram) + 1)
 
     @property
     def omega_min(self) -> float:
@@ -160,6 +182,37 @@ def _welch(y: np.ndarray, dt: float, nperseg: int) -> tuple[np.ndarray, np.ndarr
     return f[1:], S[1:], n_segments  # drop the zero-frequency ordinate
 
 
+def _fast_length(n: int) -> int:
+    """The largest length <= n that scipy.fft transforms fast, if it drops at most 0.5 % of n; else n.
+
+    (A short series costs little whatever its length; cutting 4 % of a 2400-sample stroke would move the
+    frequency grid for nothing.)
+    """
+    if hasattr(sp_fft, "prev_fast_len"):
+        m = int(sp_fft.prev_fast_len(n, real=True))
+    else:  # scipy < 1.15
+        m = n
+        while m > 0.995 * n and sp_fft.next_fast_len(m, real=True) != m:
+            m -= 1
+    return m if n - m <= 0.005 * n else n
+
+
+def _periodogram(y: np.ndarray, dt: float) -> tuple[float, np.ndarray]:
+    """Raw periodogram of y (mean removed), eq. (2) convention: C_j = dt |Y_j|^2 / (2 pi n), j = 1..n/2-ish.
+
+    Returns (d_omega, C) without the zero-frequency ordinate and without the Nyquist ordinate of an even n
+    (its distribution is chi-square with one degree of freedom, unlike the others). A length with a large
+    prime factor would cost a slow FFT (10 s instead of 1.5 s at 10^7 samples), so the series is cut to the
+    largest fast length when that drops at most 0.5 % (0.47 % of 10^7 samples), at the end.
+    """
+    n = _fast_length(len(y))
+    y = y[:n]
+    Y = sp_fft.rfft(y - y.mean())
+    P = (Y.real**2 + Y.imag**2) * (dt / (2.0 * np.pi * n))
+    P = P[1:(n + 1) // 2]  # j = 1 .. ceil(n/2) - 1: every ordinate two degrees of freedom
+    return 2.0 * np.pi / (n * dt), P
+
+
 def _pilot_gamma(z: np.ndarray, dt: float) -> float:
     """First slope estimate: the once-differenced series' Hann Welch slope, plus 2.
 
@@ -225,7 +278,8 @@ def series_spectrum(
     if detrend == "linear":
         v, y0 = _line_fit(t - t[0], y)
         z = y - (y0 + v * (t - t[0]))
-        steps.append(f"removed fitted line {name}0 + v t, v = {v:.6g} per s")
+        rate_unit = {"x": "m/s", "F": "N/s", "mu": "1/s"}.get(quantity, "per s")
+        steps.append(f"removed fitted line {name}0 + v t, v = {v:.6g} {rate_unit}")
     elif detrend == "constant":
         v = 0.0
         z = y - y.mean()
@@ -249,20 +303,45 @@ def series_spectrum(
             raise ValueError(f"prewhiten must be a non-negative integer or 'auto' (got {prewhiten!r})") from None
         if not 0 <= k <= 6:
             raise ValueError(f"prewhiten must be between 0 and 6 (got {k})")
-    zk = np.diff(z, n=k) / dt**k if k else z
-    if nperseg > len(zk):
-        nperseg = len(zk)
+    nperseg0 = nperseg
+
+    def welch_recoloured(k):
+        zk = np.diff(z, n=k) / dt**k if k else z
+        nps = min(nperseg0, len(zk))
+        f, S, n_segments = _welch(zk, dt, nps)
+        omega = 2.0 * np.pi * f
+        C = S / (4.0 * np.pi)
+        if k:
+            C = C / _difference_gain(omega, dt, k)
+        return zk, nps, n_segments, omega, C
+
+    zk, nperseg, n_segments, omega, C = welch_recoloured(k)
+    if auto:
+        # The pilot (a short Hann estimate of the velocity) can miss by one order near the k boundaries
+        # (gamma 6 read as 7.1-7.4 in 10 % of 2^16-sample series), and an over-differenced series (a rising
+        # spectrum) leaks through the rectangular window of the raw periodogram. Check the order once on the
+        # pre-whitened estimate itself, whose slope is unbiased, and redo it if the order changes.
+        keep = (omega >= 4 * omega[0]) & (omega <= omega[-1] / 16)
+        if keep.sum() >= 4 and np.all(C[keep] > 0):
+            refined = -float(np.polyfit(np.log(omega[keep]), np.log(C[keep]), 1)[0])
+            k2 = _auto_order(refined)
+            if k2 != k:
+                steps.append(f"slope of the order-{k} estimate gamma ~ {refined:.2f} -> pre-whitening order {k2}")
+                k = k2
+                zk, nperseg, n_segments, omega, C = welch_recoloured(k)
     if k:
         steps.append(f"differenced {k}x (divided by dt^{k})")
-
-    f, S, n_segments = _welch(zk, dt, nperseg)
     steps.append(f"Welch: Hann window, nperseg = {nperseg}, 50 % overlap, {n_segments} segments")
-    omega = 2.0 * np.pi * f
-    C = S / (4.0 * np.pi)
     steps.append("C(omega) = S(f) / (4 pi)  [eq. (2) convention]")
     if k:
-        C = C / _difference_gain(omega, dt, k)
         steps.append(f"re-coloured by |2 sin(omega dt/2)/dt|^-{2 * k}")
+    d_omega, P = _periodogram(zk, dt)
+    if k:
+        P = P / _difference_gain(d_omega * np.arange(1, len(P) + 1), dt, k)
+    n_raw = int(round(2.0 * np.pi / (d_omega * dt)))
+    steps.append(f"raw periodogram (rectangular window) of the {'differenced ' if k else ''}series over "
+                 f"{n_raw} samples{f' (the last {len(zk) - n_raw} dropped for a fast FFT length)' if n_raw < len(zk) else ''}"
+                 f", re-coloured alike: for the Whittle fit")
 
     provenance = {
         "quantity": quantity,
@@ -282,7 +361,7 @@ def series_spectrum(
     }
     return Spectrum(
         omega=omega, C=C, quantity=quantity, unit=unit, n_avg=np.ones(len(omega), dtype=int),
-        dof=_welch_dof(n_segments), provenance=provenance,
+        dof=_welch_dof(n_segments), provenance=provenance, periodogram=P, periodogram_domega=d_omega,
     )
 
 
@@ -302,11 +381,13 @@ def force_series_spectrum(t, F, *, prewhiten: int | str = "auto", nperseg: int |
                            nperseg=nperseg, name="F")
 
 
-def _rescaled(spec: Spectrum, factor: np.ndarray, quantity: str, unit: str, step: str) -> Spectrum:
+def _rescaled(spec: Spectrum, factor, quantity: str, unit: str, step: str) -> Spectrum:
+    """Multiply C (and the raw periodogram) by ``factor(omega)``."""
     prov = dict(spec.provenance)
     prov["steps"] = list(prov.get("steps", [])) + [step]
     prov["quantity"] = quantity
-    return replace(spec, C=spec.C * factor, quantity=quantity, unit=unit, provenance=prov)
+    P = None if spec.periodogram is None else spec.periodogram * factor(spec.periodogram_omega)
+    return replace(spec, C=spec.C * factor(spec.omega), quantity=quantity, unit=unit, provenance=prov, periodogram=P)
 
 
 def force_spectrum(spectrum: Spectrum, mass: float) -> Spectrum:
@@ -315,7 +396,7 @@ def force_spectrum(spectrum: Spectrum, mass: float) -> Spectrum:
         raise ValueError(f"force_spectrum needs a displacement spectrum (got quantity {spectrum.quantity!r})")
     if not mass > 0:
         raise ValueError(f"mass must be positive (got {mass!r})")
-    return _rescaled(spectrum, mass**2 * spectrum.omega**4, "F", "N^2 s",
+    return _rescaled(spectrum, lambda w: mass**2 * w**4, "F", "N^2 s",
                      f"C_F = M^2 omega^4 C_x with M = {mass:g} kg  [eq. (3)]")
 
 
@@ -325,7 +406,7 @@ def friction_coefficient_spectrum(spectrum: Spectrum, g: float = G_STANDARD) -> 
         raise ValueError(
             f"friction_coefficient_spectrum needs a displacement spectrum (got quantity {spectrum.quantity!r})"
         )
-    return _rescaled(spectrum, spectrum.omega**4 / g**2, "mu", "s",
+    return _rescaled(spectrum, lambda w: w**4 / g**2, "mu", "s",
                      f"C_mu = omega^4 C_x / g^2 with g = {g:g} m/s^2  [section 2]")
 
 
@@ -417,3 +498,31 @@ def band_average(spectrum: Spectrum, edges, values=None) -> np.ndarray:
             raise ValueError(f"band [{edges[i]:.4g}, {edges[i + 1]:.4g}) rad/s holds no spectral ordinate")
         out[i] = np.sum(vals[m] * spectrum.n_avg[m]) / np.sum(spectrum.n_avg[m])
     return out
+
+
+def average_spectra(spectra, *, label: str = "records") -> Spectrum:
+    """Mean of spectra of equally long, equally processed records (e.g. the strokes of a reciprocating test).
+
+    All must share the frequency grid (same dt, length, nperseg and pre-whitening order). The Welch
+    ordinates and the raw periodograms are averaged; the degrees of freedom add up, and
+    ``periodogram_count`` counts the averaged records (the Whittle fit uses it).
+    """
+    spectra = list(spectra)
+    if not spectra:
+        raise ValueError("no spectra to average")
+    first = spectra[0]
+    for s in spectra[1:]:
+        if s.omega.shape != first.omega.shape or not np.allclose(s.omega, first.omega, rtol=1e-9, atol=0):
+            raise ValueError("spectra to average must share the frequency grid (same dt, length and nperseg)")
+        if s.provenance.get("prewhiten_order") != first.provenance.get("prewhiten_order"):
+            raise ValueError("spectra to average must share the pre-whitening order")
+    m = len(spectra)
+    C = np.mean([s.C for s in spectra], axis=0)
+    P = None
+    if all(s.periodogram is not None for s in spectra) and len({len(s.periodogram) for s in spectra}) == 1:
+        P = np.mean([s.periodogram for s in spectra], axis=0)
+    prov = dict(first.provenance)
+    prov["steps"] = list(prov.get("steps", [])) + [f"averaged over {m} {label}"]
+    prov["n_records"] = m
+    return replace(first, C=C, dof=first.dof * m, provenance=prov, periodogram=P,
+                   periodogram_count=sum(s.periodogram_count for s in spectra) if P is not None else 1)

@@ -19,17 +19,19 @@ class SpectralAssertionError(AssertionError):
     """A spectral check failed; the message carries the measured numbers."""
 
 
-def assert_spectral_slope(t, x, expected: float, tol: float, band=None, **spectrum_kwargs) -> PowerLawFit:
+def assert_spectral_slope(t, x, expected: float, tol: float, band=None, method: str | None = None,
+                          **spectrum_kwargs) -> PowerLawFit:
     """Assert that C_x of x(t) falls as omega^-gamma with |gamma - expected| <= tol.
 
-    ``band`` (rad/s) is passed to :func:`compare.fits.fit_power_law` (auto when None); extra keyword
-    arguments go to :func:`compare.spectra.displacement_spectrum`. Returns the fit on success.
+    ``band`` (rad/s) and ``method`` ("whittle" or "lsq"; default :data:`compare.fits.DEFAULT_METHOD`) are
+    passed to :func:`compare.fits.fit_power_law` (auto band when None); extra keyword arguments go to
+    :func:`compare.spectra.displacement_spectrum`. Returns the fit on success.
     """
     spec = displacement_spectrum(t, x, **spectrum_kwargs)
-    fit = fit_power_law(spec, band=band)
+    fit = fit_power_law(spec, band=band, method=method)
     if not abs(fit.gamma - expected) <= tol:
         raise SpectralAssertionError(
-            f"spectral slope: measured gamma = {fit.gamma:.3f} +- {fit.gamma_err:.3f} (95 % CI) over "
+            f"spectral slope: measured gamma = {fit.gamma:.3f} +- {fit.gamma_err:.3f} (95 % CI, {fit.method}) over "
             f"{fit.band[0]:.4g}-{fit.band[1]:.4g} rad/s ({'auto' if fit.band_auto else 'given'} band, "
             f"{fit.n_points} log bins); expected {expected:g} +- {tol:g}; off by {fit.gamma - expected:+.3f}"
         )

@@ -42,3 +42,70 @@ def test_band_outside_resolved_range_is_rejected():
         fit_power_law(spec, band=(1.0, 1e5))
     with pytest.raises(ValueError, match="0 < low < high"):
         fit_power_law(spec, band=(10.0, 1.0))
+
+
+def test_whittle_bias_coverage_and_interval_width():
+    # 80 seeds of omega^-4 (n = 2^16, auto band 6-196 rad/s, 1.5 decades). Under the model the 95 % interval
+    # covers the truth in 76 of 80 on average (sd 1.95): fewer than 71 has probability < 0.3 %. The bias must
+    # be below 3 standard errors of the mean of 80 estimates, and the mean half-width / 1.96 must match the
+    # scatter of the estimates within 25 % (the sample sd of 80 values is itself uncertain by ~8 %).
+    n, seeds = 2**16, 80
+    t = np.arange(n) * DT
+    est, err = [], []
+    for seed in range(seeds):
+        f = fit_power_law(displacement_spectrum(t, power_law_series(4, n, 1000 + seed)), method="whittle")
+        assert f.method == "whittle"
+        est.append(f.gamma)
+        err.append(f.gamma_err)
+    est, err = np.array(est), np.array(err)
+    covered = int(np.sum(np.abs(est - 4.0) <= err))
+    assert covered >= 71, covered
+    assert abs(est.mean() - 4.0) < 3 * est.std(ddof=1) / np.sqrt(seeds), est.mean()
+    assert np.mean(err) / 1.96 == pytest.approx(est.std(ddof=1), rel=0.25)
+
+
+def test_methods_agree_and_whittle_needs_a_periodogram():
+    # Both methods on one omega^-6 series: within their combined 95 % errors of each other and of 6.
+    n = 2**16
+    spec = displacement_spectrum(np.arange(n) * DT, power_law_series(6, n, 5))
+    w, l = fit_power_law(spec, method="whittle"), fit_power_law(spec, method="lsq")
+    assert abs(w.gamma - 6) <= w.gamma_err and abs(l.gamma - 6) <= l.gamma_err
+    assert w.to_dict()["method"] == "whittle" and "whittle" in str(w)
+    from compare.spectra import log_bin
+    binned = log_bin(spec)
+    assert binned.periodogram is not None  # binning keeps the raw periodogram
+    from dataclasses import replace
+    stored = replace(spec, periodogram=None)
+    with pytest.raises(ValueError, match="needs the raw periodogram"):
+        fit_power_law(stored, method="whittle")
+    with pytest.raises(ValueError, match="method must be one of"):
+        fit_power_law(spec, method="ols")
+
+
+def test_pure_power_laws_are_flagged_at_most_at_the_test_rate():
+    # 100 seeds of omega^-2 over an explicit 1.5-decade band: the curvature test is a 5 % test, so about 5
+    # flags are expected (sd 2.2); 11 or more has probability 1.1 %. No width flag (1.5 decades).
+    n = 2**16
+    t = np.arange(n) * DT
+    flagged = 0
+    for seed in range(100):
+        f = fit_power_law(displacement_spectrum(t, power_law_series(2, n, 2000 + seed)), band=(6.2, 196.0))
+        flagged += not f.power_law
+        assert not any("decades" in fl for fl in f.flags)
+    assert flagged <= 10, flagged
+
+
+def test_bent_spectrum_and_narrow_band_are_flagged():
+    # OU position with its knee (1/tau = 33 rad/s) inside 6-196 rad/s: the log-log line bends from slope 0.2
+    # to 1.9; measured z = 9 (seed 2). A 0.5-decade band is flagged for width whatever it holds.
+    from tests.synthetic import ou_process
+    n = 2**16
+    spec = displacement_spectrum(np.arange(n) * DT, ou_process(n, DT, 0.03, 1.0, 2))
+    for method in ("lsq", "whittle"):
+        f = fit_power_law(spec, band=(6.2, 196.0), method=method)
+        assert not f.power_law and any("curve" in fl for fl in f.flags)
+        assert abs(f.curvature_z) > 5
+        d = f.to_dict()
+        assert d["power_law"] is False and d["flags"] and "NOT A POWER LAW" in str(f)
+    g = fit_power_law(displacement_spectrum(np.arange(n) * DT, power_law_series(4, n, 1)), band=(20.0, 63.0))
+    assert any("0.50 decades" in fl for fl in g.flags)

@@ -57,7 +57,9 @@ def test_prewhitening_is_needed_for_steep_spectra(gamma, k):
     raw = fit_power_law(displacement_spectrum(t, x, prewhiten=0))
     auto_spec = displacement_spectrum(t, x)
     auto = fit_power_law(auto_spec)
-    assert auto_spec.provenance["prewhiten_order"] == k
+    # An odd gamma sits on the boundary between two orders (differenced slope -1 or +1); the refinement on
+    # the pre-whitened estimate may take either, and both read the slope within 0.05.
+    assert auto_spec.provenance["prewhiten_order"] in (k - 1, k)
     assert abs(auto.gamma - gamma) < 0.05
     assert abs(raw.gamma - gamma) > 0.5  # the leak is large, not a rounding matter
 
