@@ -202,17 +202,28 @@ def _load_scenario(path):
         raise UserError(str(e)) from None
 
 
-def _progress_bar(desc):
+def _progress_bar(desc, stream=None):
+    """A bar in simulated time on a terminal; otherwise (a log, CI) one line per tenth of the run with the
+    elapsed wall time."""
+    import time
+
     from tqdm import tqdm
 
-    bar = tqdm(total=1.0, desc=desc, unit="s", file=sys.stderr, disable=not sys.stderr.isatty(),
+    stream = stream or sys.stderr
+    tty = stream.isatty()
+    bar = tqdm(total=1.0, desc=desc, unit="s", file=stream, disable=not tty,
                bar_format="{desc}: {percentage:3.0f}%|{bar}| {postfix} [{elapsed}<{remaining}]")
+    t0, next_tenth = time.perf_counter(), [1]
 
     def update(done, total):
         bar.total = total
         bar.n = done
         bar.set_postfix_str(f"{done:.1f}/{total:.1f} s simulated")
         bar.refresh()
+        if not tty and total > 0 and done >= next_tenth[0] * total / 10 * (1 - 1e-9):
+            next_tenth[0] = int(10 * done / total * (1 + 1e-9)) + 1
+            print(f"{desc}: {done:.1f}/{total:.1f} s simulated ({100 * done / total:.0f} %), "
+                  f"{time.perf_counter() - t0:.1f} s elapsed", file=stream, flush=True)
     return bar, update
 
 

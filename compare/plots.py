@@ -125,20 +125,14 @@ def level_figure(v, C, exponent, err, omega_ref):
 
 def work_precision_figure(rows, floor: float = 1e-4):
     """Cost against error, log-log: every setting (red: Pareto front), the reference (error 0, drawn on the
-    floor as a black star), each labelled on the side away from the plot's edge."""
+    floor as a black star), each labelled at the first of four places beside its point that overlaps no other
+    label and stays inside the figure."""
     fig = _figure(6.0, 4.2)
     ax = fig.add_subplot()
-    costs = [r["cost"] for r in rows]
-    cmid = np.sqrt(min(costs) * max(costs))
     for r in rows:
-        e = max(r["error"], floor)
         ref = r["pareto"] is None
-        ax.plot(r["cost"], e, "*" if ref else "o", ms=10 if ref else 6,
+        ax.plot(r["cost"], max(r["error"], floor), "*" if ref else "o", ms=10 if ref else 6,
                 color="k" if ref else ("tab:red" if r["pareto"] else "0.5"), zorder=3)
-        text = f"dt={r['dt']:g}, it={r['iterations']}" + (" (reference)" if ref else " (default)" if r["default"] else "")
-        right = r["cost"] > cmid
-        ax.annotate(text, (r["cost"], e), xytext=(-6 if right else 6, 4), textcoords="offset points",
-                    ha="right" if right else "left", fontsize=7)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.margins(x=0.15, y=0.2)
@@ -148,6 +142,22 @@ def work_precision_figure(rows, floor: float = 1e-4):
     ax.set_title("Engine work-precision (red: Pareto front; star: reference)", fontsize=9)
     ax.grid(True, which="major", alpha=0.3)
     fig.tight_layout()
+    fig.canvas.draw()
+    W, H = fig.canvas.get_width_height()
+    boxes = []
+    places = [((6, 4), "left", "bottom"), ((6, -5), "left", "top"), ((-6, 4), "right", "bottom"), ((-6, -5), "right", "top")]
+    for r in rows:
+        ref = r["pareto"] is None
+        text = f"dt={r['dt']:g}, it={r['iterations']}" + (" (reference)" if ref else " (default)" if r["default"] else "")
+        for k, (off, ha, va) in enumerate(places):
+            a = ax.annotate(text, (r["cost"], max(r["error"], floor)), xytext=off, textcoords="offset points",
+                            ha=ha, va=va, fontsize=7)
+            bb = a.get_window_extent(fig.canvas.get_renderer())
+            inside = bb.x0 >= 2 and bb.x1 <= W - 2 and bb.y0 >= 2 and bb.y1 <= H - 2
+            if (inside and not any(bb.overlaps(b) for b in boxes)) or k == len(places) - 1:
+                boxes.append(bb)
+                break
+            a.remove()
     return fig
 
 

@@ -225,7 +225,8 @@ def series_spectrum(
     if detrend == "linear":
         v, y0 = _line_fit(t - t[0], y)
         z = y - (y0 + v * (t - t[0]))
-        steps.append(f"removed fitted line {name}0 + v t, v = {v:.6g} per s")
+        series_unit = unit.split("^2")[0] if "^2" in unit else ""  # "m^2 s" is the spectrum of a series in m
+        steps.append(f"removed fitted line {name}0 + v t, v = {v:.6g} {series_unit + '/s' if series_unit else 'per s'}")
     elif detrend == "constant":
         v = 0.0
         z = y - y.mean()

@@ -118,3 +118,17 @@ def test_every_subcommand_has_a_one_line_help_and_seed_is_documented():
         if name in ("report", "run", "compare", "render"):
             assert seed and seed[0].help and "seed" in seed[0].help, name
     assert "no --seed" in helps["analyze"] and "seed" in helps["sweep"]
+
+
+def test_run_progress_without_a_terminal_prints_tenths():
+    from compare.cli import _progress_bar
+
+    buf = io.StringIO()
+    bar, update = _progress_bar("scene", stream=buf)
+    with bar:
+        for k in range(1, 101):
+            update(0.06 * k, 6.0)
+    lines = buf.getvalue().splitlines()
+    assert len(lines) == 10, lines
+    assert lines[0].startswith("scene: 0.6/6.0 s simulated (10 %), ") and lines[-1].startswith("scene: 6.0/6.0 s simulated (100 %)")
+    assert all(re.search(r"\d+\.\d s elapsed$", ln) for ln in lines)
