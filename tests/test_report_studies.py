@@ -76,6 +76,24 @@ def test_build_report_with_stub_study_writes_every_file(tmp_path):
     assert json.loads((out / "summary.json").read_text())["scenarios"]["stub_b"] == {"y": [1, 2]}
 
 
+def test_studies_marked_alone_run_last_after_the_speed_table():
+    order = []
+
+    def first(quick, seed):
+        order.append("pooled")
+        return StudyResult("first", "First", {"q": quick})
+
+    def timed_alone(quick, seed):
+        order.append("alone")
+        return StudyResult("alone", "Alone", {"n": 1})
+
+    results, summary = build_report(quick=False, studies=[Study("alone", "alone", timed_alone, alone=True),
+                                                         Study("first", "first", first)], workers=1)
+    assert order == ["pooled", "alone"]
+    assert [r.key for r in results] == ["first", "timings", "alone"]
+    assert list(summary).index("alone") < list(summary).index("timings")  # as before: the speed table's numbers last
+
+
 def test_progress_without_a_terminal_prints_one_line_per_stage():
     buf = io.StringIO()  # not a tty, as in a log or CI
     with StageProgress(["a", "b"], desc="report", stream=buf) as p:
