@@ -90,17 +90,17 @@ def build_report(quick: bool = False, seed: int = 0, progress=None, workers: int
     pooled = [s for s in studies if not s.alone]
     alone = [s for s in studies if s.alone]
     results = [r for rs in run_studies(pooled, quick, seed, workers, progress) for r in rs]
-    timings = [t for r in results for t in r.timings]
-    results.append(_speed(timings, "Speed against error",
+    speed = _speed([t for r in results for t in r.timings], "Speed against error",
         "Wall time of each run in this report (after JIT warm-up) and its band-averaged |ln(simulation / exact "
         "theory)|, which for the exact reduced-model simulators is sampling noise; for the scenes it is the "
         "distance to model I built from the scene's measured parameters. The explicit baseline for model I, the "
         "engine's loop overhead and the work-precision tables are in benchmarks/ (see the README)."
-        + (f" The runs ran {workers} at a time, each in its own process." if workers > 1 else "")))
+        + (f" The runs ran {workers} at a time, each in its own process." if workers > 1 else ""))
     alone_results = [r for rs in run_studies(alone, quick, seed, 1, progress) for r in rs]
-    summary = summary_of([r for r in results if r.key != "timings"] + alone_results + results[-1:], header)
+    # page: the studies, the speed table, then the studies that ran alone; summary.json: the speed table last
+    summary = summary_of(results + alone_results + [speed], header)
     summary["total_wall_s"] = time.perf_counter() - t0
-    return results + alone_results, summary
+    return results + [speed] + alone_results, summary
 
 
 def build_scene_report(sc, trace=None, duration=None, seed=None, progress=None):
