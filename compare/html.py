@@ -22,7 +22,7 @@ _CSS = """body{font-family:system-ui,sans-serif;max-width:60rem;margin:2rem auto
 h1{font-size:1.5rem}h2{font-size:1.2rem;border-bottom:1px solid #ccc;margin-top:2rem}
 nav{background:#f7f7f7;border:1px solid #ddd;padding:0.4rem 1rem;font-size:0.9rem}nav ol{margin:0.3rem 0}
 table{border-collapse:collapse;margin:0.6rem 0;font-size:0.9rem}td,th{border:1px solid #ccc;padding:2px 8px}
-th{background:#f4f4f4}caption{text-align:left;font-size:0.85rem;color:#555}
+th{background:#f4f4f4}caption{text-align:left;white-space:nowrap;font-size:0.85rem;color:#555}
 figure{margin:1rem 0}figcaption{font-size:0.85rem;color:#444}img{max-width:100%;height:auto}"""
 
 
