@@ -43,7 +43,9 @@ def test_registry_keys_labels_unique_and_every_scene_present():
     labels = [s.label for s in studies.STUDIES]
     assert len(set(keys)) == len(keys) and len(set(labels)) == len(labels)
     assert {f"scenarios/{n}" for n in shipped_scenarios()} <= set(keys)
-    assert keys[:3] == ["model_I", "model_III", "model_II"]
+    assert keys[0] == "model_I" and keys.index("model_I") < keys.index("model_III") < keys.index("model_II")
+    assert max(keys.index(k) for k in keys if not k.startswith("scenarios/") and k != "engine_work_precision") \
+        < min(keys.index(k) for k in keys if k.startswith("scenarios/"))  # the models first, then the scenes
     quick = [s.key for s in studies.selected(True)]
     assert "engine_work_precision" not in quick and "engine_work_precision" in [s.key for s in studies.selected(False)]
     assert all(s.alone == (s.key == "engine_work_precision") for s in studies.STUDIES)
