@@ -12,46 +12,63 @@ class UserError(Exception):
 
 
 def _build_parser() -> argparse.ArgumentParser:
+    from reduced_models._version import package_version
+
     ap = argparse.ArgumentParser(
         prog="frictionnoise",
         description="Displacement noise of sliding friction: reduced models, scenes and spectra.",
+        epilog="Seeds: report, run, compare and render take --seed K (the same seed gives the same numbers, bit for "
+               "bit); a sweep's seeds are the grid axis `seed` of its file; analyze draws no random numbers. "
+               "`frictionnoise COMMAND --help` describes a command.",
     )
+    ap.add_argument("--version", action="version", version=f"frictionnoise {package_version()}")
     sub = ap.add_subparsers(dest="command", metavar="COMMAND")
-    rep = sub.add_parser("report", help="the main job: the paper's model figures, fits and timings as an HTML report")
+
+    def add(name, summary):
+        """A subcommand whose help line and description are the same one-line summary."""
+        return sub.add_parser(name, help=summary, description=summary[0].upper() + summary[1:] + ".")
+
+    rep = add("report", "the main job: the paper's model figures, every shipped scene against its reduced model, "
+                        "fits and timings, as an HTML report with summary.json")
     rep.add_argument("-o", "--output", default="frictionnoise-report", help="output folder (default: %(default)s)")
     rep.add_argument("--quick", action="store_true", help="shorter runs (under a minute)")
-    rep.add_argument("--seed", type=int, default=0, help="random seed (default: %(default)s)")
+    rep.add_argument("--seed", type=int, default=0,
+                     help="random seed of every model and scene run (default: %(default)s); same seed, same numbers")
     rep.add_argument("--workers", type=int, default=None, metavar="N",
                      help="run the report's stages in N processes (default: the usable cores, at most 4; 1: in this "
                           "process); the numbers do not depend on it")
     rep.set_defaults(func=_cmd_report)
 
-    run = sub.add_parser("run", help="run a scenario and write its trace (.npz + .json)")
+    run = add("run", "run a scenario and write its trace (.npz arrays in SI units + .json metadata)")
     run.add_argument("scenario", help="scenario TOML file")
     run.add_argument("-o", "--output", default=None, help="output folder (default: run-<scenario name>)")
     run.add_argument("--duration", type=float, default=None, help="simulated seconds (default: the scenario's)")
-    run.add_argument("--seed", type=int, default=None, help="random seed (default: the scenario's)")
+    run.add_argument("--seed", type=int, default=None,
+                     help="random seed of the substrate and the scene (default: the scenario's [run] seed)")
     run.add_argument("--checkpoint-every", type=float, default=None, metavar="S",
                      help="checkpoint every S simulated seconds to DIR/checkpoint.pkl; rerunning resumes from it")
     run.set_defaults(func=_cmd_run)
 
-    cmp_ = sub.add_parser("compare", help="report one scene (scenario TOML or trace .npz) against the reduced models")
+    cmp_ = add("compare", "report one scene (scenario TOML or trace .npz) against the reduced model that fits it")
     cmp_.add_argument("source", help="scenario TOML file or trace .npz written by `frictionnoise run`")
     cmp_.add_argument("-o", "--output", default=None, help="output folder (default: compare-<name>)")
     cmp_.add_argument("--duration", type=float, default=None, help="simulated seconds when running a scenario")
-    cmp_.add_argument("--seed", type=int, default=None)
+    cmp_.add_argument("--seed", type=int, default=None,
+                      help="random seed of the scene run and of the reduced model's run (default: the scenario's)")
     cmp_.set_defaults(func=_cmd_compare)
 
-    ren = sub.add_parser("render", help="render a scenario headless to PNG frames (and an animated GIF)")
+    ren = add("render", "render a scenario headless to PNG frames (and an animated GIF)")
     ren.add_argument("scenario", help="scenario TOML file")
     ren.add_argument("-o", "--output", default=None, help="output folder (default: render-<scenario name>)")
     ren.add_argument("--frames", type=int, default=12, help="number of frames (default: %(default)s)")
     ren.add_argument("--duration", type=float, default=0.6, help="simulated seconds spanned (default: %(default)s)")
     ren.add_argument("--gif", action="store_true", help="also write animation.gif")
-    ren.add_argument("--seed", type=int, default=None)
+    ren.add_argument("--seed", type=int, default=None,
+                     help="random seed of the substrate and the scene (default: the scenario's [run] seed)")
     ren.set_defaults(func=_cmd_render)
 
-    sw = sub.add_parser("sweep", help="run a parameter sweep (dask LocalCluster by default) and its report")
+    sw = add("sweep", "run a parameter grid (dask LocalCluster by default; seeds are a grid axis of the sweep "
+                      "file) and its report")
     sw.add_argument("sweep", help="sweep TOML file")
     sw.add_argument("-o", "--output", default=None, help="output folder, also the task cache (default: sweep-<name>)")
     sw.add_argument("--scheduler", default=None, help="address of a running dask scheduler, e.g. tcp://host:8786")
@@ -59,7 +76,8 @@ def _build_parser() -> argparse.ArgumentParser:
     sw.add_argument("--serial", action="store_true", help="run in this process, without dask")
     sw.set_defaults(func=_cmd_sweep)
 
-    an = sub.add_parser("analyze", help="analyse measured x(t) or friction force F(t) from a text export: spectra, exponent, rms, report")
+    an = add("analyze", "analyse measured x(t) or friction force F(t) from a text export: spectra, exponent, rms and a "
+                        "report (deterministic: no random numbers, so no --seed)")
     an.add_argument("data", help="text table (CSV, ;- or tab-separated; preamble, units row and decimal commas are read): "
                                  "time and displacement or force columns")
     an.add_argument("--mass", type=float, default=None,
@@ -93,7 +111,7 @@ def _cmd_sweep(args) -> int:
 
     from tqdm import tqdm
 
-    from .report import build_sweep_report, write_sweep_outputs
+    from .sweep_report import build_sweep_report, write_sweep_outputs
     from .sweep import SweepError, load_results, load_sweep, run_sweep
 
     try:
@@ -129,8 +147,8 @@ def _cmd_sweep(args) -> int:
 def _cmd_analyze(args) -> int:
     from pathlib import Path
 
+    from .html import write_report
     from .measured import DataFileError, read_measured, units_line
-    from .report import write_report
 
     import math
 
@@ -168,7 +186,7 @@ def _cmd_analyze(args) -> int:
             an = analyze_force(data, band=band, mass=args.mass, speed=args.speed, cut=args.cut, method=args.method)
             sections, summary = build_force_report(an)
         else:
-            from .report import build_measured_report
+            from .measured_report import build_measured_report
 
             sections, summary = build_measured_report(data, args.mass, band=band)
             summary["units"] = data.units
@@ -240,17 +258,28 @@ def _load_scenario(path):
         raise UserError(str(e)) from None
 
 
-def _progress_bar(desc):
+def _progress_bar(desc, stream=None):
+    """A bar in simulated time on a terminal; otherwise (a log, CI) one line per tenth of the run with the
+    elapsed wall time."""
+    import time
+
     from tqdm import tqdm
 
-    bar = tqdm(total=1.0, desc=desc, unit="s", file=sys.stderr, disable=not sys.stderr.isatty(),
+    stream = stream or sys.stderr
+    tty = stream.isatty()
+    bar = tqdm(total=1.0, desc=desc, unit="s", file=stream, disable=not tty,
                bar_format="{desc}: {percentage:3.0f}%|{bar}| {postfix} [{elapsed}<{remaining}]")
+    t0, next_tenth = time.perf_counter(), [1]
 
     def update(done, total):
         bar.total = total
         bar.n = done
         bar.set_postfix_str(f"{done:.1f}/{total:.1f} s simulated")
         bar.refresh()
+        if not tty and total > 0 and done >= next_tenth[0] * total / 10 * (1 - 1e-9):
+            next_tenth[0] = int(10 * done / total * (1 + 1e-9)) + 1
+            print(f"{desc}: {done:.1f}/{total:.1f} s simulated ({100 * done / total:.0f} %), "
+                  f"{time.perf_counter() - t0:.1f} s elapsed", file=stream, flush=True)
     return bar, update
 
 
@@ -294,7 +323,8 @@ def _cmd_run(args) -> int:
 def _cmd_compare(args) -> int:
     from pathlib import Path
 
-    from .report import build_scene_report, write_report
+    from .html import write_report
+    from .report import build_scene_report
     from .traceio import TraceFileError, load_trace
 
     src = Path(args.source)
@@ -337,9 +367,10 @@ def _usable_cores(cap: int) -> int:
 def _cmd_report(args) -> int:
     from pathlib import Path
 
-    from tqdm import tqdm
-
-    from .report import build_report, write_report
+    from . import studies
+    from .html import write_report
+    from .progress import StageProgress
+    from .report import build_report
 
     out = Path(args.output)
     if out.exists() and not out.is_dir():
@@ -347,17 +378,11 @@ def _cmd_report(args) -> int:
     if args.workers is not None and args.workers < 1:
         raise UserError(f"--workers must be at least 1 (got {args.workers})")
     workers = args.workers or _usable_cores(cap=4)
-    from engine_sim import shipped_scenarios
-
-    stages = (["model I reference", "model I variations", "model III", "model II"] + list(shipped_scenarios())
-              + ([] if args.quick else ["work-precision"]))
-    with tqdm(total=len(stages), desc="report", unit="stage", file=sys.stderr,
-              disable=not sys.stderr.isatty()) as bar:
-        def progress(stage):
-            bar.set_postfix_str(stage)
-            bar.update(1)
-        sections, summary = build_report(quick=args.quick, seed=args.seed, progress=progress, workers=workers)
-    path = write_report(out, sections, summary)
+    chosen = studies.selected(args.quick)
+    with StageProgress([s.label for s in chosen], desc="report") as progress:
+        results, summary = build_report(quick=args.quick, seed=args.seed, progress=progress, workers=workers,
+                                        studies=chosen)
+    path = write_report(out, results, summary)
     print(f"wrote {path / 'index.html'} ({summary['total_wall_s']:.1f} s)")
     for key in ("model_I", "model_III", "model_II"):
         f = summary[key]

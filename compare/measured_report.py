@@ -13,7 +13,6 @@ the motion). The numerics here are pure; :func:`build_force_report` turns an ana
 """
 from __future__ import annotations
 
-import html
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,10 +20,12 @@ from pathlib import Path
 import numpy as np
 
 from .fits import PowerLawFit, fit_power_law
+from .html import esc, paragraphs, table
 from .measured import MeasuredData, units_line
 from .spectra import Spectrum, _rescaled, average_spectra, rms_from_spectrum, series_spectrum
+from .study import Figure, StudyResult
 
-__all__ = ["Strokes", "ForceAnalysis", "find_strokes", "analyze_force", "build_force_report"]
+__all__ = ["Strokes", "ForceAnalysis", "find_strokes", "analyze_force", "build_force_report", "build_measured_report"]
 
 _KEEP_FRACTION = 0.8  # a stroke shorter than this share of the median (after the cut) is partial: dropped
 _DEFAULT_CUT = 0.1  # share of the median stroke duration cut at each end, unless a cut is given
@@ -250,61 +251,107 @@ def analyze_force(data: MeasuredData, *, band=None, mass: float | None = None, s
 
 
 def build_force_report(an: ForceAnalysis):
-    """Report sections (compare.report.Section) and the JSON summary of a force analysis."""
+    """Results (StudyResult list) and the JSON summary of a force analysis."""
     from reduced_models._version import package_version
 
     from . import plots
-    from .report import Section
 
     summary = {"version": package_version(), "kind": "force", **an.summary()}
     d, st, f = an.data, an.strokes, an.fit_F
-    s = Section(f"Measured friction force: {Path(d.source).name}")
-    s.paragraphs += [
-        f"{len(d.t)} samples every {d.t[1] - d.t[0]:.4g} s; {html.escape(units_line(d))}"
-        + (f". {html.escape(d.warning)}" if d.warning else "."),
-        f"Strokes found from the {html.escape(st.method)}: {st.found} found, {len(st.segments)} used, "
-        f"{len(st.dropped)} dropped" + (" (" + "; ".join(f"stroke {i}: {html.escape(r)}" for i, r in st.dropped) + ")"
+    paras = [
+        f"{len(d.t)} samples every {d.t[1] - d.t[0]:.4g} s; {esc(units_line(d))}"
+        + (f". {esc(d.warning)}" if d.warning else "."),
+        f"Strokes found from the {esc(st.method)}: {st.found} found, {len(st.segments)} used, "
+        f"{len(st.dropped)} dropped" + (" (" + "; ".join(f"stroke {i}: {esc(r)}" for i, r in st.dropped) + ")"
                                         if st.dropped else "")
         + f"; {st.cut_s:.4g} s cut at each end of a stroke (reversal transients); every stroke {st.used_s:.4g} s long "
           f"after the cut, detrended by its own line; spectra averaged over the strokes.",
         f"Force exponent: C_F ~ omega^-{f.gamma:.3f} &plusmn; {f.gamma_err:.3f} (95 %, {f.method}) over "
         f"{f.band[0]:.3g}-{f.band[1]:.3g} rad/s{' (automatic band)' if f.band_auto else ''}"
-        + (f" <b>not a power law: {html.escape('; '.join(f.flags))}</b>" if f.flags else "")
+        + (f" <b>not a power law: {esc('; '.join(f.flags))}</b>" if f.flags else "")
         + f"; F_rms = {summary['F_rms_N']:.4g} N over the resolved band (eq. 4), mean |F| = {summary['mean_abs_F_N']:.4g} N.",
     ]
     if an.fit_mu is not None:
-        s.paragraphs.append(f"C_mu of mu(t) = F(t)/N(t): exponent {an.fit_mu.gamma:.3f} &plusmn; {an.fit_mu.gamma_err:.3f}; "
-                            f"mu_rms = {summary['mu_rms']:.4g}, mean |mu| = {summary['mean_abs_mu']:.4g}.")
+        paras.append(f"C_mu of mu(t) = F(t)/N(t): exponent {an.fit_mu.gamma:.3f} &plusmn; {an.fit_mu.gamma_err:.3f}; "
+                     f"mu_rms = {summary['mu_rms']:.4g}, mean |mu| = {summary['mean_abs_mu']:.4g}.")
     if an.fit_x_equiv is not None:
-        s.paragraphs.append(f"Equivalent C_x of a free block of M = {an.mass:g} kg (C_F / (M^2 omega^4), eq. (3); inferred, "
-                            f"not a measured displacement): gamma = {an.fit_x_equiv.gamma:.3f} &plusmn; "
-                            f"{an.fit_x_equiv.gamma_err:.3f}.")
+        paras.append(f"Equivalent C_x of a free block of M = {an.mass:g} kg (C_F / (M^2 omega^4), eq. (3); inferred, "
+                     f"not a measured displacement): gamma = {an.fit_x_equiv.gamma:.3f} &plusmn; "
+                     f"{an.fit_x_equiv.gamma_err:.3f}.")
     if an.speed is not None:
-        s.paragraphs.append(f"Sliding speed {an.speed:g} m/s: stroke length {summary['stroke_length_m']:.4g} m "
-                            f"({summary['used_stroke_length_m']:.4g} m used); distance-domain spectrum over "
-                            f"q = {an.C_F_distance.omega_min:.3g}-{an.C_F_distance.omega_max:.3g} rad/m.")
-    s.paragraphs += [html.escape(n) for n in an.notes]
-    s.paragraphs.append("Processing: " + html.escape("; ".join(an.C_F.provenance["steps"])) + ".")
-    s.figures.append(("measured_force_CF.png", plots.figure_png_bytes(plots.spectrum_figure(
+        paras.append(f"Sliding speed {an.speed:g} m/s: stroke length {summary['stroke_length_m']:.4g} m "
+                     f"({summary['used_stroke_length_m']:.4g} m used); distance-domain spectrum over "
+                     f"q = {an.C_F_distance.omega_min:.3g}-{an.C_F_distance.omega_max:.3g} rad/m.")
+    paras += [esc(n) for n in an.notes]
+    paras.append("Processing: " + esc("; ".join(an.C_F.provenance["steps"])) + ".")
+    figures = [Figure("measured_force_CF", plots.figure_png_bytes(plots.spectrum_figure(
         [(an.C_F, "C_F (measured)")], fits=[(f, "")], band=f.band, ylabel=r"$C_F$ (N$^2$ s)",
-        title="Friction-force spectrum")), "C_F averaged over strokes, with the fit."))
+        title="Friction-force spectrum")),
+        f"C_F of the measured friction force (N^2 s), averaged over {len(st.segments)} strokes, with the power-law fit: "
+        f"C_F slope -{f.gamma:.2f} ± {f.gamma_err:.2f} over {f.band[0]:.3g}-{f.band[1]:.3g} rad/s"
+        + (" (not a power law: " + "; ".join(f.flags) + ")." if f.flags else "."))]
     dt = float(d.t[1] - d.t[0])
     rows = [[str(i + 1), f"{a * dt:.4g}", f"{b * dt:.4g}", "used"] for i, (a, b) in enumerate(st.segments)]
-    s.tables.append(("Strokes used (times after the cut; every used stroke trimmed to the same length) and dropped "
-                     "(stroke numbers count all strokes found)",
-                     ["#", "start (s)", "end (s)", "status"],
-                     rows + [[str(i), "", "", f"dropped: {r}"] for i, r in st.dropped]))
+    tab = table("Strokes used (times after the cut; every used stroke trimmed to the same length) and dropped "
+                "(stroke numbers count all strokes found)", ["#", "start (s)", "end (s)", "status"],
+                rows + [[str(i), "", "", f"dropped: {esc(r)}"] for i, r in st.dropped])
     if an.C_F_distance is not None:
         fig = plots.spectrum_figure([(an.C_F_distance, "C_F(q), q = omega / v")], ylabel=r"$C_F(q)$ (N$^2$ m)",
                                     title=f"Friction force against sliding distance (v = {an.speed:g} m/s)")
         fig.axes[0].set_xlabel(r"$q$ (rad/m)")
-        s.figures.append(("measured_force_CF_distance.png", plots.figure_png_bytes(fig),
-                          "C_F in the distance domain: the same spectrum against q = omega / v."))
+        figures.append(Figure("measured_force_CF_distance", plots.figure_png_bytes(fig),
+                              f"C_F in the distance domain: the same spectrum against q = omega / v, v = {an.speed:g} m/s."))
     if an.C_mu is not None:
-        s.figures.append(("measured_force_Cmu.png", plots.figure_png_bytes(plots.spectrum_figure(
-            [(an.C_mu, "C_mu of F/N")], ylabel=r"$C_\mu$ (s)", title="Friction coefficient spectrum")), "C_mu."))
+        figures.append(Figure("measured_force_Cmu", plots.figure_png_bytes(plots.spectrum_figure(
+            [(an.C_mu, "C_mu of F/N")], ylabel=r"$C_\mu$ (s)", title="Friction coefficient spectrum")),
+            f"C_mu of mu(t) = F(t)/N(t): exponent {an.fit_mu.gamma:.2f} ± {an.fit_mu.gamma_err:.2f}."
+            if an.fit_mu is not None else "C_mu of mu(t) = F(t)/N(t)."))
     if an.C_x_equiv is not None:
-        s.figures.append(("measured_force_Cx_equivalent.png", plots.figure_png_bytes(plots.spectrum_figure(
+        figures.append(Figure("measured_force_Cx_equivalent", plots.figure_png_bytes(plots.spectrum_figure(
             [(an.C_x_equiv, "equivalent free-block C_x (eq. 3)")], title="Equivalent C_x of a free block (inferred)")),
-            "C_F / (M^2 omega^4): the displacement a free block would show (eq. 3)."))
-    return [s], summary
+            f"C_F / (M^2 omega^4) with M = {an.mass:g} kg: the displacement a free block would show (eq. 3), inferred."))
+    result = StudyResult("measured", f"Measured friction force: {Path(d.source).name}", {}, tuple(figures),
+                         paragraphs(paras) + tab)
+    return [result], summary
+
+
+def build_measured_report(data, mass: float, band=None, g: float = 9.81):
+    """Results (StudyResult list) and summary of measured x(t), with block mass ``mass`` (kg)."""
+    from reduced_models._version import package_version
+
+    from . import plots
+    from .spectra import displacement_spectrum, force_spectrum, friction_coefficient_spectrum, rms_from_spectrum
+
+    spec = displacement_spectrum(data.t, data.x)
+    fit = fit_power_law(spec, band=band)
+    cf = force_spectrum(spec, mass)
+    cmu = friction_coefficient_spectrum(spec, g)
+    zeta_rms = rms_from_spectrum(spec)
+    mu_rms = rms_from_spectrum(cmu)
+    summary = {"version": package_version(), "source": data.source, "mass_kg": mass, "n_samples": len(data.t),
+               "dt_s": float(data.t[1] - data.t[0]), "resampled": data.resampled, "warning": data.warning,
+               "gamma": fit.gamma, "gamma_err": fit.gamma_err, "band": list(fit.band), "fit": fit.to_dict(),
+               "mean_velocity": spec.provenance["mean_velocity"], "zeta_rms_m": zeta_rms, "mu_rms": mu_rms,
+               "spectrum_steps": spec.provenance["steps"]}
+    text = paragraphs([
+        f"{len(data.t)} samples every {data.t[1] - data.t[0]:.4g} s; mean velocity {1e3 * summary['mean_velocity']:.4g} mm/s"
+        + (f". {esc(data.warning)}" if data.warning else "."),
+        f"gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} (95 %) over {fit.band[0]:.3g}-{fit.band[1]:.3g} rad/s"
+        f"{' (automatic band)' if fit.band_auto else ''}; zeta_rms = {zeta_rms:.4g} m and mu_rms = {mu_rms:.4g} "
+        "(dimensionless) over the resolved band (eq. 4). C_F = M^2 omega^4 C_x assumes the block is free (inertial "
+        f"relation, eq. 3), with M = {mass:g} kg.",
+        "Processing: " + esc("; ".join(spec.provenance["steps"])) + ".",
+    ])
+    figures = (
+        Figure("measured_Cx", plots.figure_png_bytes(plots.spectrum_figure([(spec, "C_x")], fits=[(fit, "")], band=fit.band,
+                                                                          title="Displacement spectrum")),
+               f"C_x of the measured displacement (m^2 s) with the power-law fit: gamma = {fit.gamma:.2f} ± "
+               f"{fit.gamma_err:.2f} over {fit.band[0]:.3g}-{fit.band[1]:.3g} rad/s (shaded)."),
+        Figure("measured_CF", plots.figure_png_bytes(plots.spectrum_figure([(cf, "C_F = M^2 omega^4 C_x")], ylabel=r"$C_F$ (N$^2$ s)",
+                                                                          title="Force spectrum (eq. 3)")),
+               f"C_F (N^2 s) of a free block of M = {mass:g} kg, from C_x by eq. (3): slope {4 - fit.gamma:+.2f} in the fit band."),
+        Figure("measured_Cmu", plots.figure_png_bytes(plots.spectrum_figure([(cmu, "C_mu = omega^4 C_x / g^2")], ylabel=r"$C_\mu$ (s)",
+                                                                           title="Friction coefficient spectrum")),
+               f"C_mu (s) = omega^4 C_x / g^2; mu_rms = {mu_rms:.3g} over the resolved band (eq. 4)."),
+    )
+    return [StudyResult("measured", f"Measured displacement: {Path(data.source).name}", {}, figures, text)], summary

@@ -90,12 +90,15 @@ def test_html_embeds_non_blank_figures(quick_report):
     imgs = re.findall(r"src='data:image/png;base64,([^']+)'", page)
     from engine_sim import shipped_scenarios
 
-    n_fig = 5 + len(shipped_scenarios()) + 2  # pads_with_wear has three figures
-    assert len(imgs) == n_fig
+    # at least the models' 5 figures and one per scene (pads_with_wear has three); each file embedded once
+    files = sorted((quick_report / "figures").glob("*.png"))
+    assert len(imgs) == len(files) >= 5 + len(shipped_scenarios()) + 2
+    assert sorted(base64.b64decode(d) for d in imgs) == sorted(f.read_bytes() for f in files)
     for data in imgs:
         arr = mpimg.imread(io.BytesIO(base64.b64decode(data)), format="png")
         assert arr.std() > 0.05  # a blank figure has (almost) no variance
-    assert len(list((quick_report / "figures").glob("*.png"))) == n_fig
+    # numbered captions, one per figure, in order
+    assert re.findall(r"<b>Figure (\d+)\.</b>", page) == [str(k) for k in range(1, len(imgs) + 1)]
     assert "Models II and III do not apply to this scene" in page  # said, not left out silently
     assert "Models I and II do not apply to this scene" in page
 

@@ -1,11 +1,12 @@
-"""The report's stages run in worker processes give the same numbers as in one process, every progress label
+"""The report's studies run in worker processes give the same numbers as in one process, every progress event
 arrives, and the particles' cost ratio is measured with both scenes taking turns."""
 import math
 
 import pytest
 
 from compare.cli import main
-from compare.report import _run_stages
+from compare.report import run_studies
+from compare.studies import model_II, model_III
 from engine_sim import load_scenario, shipped_scenarios
 from engine_sim.timing import step_costs
 
@@ -24,20 +25,23 @@ def _flat(d, prefix=""):
     return out
 
 
-def test_stages_in_workers_match_one_process():
-    stages = [("model III", ["model III"]), ("model II", ["model II"])]
-    serial_labels, pooled_labels = [], []
-    serial = _run_stages(stages, True, 0, 1, serial_labels.append)
-    pooled = _run_stages(stages, True, 0, 2, pooled_labels.append)
-    assert serial_labels == ["model III", "model II"] and sorted(pooled_labels) == sorted(serial_labels)
-    for (sec_a, sum_a, _), (sec_b, sum_b, _) in zip(serial, pooled):
-        assert [s.title for s in sec_a] == [s.title for s in sec_b]
-        a, b = _flat(sum_a), _flat(sum_b)
-        assert a.keys() == b.keys() and len(a) > 10
-        # seeded stages: equal up to the last bits of a floating-point sum (wall times excluded)
-        for k in a:
-            if "wall" not in k:
-                assert b[k] == pytest.approx(a[k], rel=1e-9, abs=1e-300), k
+def test_studies_in_workers_match_one_process():
+    studies = [model_III.STUDY, model_II.STUDY]
+    serial_events, pooled_events = [], []
+    serial = run_studies(studies, True, 0, 1, lambda label, ev, wall=None: serial_events.append((label, ev)))
+    pooled = run_studies(studies, True, 0, 2, lambda label, ev, wall=None: pooled_events.append((label, ev)))
+    assert serial_events == [("model III", "start"), ("model III", "done"), ("model II", "start"), ("model II", "done")]
+    assert sorted(pooled_events) == sorted(serial_events)
+    assert [r.key for rs in serial for r in rs] == ["model_III", "model_III_N300", "model_II"]
+    for res_a, res_b in zip(serial, pooled):
+        for a_, b_ in zip(res_a, res_b):
+            assert (a_.key, a_.title) == (b_.key, b_.title)
+            a, b = _flat(a_.numbers), _flat(b_.numbers)
+            assert a.keys() == b.keys() and len(a) > 10
+            # seeded studies: equal up to the last bits of a floating-point sum (wall times excluded)
+            for k in a:
+                if "wall" not in k:
+                    assert b[k] == pytest.approx(a[k], rel=1e-9, abs=1e-300), k
 
 
 def test_particles_cost_more_side_by_side():

@@ -1,1 +1,15 @@
-"""Report studies: each module defines ``STUDY = Study(key, label, run)`` (see :mod:`compare.study`)."""
+"""The report's studies, in page order. A study is one module defining ``STUDY`` (see ``compare.study``);
+the scenes contribute one study per shipped scenario."""
+from __future__ import annotations
+
+from . import model_I, model_II, model_III, multiscale, work_precision
+from .scenes import scene_studies
+
+__all__ = ["STUDIES", "selected"]
+
+STUDIES = [model_I.STUDY, multiscale.STUDY, model_III.STUDY, model_II.STUDY, *scene_studies(), work_precision.STUDY]
+
+
+def selected(quick: bool) -> list:
+    """The studies of a quick or full report, in page order."""
+    return [s for s in STUDIES if s.quick or not quick]

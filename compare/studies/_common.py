@@ -1,0 +1,57 @@
+"""Small helpers shared by the studies: per-band ratios, timings, balances."""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from ..html import esc
+from ..spectra import band_average
+
+__all__ = ["band_ratios", "ratio_rows", "log_err", "param_rows", "timed", "timing", "balances", "ratio_range"]
+
+
+def band_ratios(spec, theory_values, edges) -> list:
+    """[{"band": [lo, hi], "ratio": measured / theory}] over consecutive log bands."""
+    r = band_average(spec, edges) / band_average(spec, edges, theory_values)
+    return [{"band": [float(edges[i]), float(edges[i + 1])], "ratio": float(r[i])} for i in range(len(r))]
+
+
+def ratio_rows(ratios) -> list:
+    return [[f"{b['band'][0]:.3g} - {b['band'][1]:.3g}", f"{b['ratio']:.3f}"] for b in ratios]
+
+
+def ratio_range(ratios, fmt=".2f") -> str:
+    """"lo-hi" of the per-band ratios."""
+    r = [b["ratio"] for b in ratios]
+    return f"{min(r):{fmt}}-{max(r):{fmt}}"
+
+
+def log_err(ratios) -> float:
+    """Band-averaged |ln ratio|."""
+    return float(np.mean([abs(math.log(b["ratio"])) for b in ratios]))
+
+
+def param_rows(ex: dict) -> list:
+    """Table rows (name, value, unit, provenance) of an extracted-parameter dict."""
+    return [[k, f"{v['value']:.4g}", esc(v["unit"]), esc(v["provenance"])] for k, v in ex.items()]
+
+
+def timed(fn, *a, **k):
+    """(fn(*a, **k), wall seconds)."""
+    t0 = time.perf_counter()
+    out = fn(*a, **k)
+    return out, time.perf_counter() - t0
+
+
+def timing(model: str, run: str, wall: str, err: str) -> dict:
+    """A row of the report's speed table (as shown, so strings)."""
+    return {"model": model, "run": run, "wall_s": wall, "mean_abs_log_ratio": err}
+
+
+def balances(tr) -> dict:
+    """Energy and force balance of an engine trace, relative to the drive's work and force."""
+    resid = tr.work_drive[-1] + tr.work_recycle[-1] - tr.dissipated[-1] - tr.mech_energy[-1]
+    return {"energy_balance_rel": float(resid / tr.work_drive[-1]),
+            "force_balance_rel": float(np.mean(tr.F_t + tr.F_drag) / np.mean(tr.F_drive) - 1)}

@@ -1,0 +1,90 @@
+"""The report as a reader meets it: index.html opened in headless Chromium (Debian's `chromium` driven through
+`chromium-driver` with selenium). Every image decodes, the console stays free of errors, every section is
+reachable from the table of contents, and a screenshot of the first screen is saved beside the test's output.
+
+The report is a quick one restricted to two real studies (model III and the tilted-plane scene), so the test
+costs well under a minute. Skipped, with the reason, where no browser or driver is installed (.ci/run installs
+them with apt-get)."""
+import shutil
+import time
+
+import pytest
+
+from compare.html import write_report
+from compare.report import build_report
+
+
+def _browser():
+    """(chromium, chromedriver) paths, or skip saying what is missing."""
+    try:
+        import selenium  # noqa: F401
+    except ImportError:
+        pytest.skip("selenium is not installed (pip install -e '.[test]')")
+    chrome = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
+    driver = shutil.which("chromedriver")
+    if not chrome or not driver:
+        pytest.skip("no headless browser: install Debian's chromium and chromium-driver (apt-get install -y chromium "
+                    "chromium-driver), as .ci/run does")
+    return chrome, driver
+
+
+@pytest.fixture(scope="module")
+def small_report(tmp_path_factory):
+    from compare import studies
+
+    chosen = [s for s in studies.STUDIES if s.key in ("model_III", "scenarios/tilted_plane")]
+    assert len(chosen) == 2
+    results, summary = build_report(quick=True, seed=0, studies=chosen)
+    return write_report(tmp_path_factory.mktemp("browser") / "report", results, summary), results
+
+
+def test_report_reads_in_a_browser(small_report, tmp_path):
+    chrome, driver_path = _browser()
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+    from selenium.webdriver.common.by import By
+
+    out, results = small_report
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = chrome
+    for flag in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+                 "--disable-component-update", "--disable-sync", "--no-first-run", "--window-size=1280,900",
+                 f"--user-data-dir={tmp_path / 'profile'}"):
+        opts.add_argument(flag)
+    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    t0 = time.perf_counter()
+    drv = webdriver.Chrome(service=Service(driver_path), options=opts)
+    try:
+        drv.get((out / "index.html").as_uri())
+        # every image decodes (a broken data URI leaves naturalWidth at 0)
+        imgs = drv.execute_script("return Array.from(document.images).map(i => [i.alt, i.complete, i.naturalWidth]);")
+        n_fig = sum(len(r.figures) for r in results)
+        assert len(imgs) == n_fig >= 2
+        assert all(complete and width > 0 for _, complete, width in imgs), imgs
+        # captions numbered 1..n in page order
+        caps = [e.text for e in drv.find_elements(By.CSS_SELECTOR, "figcaption")]
+        assert [c.split(".")[0] for c in caps] == [f"Figure {k}" for k in range(1, n_fig + 1)], caps
+        # every section is linked from the contents, and each link brings its section into view
+        sections = [e.get_attribute("id") for e in drv.find_elements(By.CSS_SELECTOR, "section[id]")]
+        links = drv.find_elements(By.CSS_SELECTOR, "nav#contents a")
+        assert [a.get_attribute("hash").lstrip("#") for a in links] == sections
+        assert len(sections) == len([r for r in results if r.title])
+        for sid in sections:
+            drv.execute_script("window.scrollTo(0, 0);")
+            drv.find_element(By.CSS_SELECTOR, f"nav#contents a[href='#{sid}']").click()
+            top, height, at_bottom = drv.execute_script(
+                f"const r = document.getElementById('{sid}').getBoundingClientRect().top;"
+                "const e = document.documentElement;"
+                "return [r, window.innerHeight, window.scrollY + window.innerHeight >= e.scrollHeight - 2];")
+            # at the top of the window, or in view with the page scrolled to its end (the last sections)
+            assert -2 <= top < height and (top < 5 or at_bottom), (sid, top, at_bottom)
+        # no console errors
+        errors = [e for e in drv.get_log("browser") if e["level"] == "SEVERE"]
+        assert not errors, errors
+        # the first screen, for a person to look at
+        drv.execute_script("window.scrollTo(0, 0);")
+        shot = tmp_path / "report_first_screen.png"
+        assert drv.save_screenshot(str(shot)) and shot.stat().st_size > 10_000
+        print(f"\nscreenshot of the report's first screen: {shot} (browser part {time.perf_counter() - t0:.1f} s)")
+    finally:
+        drv.quit()

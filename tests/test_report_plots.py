@@ -1,0 +1,75 @@
+"""The report's figures: what the reader is told is what is drawn (exponent names, the reference point, axis
+ranges), and importing the plots leaves matplotlib's backend alone."""
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from compare import plots
+from compare.fits import fit_power_law
+from compare.spectra import displacement_spectrum, force_series_spectrum
+
+
+@pytest.fixture(scope="module")
+def walk():
+    """A random walk (C_x ~ omega^-2) and its steps (white force), 2^14 samples."""
+    t = np.arange(2**14) * 1e-3
+    f = np.random.default_rng(1).standard_normal(t.size)
+    return t, np.cumsum(f) * 1e-9, f
+
+
+def _legend_texts(fig):
+    ax = fig.axes[0]
+    texts = [t.get_text() for t in ax.get_legend().get_texts()]
+    for art in ax.artists:  # the fits' legend is added as an artist
+        texts += [t.get_text() for t in art.get_texts()]
+    return texts
+
+
+def test_force_slopes_are_not_called_gamma(walk):
+    t, x, f = walk
+    sx, sF = displacement_spectrum(t, x), force_series_spectrum(t, f)
+    fx, fF = fit_power_law(sx, band=(10.0, 300.0)), fit_power_law(sF, band=(10.0, 300.0))
+    tx = _legend_texts(plots.spectrum_figure([(sx, "x")], fits=[(fx, "")]))
+    tF = _legend_texts(plots.spectrum_figure([(sF, "F")], fits=[(fF, "")], ylabel="C_F"))
+    assert any(r"$\gamma$ = " in s and f"{fx.gamma:.2f}" in s for s in tx), tx
+    assert not any("gamma" in s for s in tF) and any("$C_F$ slope = " in s and f"{-fF.gamma:.2f}" in s for s in tF), tF
+
+
+def test_axis_follows_the_data_not_a_closed_form_zero(walk):
+    # a theory curve with a zero (a sinc^2 factor) must not stretch the axis over tens of decades
+    t, x, _ = walk
+    s = displacement_spectrum(t, x)
+    w = np.logspace(0, 3, 300)
+    dip = 1e-16 * w**-2.0
+    dip[150] = 1e-40
+    lo, hi = plots.spectrum_figure([(s, "walk")], [(w, dip, "theory with a zero")]).axes[0].get_ylim()
+    data = s.C[s.omega > 0]
+    assert lo >= data.min() / 1e3 and hi <= data.max() * 1e3, (lo, hi, data.min(), data.max())
+
+
+def test_work_precision_draws_every_setting_and_the_reference():
+    rows = [{"dt": 2.5e-5, "iterations": 20, "cost": 0.9, "error": 0.0, "pareto": None, "default": False},
+            {"dt": 1e-4, "iterations": 2, "cost": 0.2, "error": 0.004, "pareto": True, "default": True},
+            {"dt": 5e-5, "iterations": 2, "cost": 0.4, "error": 0.0015, "pareto": True, "default": False},
+            {"dt": 1e-4, "iterations": 10, "cost": 0.3, "error": 0.004, "pareto": False, "default": False}]
+    fig = plots.work_precision_figure(rows)
+    ax = fig.axes[0]
+    pts = [l for l in ax.get_lines() if l.get_marker() in ("o", "*")]
+    assert len(pts) == len(rows)
+    labels = [t.get_text() for t in ax.texts]
+    assert any("(reference)" in s for s in labels) and any("(default)" in s for s in labels)
+    # every label inside the figure (none clipped at an edge)
+    fig.canvas.draw()
+    W, H = fig.canvas.get_width_height()
+    for txt in ax.texts:
+        bb = txt.get_window_extent()
+        assert bb.x0 >= 0 and bb.x1 <= W and bb.y0 >= 0 and bb.y1 <= H, (txt.get_text(), bb, W, H)
+
+
+def test_importing_the_report_leaves_the_backend_alone():
+    code = ("import matplotlib; matplotlib.use('pdf'); import compare.plots, compare.report, compare.studies; "
+            "print(matplotlib.get_backend())")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()
+    assert out == "pdf"

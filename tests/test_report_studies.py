@@ -1,0 +1,154 @@
+"""The report as studies: the registry, the writers (table of contents, numbered captions, nested summary
+keys), the progress lines a log sees, --version, and the help every subcommand carries."""
+import io
+import json
+import re
+
+import pytest
+
+from compare import studies
+from compare.cli import _build_parser, main
+from compare.html import page, summary_of, write_report
+from compare.progress import StageProgress
+from compare.report import build_report
+from compare.study import Figure, Study, StudyResult
+
+
+def _png() -> bytes:
+    from compare import plots
+    from compare.spectra import displacement_spectrum
+    import numpy as np
+
+    t = np.arange(4096) * 1e-3
+    x = np.cumsum(np.cumsum(np.random.default_rng(0).standard_normal(t.size))) * 1e-9
+    return plots.figure_png_bytes(plots.spectrum_figure([(displacement_spectrum(t, x), "random walk")]))
+
+
+def _stub(quick, seed):
+    """Two sections and a numbers-only result, the way a real study returns them."""
+    png = _png()
+    return [StudyResult("stub_a", "Stub A", {"x": seed + 1.5}, (Figure("stub_a", png, "Stub A: 1 against 1."),),
+                        "<p>a</p>", ({"model": "stub", "run": "-", "wall_s": "0.0", "mean_abs_log_ratio": "0"},)),
+            StudyResult("scenarios/stub_b", "Stub B", {"y": [1, 2]}, (Figure("stub_b", png, "Stub B."),), "<p>b</p>"),
+            StudyResult("stub_c", "", {"z": 3})]
+
+
+STUB = Study("stub_a", "stub", _stub)
+
+
+def test_registry_keys_labels_unique_and_every_scene_present():
+    from engine_sim import shipped_scenarios
+
+    keys = [s.key for s in studies.STUDIES]
+    labels = [s.label for s in studies.STUDIES]
+    assert len(set(keys)) == len(keys) and len(set(labels)) == len(labels)
+    assert {f"scenarios/{n}" for n in shipped_scenarios()} <= set(keys)
+    assert keys[0] == "model_I" and keys.index("model_I") < keys.index("model_III") < keys.index("model_II")
+    assert max(keys.index(k) for k in keys if not k.startswith("scenarios/") and k != "engine_work_precision") \
+        < min(keys.index(k) for k in keys if k.startswith("scenarios/"))  # the models first, then the scenes
+    quick = [s.key for s in studies.selected(True)]
+    assert "engine_work_precision" not in quick and "engine_work_precision" in [s.key for s in studies.selected(False)]
+    assert all(s.alone == (s.key == "engine_work_precision") for s in studies.STUDIES)
+
+
+def test_summary_nests_keys_and_keeps_numbers_only_results():
+    res = _stub(False, 0)
+    s = summary_of(res, {"version": "v", "scenarios": {}})
+    assert s["stub_a"] == {"x": 1.5} and s["scenarios"] == {"stub_b": {"y": [1, 2]}} and s["stub_c"] == {"z": 3}
+
+
+def test_page_has_contents_anchors_and_numbered_captions():
+    html = page(_stub(False, 0), {"version": "v", "seed": 0})
+    links = re.findall(r"<a href='#([^']+)'>", html)
+    ids = re.findall(r"<section id='([^']+)'>", html)
+    assert links == ids and len(ids) == 2  # the numbers-only result has no section
+    assert re.findall(r"<b>Figure (\d+)\.</b>", html) == ["1", "2"]
+    assert "(figures/stub_b.png)" in html
+
+
+def test_build_report_with_stub_study_writes_every_file(tmp_path):
+    events = []
+    results, summary = build_report(quick=True, seed=2, studies=[STUB],
+                                    progress=lambda label, ev, wall=None: events.append((label, ev)))
+    assert events == [("stub", "start"), ("stub", "done")]
+    assert summary["stub_a"] == {"x": 3.5} and summary["timings"][0]["model"] == "stub"
+    assert [r.title for r in results if r.title][-1] == "Speed against error"
+    out = write_report(tmp_path / "r", results, summary)
+    assert sorted(p.name for p in (out / "figures").iterdir()) == ["stub_a.png", "stub_b.png"]
+    assert json.loads((out / "summary.json").read_text())["scenarios"]["stub_b"] == {"y": [1, 2]}
+
+
+def test_studies_marked_alone_run_last_after_the_speed_table():
+    order = []
+
+    def first(quick, seed):
+        order.append("pooled")
+        return StudyResult("first", "First", {"q": quick})
+
+    def timed_alone(quick, seed):
+        order.append("alone")
+        return StudyResult("alone", "Alone", {"n": 1})
+
+    results, summary = build_report(quick=False, studies=[Study("alone", "alone", timed_alone, alone=True),
+                                                         Study("first", "first", first)], workers=1)
+    assert order == ["pooled", "alone"]
+    assert [r.key for r in results] == ["first", "timings", "alone"]
+    assert list(summary).index("alone") < list(summary).index("timings")  # as before: the speed table's numbers last
+
+
+def test_progress_without_a_terminal_prints_one_line_per_stage():
+    buf = io.StringIO()  # not a tty, as in a log or CI
+    with StageProgress(["a", "b"], desc="report", stream=buf) as p:
+        p("a", "start")
+        p("b", "start")
+        p("b", "done", 1.25)
+        p("a", "done", 2.0)
+    lines = buf.getvalue().splitlines()
+    assert len(lines) == 2
+    assert re.fullmatch(r"report: \[1/2\] b done in 1\.2 s \(\d+\.\d s elapsed\)", lines[0]), lines[0]
+    assert lines[1].startswith("report: [2/2] a done in 2.0 s")
+
+
+def test_progress_bar_names_the_running_stages():
+    buf = io.StringIO()
+    with StageProgress(["model I", "model II"], stream=buf, tty=True) as p:
+        p("model I", "start")
+        p("model II", "start")
+        p("model I", "done", 1.0)
+        assert p.bar.postfix == "running: model II"
+    assert "running: model I, model II" in buf.getvalue()
+
+
+def test_version(capsys):
+    from reduced_models._version import package_version
+
+    with pytest.raises(SystemExit) as e:
+        main(["--version"])
+    assert e.value.code == 0
+    assert capsys.readouterr().out.strip() == f"frictionnoise {package_version()}"
+
+
+def test_every_subcommand_has_a_one_line_help_and_seed_is_documented():
+    ap = _build_parser()
+    sub = next(a for a in ap._actions if a.dest == "command")
+    helps = {c.dest: c.help for c in sub._choices_actions}
+    assert set(helps) == set(sub.choices) and all(h and "\n" not in h for h in helps.values())
+    for name, parser in sub.choices.items():
+        seed = [a for a in parser._actions if "--seed" in a.option_strings]
+        if name in ("report", "run", "compare", "render"):
+            assert seed and seed[0].help and "seed" in seed[0].help, name
+    assert "no --seed" in helps["analyze"] and "seed" in helps["sweep"]
+
+
+def test_run_progress_without_a_terminal_prints_tenths():
+    from compare.cli import _progress_bar
+
+    buf = io.StringIO()
+    bar, update = _progress_bar("scene", stream=buf)
+    with bar:
+        for k in range(1, 101):
+            update(0.06 * k, 6.0)
+    lines = buf.getvalue().splitlines()
+    assert len(lines) == 10, lines
+    assert lines[0].startswith("scene: 0.6/6.0 s simulated (10 %), ") and lines[-1].startswith("scene: 6.0/6.0 s simulated (100 %)")
+    assert all(re.search(r"\d+\.\d s elapsed$", ln) for ln in lines)
