@@ -27,7 +27,7 @@ def _build_parser() -> argparse.ArgumentParser:
     rep.set_defaults(func=_cmd_report)
 
     run = sub.add_parser("run", help="run a scenario and write its trace (.npz + .json)")
-    run.add_argument("scenario", help="scenario TOML file")
+    run.add_argument("scenario", help="scenario TOML file or shipped name (see `frictionnoise scenarios`)")
     run.add_argument("-o", "--output", default=None, help="output folder (default: run-<scenario name>)")
     run.add_argument("--duration", type=float, default=None, help="simulated seconds (default: the scenario's)")
     run.add_argument("--seed", type=int, default=None, help="random seed (default: the scenario's)")
@@ -36,14 +36,14 @@ def _build_parser() -> argparse.ArgumentParser:
     run.set_defaults(func=_cmd_run)
 
     cmp_ = sub.add_parser("compare", help="report one scene (scenario TOML or trace .npz) against the reduced models")
-    cmp_.add_argument("source", help="scenario TOML file or trace .npz written by `frictionnoise run`")
+    cmp_.add_argument("source", help="scenario TOML file, shipped name, or trace .npz written by `frictionnoise run`")
     cmp_.add_argument("-o", "--output", default=None, help="output folder (default: compare-<name>)")
     cmp_.add_argument("--duration", type=float, default=None, help="simulated seconds when running a scenario")
     cmp_.add_argument("--seed", type=int, default=None)
     cmp_.set_defaults(func=_cmd_compare)
 
     ren = sub.add_parser("render", help="render a scenario headless to PNG frames (and an animated GIF)")
-    ren.add_argument("scenario", help="scenario TOML file")
+    ren.add_argument("scenario", help="scenario TOML file or shipped name")
     ren.add_argument("-o", "--output", default=None, help="output folder (default: render-<scenario name>)")
     ren.add_argument("--frames", type=int, default=12, help="number of frames (default: %(default)s)")
     ren.add_argument("--duration", type=float, default=0.6, help="simulated seconds spanned (default: %(default)s)")
@@ -59,6 +59,9 @@ def _build_parser() -> argparse.ArgumentParser:
     sw.add_argument("--serial", action="store_true", help="run in this process, without dask")
     sw.set_defaults(func=_cmd_sweep)
 
+    lst = sub.add_parser("scenarios", help="list the shipped scenarios (run one by name: frictionnoise run NAME)")
+    lst.set_defaults(func=_cmd_scenarios)
+
     an = sub.add_parser("analyze", help="analyse measured x(t) from a CSV file: spectra, gamma, rms, report")
     an.add_argument("data", help="CSV with a header row: time [s] and displacement columns")
     an.add_argument("--mass", type=float, required=True, help="block mass M (kg), for C_F = M^2 omega^4 C_x")
@@ -69,6 +72,17 @@ def _build_parser() -> argparse.ArgumentParser:
     an.add_argument("-o", "--output", default=None, help="output folder (default: analyze-<file stem>)")
     an.set_defaults(func=_cmd_analyze)
     return ap
+
+
+def _cmd_scenarios(args) -> int:
+    from engine_sim import load_scenario, shipped_scenarios
+    from engine_sim.scenario import scenario_summary
+
+    shipped = shipped_scenarios()
+    width = max(map(len, shipped), default=0)
+    for name, path in shipped.items():
+        print(f"{name:{width}s}  {scenario_summary(load_scenario(path).description)}")
+    return 0
 
 
 def _cmd_sweep(args) -> int:
@@ -241,7 +255,7 @@ def _cmd_compare(args) -> int:
     from .traceio import TraceFileError, load_trace
 
     src = Path(args.source)
-    if not src.exists():
+    if src.suffix == ".npz" and not src.exists():
         raise UserError(f"{src}: no such file")
     trace = None
     if src.suffix == ".npz":

@@ -8,14 +8,19 @@ file, the field and the limit, including the time-step limit that the pad spring
 from __future__ import annotations
 
 import math
+import re
 import tomllib
 from dataclasses import dataclass, field, fields, replace
+from importlib import resources
 from pathlib import Path
 
 __all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", "SubstrateSpec", "DriveSpec",
-           "WearSpec", "RunSpec", "load_scenario", "scenario_from_dict", "shipped_scenarios", "SCENARIO_DIR"]
+           "WearSpec", "RunSpec", "load_scenario", "scenario_from_dict", "shipped_scenarios", "resolve_scenario",
+           "scenario_summary", "SCENARIO_DIR"]
 
-SCENARIO_DIR = Path(__file__).resolve().parent.parent / "scenarios"
+# the shipped scenarios are package data of the ``scenarios`` package (installed with every install, not found
+# relative to a source tree); a regular (non-zipped) install gives a real folder
+SCENARIO_DIR = Path(str(resources.files("scenarios")))
 G = 9.81  # m/s^2
 
 # Explicit spring forces are accurate for omega dt < 0.3 (DESIGN.md, measured on pymunk 7.3).
@@ -461,11 +466,23 @@ def _check_consistency(sc: Scenario, where: str):
         raise _err(where, f"substrate.alpha = {sc.substrate.alpha!r} must be < 2 (patch friction stays positive)")
 
 
+def resolve_scenario(name_or_path) -> Path:
+    """The file of a scenario given as a path or as the name of a shipped one (``pads_friction_patches``, with
+    or without ``.toml``): an existing path wins over a shipped name of the same spelling."""
+    path = Path(name_or_path)
+    if path.exists():
+        return path
+    shipped = shipped_scenarios()
+    stem = path.name[:-5] if path.name.endswith(".toml") else path.name
+    if path.parent == Path(".") and stem in shipped:
+        return shipped[stem]
+    raise ScenarioError(f"{path}: no such file, nor a shipped scenario (frictionnoise scenarios lists them: "
+                        f"{', '.join(shipped)})")
+
+
 def load_scenario(path) -> Scenario:
-    """Read and validate a TOML scenario file."""
-    path = Path(path)
-    if not path.exists():
-        raise ScenarioError(f"{path}: no such file")
+    """Read and validate a TOML scenario file, given as a path or a shipped scenario's name."""
+    path = resolve_scenario(path)
     try:
         data = tomllib.loads(path.read_text())
     except UnicodeDecodeError:
@@ -476,5 +493,13 @@ def load_scenario(path) -> Scenario:
 
 
 def shipped_scenarios() -> dict:
-    """name -> path of the scenarios shipped in scenarios/."""
+    """name -> path of the scenarios shipped in the ``scenarios`` package."""
     return {p.stem: p for p in sorted(SCENARIO_DIR.glob("*.toml"))}
+
+
+def scenario_summary(description: str, width: int = 110) -> str:
+    """The first sentence of a scenario's description on one line, cut to ``width`` characters."""
+    text = " ".join(description.split())
+    end = re.search(r"(?<!Fig)(?<!eq)(?<!e\.g)\. (?=[A-Z(])", text)  # a sentence end, not an abbreviation
+    first = text if end is None else text[: end.start() + 1]
+    return first if len(first) <= width else first[: width - 3].rstrip() + "..."
