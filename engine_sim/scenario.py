@@ -102,7 +102,8 @@ class SubstrateSpec:
     kind "patches": a flat track of friction patches; patch boundaries at (j + r_j) a (so renewal
     intervals follow model I's tau0 (1 + r - r')), each patch with mu = mu0 (1 + alpha (r - 1/2)).
     kind "self_affine": a randomly rough profile by Fourier synthesis (streamed FIR filtering of white
-    noise): Hurst exponent ``hurst``, roll-off wavelength ``lambda_r`` (flat spectrum above it), short
+    noise): Hurst exponent ``hurst`` of the *line* (its 1D spectrum falls as q^-(1+2H); a line scan across an
+    isotropic surface of the same H), roll-off wavelength ``lambda_r`` (flat spectrum above it), short
     cut-off ``lambda_s``, rms slope ``rms_slope``, grid spacing lambda_s / 4; friction mu0 everywhere.
     ``a`` is then the renewal length used for the fit band (default: lambda_r).
     Patches may hold cavities where wear particles get trapped: with probability ``pit_p`` per patch, a
