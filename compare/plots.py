@@ -1,16 +1,25 @@
-"""Figures for reports (matplotlib, Agg). The only module of compare that imports matplotlib."""
+"""Figures for reports (matplotlib, Agg). The only module of compare that imports matplotlib.
+
+Figures are ``matplotlib.figure.Figure`` objects with their own Agg canvas: importing this module never changes
+the program's matplotlib backend, and no figure is registered with pyplot."""
 from __future__ import annotations
 
 import io
 from pathlib import Path
 
 import matplotlib
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from .spectra import Spectrum, log_bin
 
-from .spectra import Spectrum, log_bin  # noqa: E402
+
+def _subplots(*grid, figsize, dpi, **kw):
+    """A Figure on its own Agg canvas and its axes (pyplot's subplots without pyplot's backend or registry)."""
+    fig = Figure(figsize=figsize, dpi=dpi)
+    FigureCanvasAgg(fig)
+    return fig, fig.subplots(*grid, **kw)
 
 __all__ = ["spectrum_figure", "save_figure", "figure_png_bytes", "episode_histogram_figure"]
 
@@ -24,8 +33,8 @@ def spectrum_figure(measured: list, theory: list = (), *, title: str = "", ylabe
     fits : list of (PowerLawFit, label) -- drawn as thin lines over their band.
     band : shaded frequency band (rad/s), e.g. the fit band.
     """
-    fig, ax = plt.subplots(figsize=(6.4, 4.6), dpi=110)
-    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    fig, ax = _subplots(figsize=(6.4, 4.6), dpi=110)
+    colors = matplotlib.rcParams["axes.prop_cycle"].by_key()["color"]
     for i, (spec, label) in enumerate(measured):
         b = log_bin(spec, 20) if isinstance(spec, Spectrum) else spec
         ax.loglog(b.omega, b.C, "-", marker=".", ms=3, lw=1.2, color=colors[i % len(colors)], label=label)
@@ -51,7 +60,6 @@ def spectrum_figure(measured: list, theory: list = (), *, title: str = "", ylabe
 def figure_png_bytes(fig) -> bytes:
     buf = io.BytesIO()
     fig.savefig(buf, format="png")
-    plt.close(fig)
     return buf.getvalue()
 
 
@@ -64,7 +72,7 @@ def save_figure(fig, path: Path) -> bytes:
 
 def level_figure(v, C, exponent, err, omega_ref):
     """C_x at fixed omega against v, log-log, with the fitted power law."""
-    fig, ax = plt.subplots(figsize=(5.4, 4.0), dpi=110)
+    fig, ax = _subplots(figsize=(5.4, 4.0), dpi=110)
     ax.loglog(v * 1e3, C, "o", label="runs")
     A = np.exp(np.mean(np.log(C) - exponent * np.log(v)))
     vv = np.logspace(np.log10(v.min()), np.log10(v.max()), 20)
@@ -79,7 +87,7 @@ def level_figure(v, C, exponent, err, omega_ref):
 
 def work_precision_figure(rows):
     """Cost against error, log-log; Pareto front in red, the default labelled."""
-    fig, ax = plt.subplots(figsize=(5.5, 4.0), dpi=110)
+    fig, ax = _subplots(figsize=(5.5, 4.0), dpi=110)
     for r in rows:
         if r["pareto"] is None:
             continue
@@ -97,7 +105,7 @@ def work_precision_figure(rows):
 
 def episode_histogram_figure(ep: dict, title: str = ""):
     """Trap/release episode durations (log bins) and episode forces, by state."""
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(8.0, 3.6), dpi=110)
+    fig, (a1, a2) = _subplots(1, 2, figsize=(8.0, 3.6), dpi=110)
     tau = ep["tau"]
     bins = np.logspace(np.log10(max(tau.min(), 1e-4)), np.log10(tau.max() * 1.01), 30) if tau.size else 10
     for code, name, col in ((1, "trapped", "tab:blue"), (2, "moving", "tab:red"), (0, "idle", "0.5")):

@@ -1,4 +1,4 @@
-"""Headless rendering of a scene (matplotlib Agg, collections updated in place: ~20-60 ms a frame).
+"""Headless rendering of a scene (a matplotlib Figure on its own Agg canvas, collections updated in place: ~20-60 ms a frame).
 
 Draws a window around the block: the substrate (friction patches coloured by mu, or the rough profile, or the
 asperity caps), the pads or feet, their tangential springs to the block, the block, wear particles coloured by
@@ -8,15 +8,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib
+import matplotlib.colors
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.collections import EllipseCollection, LineCollection
+from matplotlib.figure import Figure
+from matplotlib.patches import Rectangle
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.collections import EllipseCollection, LineCollection  # noqa: E402
-from matplotlib.patches import Rectangle  # noqa: E402
-
-from . import units as U  # noqa: E402
+from . import units as U
 
 __all__ = ["SceneRenderer"]
 
@@ -35,7 +34,10 @@ class SceneRenderer:
             window = (0.65 * sc.pads.N * sc.pads.foot_length if self.asperities
                       else 0.6 * sc.wear.ahead if self.zoom else 12 * sc.substrate.a)
         self.window = window * U.LENGTH  # mm either side of the block
-        self.fig, self.ax = plt.subplots(figsize=(7.0, 5.0), dpi=dpi)
+        # a Figure on its own Agg canvas: importing or rendering never changes the program's matplotlib backend
+        self.fig = Figure(figsize=(7.0, 5.0), dpi=dpi)
+        FigureCanvasAgg(self.fig)
+        self.ax = self.fig.subplots()
         ax = self.ax
         ys = np.array(scene.pad_y)
         if self.asperities:  # micrometre relief under a centimetre sole: the axes zoom onto the interface
@@ -141,4 +143,4 @@ class SceneRenderer:
         self.fig.savefig(path)
 
     def close(self):
-        plt.close(self.fig)
+        self.fig.clear()
