@@ -20,7 +20,7 @@ from reduced_models import asperity_force, spring_block, wear_particle
 from reduced_models._version import package_version
 
 from .fits import fit_power_law
-from .spectra import band_average, displacement_spectrum, force_series_spectrum
+from .spectra import G_STANDARD, band_average, displacement_spectrum, force_series_spectrum
 
 __all__ = ["Section", "build_report", "write_report"]
 
@@ -807,10 +807,7 @@ def write_sweep_outputs(out_dir, sections, summary):
     out = Path(out_dir)
     (out / "figures").mkdir(parents=True, exist_ok=True)
 
-    def atomic(path: Path, data: bytes):
-        tmp = path.with_name(f".{path.name}.tmp")
-        tmp.write_bytes(data)
-        tmp.replace(path)
+    from frictionnoise import atomic_write as atomic
 
     for s in sections:
         for name, data, _ in s.figures:
@@ -831,7 +828,7 @@ def write_sweep_outputs(out_dir, sections, summary):
 
 
 # ----------------------------------------------------------------------------- measured data
-def build_measured_report(data, mass: float, band=None, g: float = 9.81):
+def build_measured_report(data, mass: float, band=None, g: float = G_STANDARD):
     """C_x, C_F (eq. 3), C_mu, the rms (eq. 4) and gamma of measured x(t)."""
     from . import plots
     from .spectra import displacement_spectrum, force_spectrum, friction_coefficient_spectrum, rms_from_spectrum

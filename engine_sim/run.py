@@ -1,15 +1,14 @@
 """engine_sim.run: simulate a scenario and record it (SI trace)."""
 from __future__ import annotations
 
-import os
 import pickle
 import signal
-import tempfile
 import threading
 import time
 from contextlib import contextmanager
-from importlib import metadata as _md
 from pathlib import Path
+
+from frictionnoise import atomic_write, package_version
 
 from .record import EngineTrace, Recorder
 from .scenario import Scenario, load_scenario
@@ -18,13 +17,6 @@ from .scene import Scene
 __all__ = ["run"]
 
 _MAINTAIN_EVERY = 64  # output steps between substrate maintenance (the margin ahead covers 200 outputs)
-
-
-def _version() -> str:
-    try:
-        return _md.version("frictionnoise")
-    except _md.PackageNotFoundError:
-        return "0+unknown"
 
 
 def _warm_up(scene, n_out: int, interrupts=None):
@@ -89,10 +81,7 @@ def _restore(data: bytes, n_out: int):
 
 
 def _write_atomic(path: Path, key: dict, data: bytes):
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    with os.fdopen(fd, "wb") as fh:
-        pickle.dump({"key": key, "data": data}, fh, protocol=pickle.HIGHEST_PROTOCOL)
-    os.replace(tmp, path)
+    atomic_write(path, pickle.dumps({"key": key, "data": data}, protocol=pickle.HIGHEST_PROTOCOL))
 
 
 def run(scenario, duration: float | None = None, seed: int | None = None, progress=None, *,
@@ -175,7 +164,7 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     if progress is not None and not partial:
         progress(total, total)
     meta = {
-        "producer": "engine_sim", "scenario": sc.to_dict(), "seed": scene.seed, "version": _version(),
+        "producer": "engine_sim", "scenario": sc.to_dict(), "seed": scene.seed, "version": package_version(),
         "wall_s": wall, "steps": scene.steps, "us_per_step": wall / max(scene.steps, 1) * 1e6,
         "steady_velocity_law": sc.steady_velocity, "drive_force": sc.drive_force if sc.drive.kind != "velocity" else None,
         "segments_generated": sum(t.generated for t in scene.tracks),

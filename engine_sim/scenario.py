@@ -21,7 +21,7 @@ __all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", 
 # the shipped scenarios are package data of the ``scenarios`` package (installed with every install, not found
 # relative to a source tree); a regular (non-zipped) install gives a real folder
 SCENARIO_DIR = Path(str(resources.files("scenarios")))
-G = 9.81  # m/s^2
+from frictionnoise import G  # noqa: E402  (m/s^2, defined once for the distribution)
 
 # Explicit spring forces are accurate for omega dt < 0.3 (DESIGN.md, measured on pymunk 7.3).
 SPRING_OMEGA_DT = 0.3
