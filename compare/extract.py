@@ -62,7 +62,7 @@ def model_I_parameters(trace, scenario) -> dict:
               "substrate_value": sc.substrate.a},
         "f_kin": {"value": f_kin, "unit": "N", "provenance": "mean tangential contact force per pad"},
         "alpha": {"value": math.sqrt(12.0) * rms / f_kin, "unit": "", "provenance": "sqrt(12) x rms pad force / f_kin (eq. A7)",
-                  "substrate_value": sc.substrate.alpha},
+                  "substrate_value": getattr(sc.substrate, "alpha", None)},
         "c": {"value": c_law, "unit": "N s/m", "provenance": "friction law (scenario)", "measured": c_meas},
         "k0": {"value": sc.pads.k0, "unit": "N/m", "provenance": "scenario"},
         "M": {"value": M, "unit": "kg", "provenance": M_prov},

@@ -41,7 +41,7 @@ class SceneRenderer:
         ax = self.ax
         ys = np.array(scene.pad_y)
         if self.asperities:  # micrometre relief under a centimetre sole: the axes zoom onto the interface
-            h = sc.substrate.h_max * U.LENGTH
+            h = scene.substrate.top()
             self.ylim = (-3 * h, 4 * h)
             ax.set_ylabel("y (mm): asperity caps and feet")
         elif self.zoom:
@@ -54,9 +54,9 @@ class SceneRenderer:
             ax.set_ylabel("y (mm): one track per pad")
         ax.set_ylim(*self.ylim)
         ax.set_xlabel("x (mm)")
-        mu0, al = sc.friction.mu0, sc.substrate.alpha if sc.substrate.kind == "patches" else 0.0
+        mu_lo, mu_hi = scene.substrate.mu_range(sc.friction.mu0)
         self.q_pad = scene.q_pad  # pad-track friction = shape friction x q_pad
-        self.norm = matplotlib.colors.Normalize(mu0 * (1 - al / 2), mu0 * (1 + al / 2) + 1e-12)
+        self.norm = matplotlib.colors.Normalize(mu_lo, mu_hi + 1e-12)
         self.tracks = LineCollection([], cmap="viridis", norm=self.norm, linewidths=3 if not self.asperities else 1.5)
         ax.add_collection(self.tracks)
         self.springs = LineCollection([], colors="0.4", linewidths=0.6)
@@ -70,7 +70,7 @@ class SceneRenderer:
         self.particles = None
         self.text = ax.text(0.02, 0.01, "", transform=ax.transAxes, va="bottom", fontsize=9,
                             bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
-        if sc.substrate.kind == "patches":
+        if mu_hi > mu_lo:
             cb = self.fig.colorbar(self.tracks, ax=ax, fraction=0.04)
             cb.set_label("patch friction coefficient")
         else:
@@ -78,21 +78,12 @@ class SceneRenderer:
         self.fig.tight_layout()
 
     def _substrate(self, lo, hi):
+        """Ask the substrate part to draw each track within [lo, hi]."""
         segs, mus = [], []
         for tr in self.scene.tracks:
-            for sh in tr.segments:
-                if self.asperities:  # the cap of a bump: the arc within 3 h_max of its top
-                    c, r = sh.offset, sh.radius
-                    if c.x + r < lo or c.x - r > hi:
-                        continue
-                    half = np.sqrt(2 * r * 3 * tr.h_max + 1e-12)
-                    xs = np.linspace(c.x - half, c.x + half, 9)
-                    segs.append(np.column_stack([xs, c.y + np.sqrt(np.maximum(r * r - (xs - c.x) ** 2, 0.0))]))
-                elif sh.b.x >= lo and sh.a.x <= hi:
-                    segs.append(((sh.a.x, sh.a.y), (sh.b.x, sh.b.y)))
-                else:
-                    continue
-                mus.append(sh.friction * self.q_pad)
+            s, m = self.scene.substrate.draw(tr, lo, hi, self.q_pad)
+            segs += s
+            mus += m
         return segs, mus
 
     def frame(self) -> np.ndarray:

@@ -23,6 +23,9 @@ __all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", 
 SCENARIO_DIR = Path(str(resources.files("scenarios")))
 from frictionnoise import G  # noqa: E402  (m/s^2, defined once for the distribution)
 
+from .substrates import KINDS as SUBSTRATES, SubstrateSpec
+from .substrates.patches import PatchesSpec
+
 # Explicit spring forces are accurate for omega dt < 0.3 (DESIGN.md, measured on pymunk 7.3).
 SPRING_OMEGA_DT = 0.3
 # Spring damping is exact-exponential but its effect is slowed by x/(e^x - 1), x = c dt / m: keep x < 0.1.
@@ -93,44 +96,6 @@ class FrictionSpec:
     c: float = 10.0
     b: float = 0.0
     v_c: float = 1e-3
-
-
-@dataclass(frozen=True)
-class SubstrateSpec:
-    """One independent track per pad.
-
-    kind "patches": a flat track of friction patches; patch boundaries at (j + r_j) a (so renewal
-    intervals follow model I's tau0 (1 + r - r')), each patch with mu = mu0 (1 + alpha (r - 1/2)).
-    kind "self_affine": a randomly rough profile by Fourier synthesis (streamed FIR filtering of white
-    noise): Hurst exponent ``hurst`` of the *line* (its 1D spectrum falls as q^-(1+2H); a line scan across an
-    isotropic surface of the same H), roll-off wavelength ``lambda_r`` (flat spectrum above it), short
-    cut-off ``lambda_s``, rms slope ``rms_slope``, grid spacing lambda_s / 4; friction mu0 everywhere.
-    ``a`` is then the renewal length used for the fit band (default: lambda_r).
-    Patches may hold cavities where wear particles get trapped: with probability ``pit_p`` per patch, a
-    flat-bottomed pit of depth ``pit_depth``, width uniform in [pit_width_min, pit_width_max] (m, between the
-    walls' centre lines: the opening is narrower by 2 segment_radius).
-    kind "asperities": sparse random asperities (model III's substrate): cells of length ``cell``, each
-    holding with probability ``p`` a bump (a circular cap of radius ``bump_radius``, much larger than its height,
-    so caps may overlap) whose top stands r ``h_max`` above the datum (r uniform in [0, 1]); one track shared
-    by all feet (see PadSpec); ``a`` is unused.
-    """
-
-    kind: str = "patches"
-    a: float = 1e-3
-    alpha: float = 1.0
-    segment_radius: float = 0.05e-3
-    hurst: float = 0.8
-    lambda_r: float = 2e-3
-    lambda_s: float = 0.1e-3
-    rms_slope: float = 0.1
-    cell: float = 0.1e-3
-    p: float = 0.1
-    bump_radius: float = 0.04e-3
-    h_max: float = 0.02e-3
-    pit_p: float = 0.0
-    pit_width_min: float = 0.15e-3
-    pit_width_max: float = 0.35e-3
-    pit_depth: float = 0.06e-3
 
 
 @dataclass(frozen=True)
@@ -214,7 +179,7 @@ class Scenario:
     block: BlockSpec = field(default_factory=BlockSpec)
     pads: PadSpec = field(default_factory=PadSpec)
     friction: FrictionSpec = field(default_factory=FrictionSpec)
-    substrate: SubstrateSpec = field(default_factory=SubstrateSpec)
+    substrate: SubstrateSpec = field(default_factory=PatchesSpec)  # the kind's own spec (engine_sim/substrates/)
     drive: DriveSpec = field(default_factory=DriveSpec)
     wear: WearSpec = field(default_factory=WearSpec)
     run: RunSpec = field(default_factory=RunSpec)
@@ -311,35 +276,37 @@ class Scenario:
 
 _SECTIONS = {"block": BlockSpec, "pads": PadSpec, "friction": FrictionSpec, "substrate": SubstrateSpec,
              "drive": DriveSpec, "wear": WearSpec, "run": RunSpec}
-_CHOICES = {("friction", "law"): ("linear", "log"), ("substrate", "kind"): ("patches", "self_affine", "asperities"),
+_CHOICES = {("friction", "law"): ("linear", "log"),
             ("drive", "kind"): ("force", "tilted", "velocity", "leonardo"),
             ("wear", "distribution"): ("lognormal", "power"), ("wear", "rotation"): ("locked", "free")}
 _POSITIVE = {("block", "M"), ("pads", "N"), ("pads", "mass"), ("pads", "radius"), ("pads", "k0"),
-             ("pads", "k_normal"), ("pads", "track_spacing"), ("friction", "v_c"), ("substrate", "a"),
-             ("substrate", "segment_radius"), ("substrate", "lambda_r"), ("substrate", "lambda_s"),
-             ("substrate", "rms_slope"), ("substrate", "cell"),
-             ("substrate", "p"), ("substrate", "bump_radius"), ("pads", "foot_length"), ("drive", "v"), ("drive", "k_drive"), ("drive", "hanging_mass"),
+             ("pads", "k_normal"), ("pads", "track_spacing"), ("friction", "v_c"), ("pads", "foot_length"), ("drive", "v"), ("drive", "k_drive"), ("drive", "hanging_mass"),
              ("drive", "rope_length"), ("run", "dt"), ("run", "dt_out"),
              ("run", "duration"), ("run", "iterations"),
              ("wear", "r_min"), ("wear", "r_max"), ("wear", "r_median"), ("wear", "sigma"), ("wear", "density"),
              ("wear", "trapped_speed"), ("wear", "ahead"), ("wear", "behind")}
-_NON_NEGATIVE = {("pads", "c0"), ("pads", "k1"), ("pads", "c1"), ("pads", "c_normal"), ("substrate", "h_max"), ("friction", "mu0"), ("friction", "c"), ("friction", "b"),
-                 ("substrate", "alpha"),
-                 ("run", "warmup"), ("run", "seed"),
-                 ("substrate", "pit_p"), ("substrate", "pit_depth"), ("wear", "count"), ("wear", "exponent"), ("wear", "min_mass"), ("wear", "mu_track"), ("wear", "mu_pad")}
+_NON_NEGATIVE = {("pads", "c0"), ("pads", "k1"), ("pads", "c1"), ("pads", "c_normal"), ("friction", "mu0"), ("friction", "c"), ("friction", "b"),
+                 ("run", "warmup"), ("run", "seed"), ("wear", "count"), ("wear", "exponent"), ("wear", "min_mass"), ("wear", "mu_track"), ("wear", "mu_pad")}
 
 
 def _err(where: str, msg: str) -> ScenarioError:
     return ScenarioError(f"{where}: {msg}" if where else msg)
 
 
-def _check_value(where, sec, key, ftype, val):
-    name = f"{sec}.{key}"
+def _rules(sec, spec_cls=None):
+    """(positive, non-negative, choices) for a section's fields; a substrate kind declares its own."""
+    if sec == "substrate":
+        part = next(k for k in SUBSTRATES.values() if k.Spec is spec_cls)
+        return part.positive, part.non_negative, {**part.choices, "kind": tuple(SUBSTRATES)}
+    pick = lambda table: {k for s, k in table if s == sec}  # noqa: E731
+    return pick(_POSITIVE), pick(_NON_NEGATIVE), {k: v for (s, k), v in _CHOICES.items() if s == sec}
+
+
+def _check_value(where, name, ftype, val, positive=False, non_negative=False, choices=None):
     is_int = "int" in str(ftype) and "float" not in str(ftype)
     if "str" in str(ftype):
         if not isinstance(val, str):
             raise _err(where, f"{name} must be a string (got {type(val).__name__} {val!r})")
-        choices = _CHOICES.get((sec, key))
         if choices and val not in choices:
             raise _err(where, f"{name} = {val!r} is not one of: {', '.join(choices)}")
         return val
@@ -351,11 +318,30 @@ def _check_value(where, sec, key, ftype, val):
         raise _err(where, f"{name} must be an integer (got {val!r})")
     if not math.isfinite(val):
         raise _err(where, f"{name} must be finite (got {val!r})")
-    if (sec, key) in _POSITIVE and not val > 0:
+    if positive and not val > 0:
         raise _err(where, f"{name} must be > 0 (got {val!r})")
-    if (sec, key) in _NON_NEGATIVE and val < 0:
+    if non_negative and val < 0:
         raise _err(where, f"{name} must be >= 0 (got {val!r})")
     return int(val) if is_int else float(val)
+
+
+def _section(where, sec, cls, raw):
+    if sec == "substrate":  # the kind names the spec class
+        kind = _check_value(where, "substrate.kind", str, raw.get("kind", "patches"), choices=tuple(SUBSTRATES))
+        cls = SUBSTRATES[kind].Spec
+    valid = {f.name: f.type for f in fields(cls)}
+    bad = sorted(set(raw) - set(valid))
+    if bad:
+        raise _err(where, f"unknown key {sec}.{bad[0]}; valid keys in [{sec}]: {', '.join(valid)}")
+    pos, nonneg, choices = _rules(sec, cls)
+    spec = cls(**{k: _check_value(where, f"{sec}.{k}", valid[k], v, k in pos, k in nonneg, choices.get(k))
+                  for k, v in raw.items()})
+    if sec == "substrate":
+        try:
+            spec = SUBSTRATES[spec.kind].prepare(spec, where)
+        except ValueError as e:
+            raise _err(where, str(e)) from None
+    return spec
 
 
 def scenario_from_dict(data: dict, where: str = "") -> Scenario:
@@ -371,11 +357,7 @@ def scenario_from_dict(data: dict, where: str = "") -> Scenario:
         raw = data.get(sec, {})
         if not isinstance(raw, dict):
             raise _err(where, f"[{sec}] must be a table (got {type(raw).__name__})")
-        valid = {f.name: f.type for f in fields(cls)}
-        bad = sorted(set(raw) - set(valid))
-        if bad:
-            raise _err(where, f"unknown key {sec}.{bad[0]}; valid keys in [{sec}]: {', '.join(valid)}")
-        parts[sec] = cls(**{k: _check_value(where, sec, k, valid[k], v) for k, v in raw.items()})
+        parts[sec] = _section(where, sec, cls, raw)
     for key in ("name", "description"):
         if key in data and not isinstance(data[key], str):
             raise _err(where, f"{key} must be a string (got {type(data[key]).__name__})")
@@ -420,27 +402,13 @@ def _check_consistency(sc: Scenario, where: str):
             raise _err(where, f"drive force {sc.drive_force:.4g} N does not exceed the kinetic friction "
                               f"{p.N * sc.friction.mu0 * sc.normal_load_per_pad:.4g} N: the block would not slide")
     sub = sc.substrate
-    if sub.kind == "self_affine":
-        if not 0 < sub.hurst < 1:
-            raise _err(where, f"substrate.hurst must lie in (0, 1) (got {sub.hurst!r})")
-        if not sub.lambda_s < sub.lambda_r:
-            raise _err(where, f"substrate.lambda_s = {sub.lambda_s!r} m must be shorter than lambda_r = {sub.lambda_r!r} m")
-        limit = 1.0 / (6.0 * max(sc.friction.mu0, 1e-9))
-        if sub.rms_slope > limit:
-            raise _err(where, f"substrate.rms_slope = {sub.rms_slope!r} exceeds the sliding limit {limit:.3g} = 1/(6 mu0): "
-                              "the steepest flanks (~4 rms slopes) near the locking slope 1/mu0 pin the pads "
-                              "(measured on pads_rough_profile: rms slope 0.4 pins the block, 0.3 slides unsteadily)")
-    if sub.kind == "asperities":
-        if sub.p > 1:
-            raise _err(where, f"substrate.p = {sub.p!r} is a probability per cell and must be <= 1")
-        if sub.bump_radius < 5 * sub.h_max:
-            raise _err(where, f"substrate.bump_radius = {sub.bump_radius!r} m must exceed 5 h_max = {5 * sub.h_max:.3g} m: "
-                              "a foot meeting a bump up to h_max above it must climb a flank less steep than 1/mu0")
-        if p.foot_length < 2.5 * p.radius:
-            raise _err(where, f"pads.foot_length = {p.foot_length!r} m must exceed 2.5 pad radii = {2.5 * p.radius:.3g} m")
+    try:
+        SUBSTRATES[sub.kind].validate(sub, sc, where)
+    except ValueError as e:
+        raise _err(where, str(e)) from None
     w = sc.wear
     if w.count > 0:
-        if sub.kind != "patches":
+        if not SUBSTRATES[sub.kind].hosts_wear:
             raise _err(where, f"wear particles need flat pad tracks (substrate.kind 'patches'; got {sub.kind!r})")
         if not w.r_min < w.r_max:
             raise _err(where, f"wear.r_min = {w.r_min!r} m must be below wear.r_max = {w.r_max!r} m")
@@ -459,12 +427,6 @@ def _check_consistency(sc: Scenario, where: str):
         if w.ahead < 2 * p.radius or w.behind < p.radius:
             raise _err(where, f"wear.ahead (>= 2 pad radii) and wear.behind (>= 1 pad radius) must reach past the pad "
                               f"(got {w.ahead!r}, {w.behind!r} m)")
-    if sub.pit_p > 0:
-        if sub.pit_p > 1 or not 0 < sub.pit_width_min <= sub.pit_width_max or sub.pit_width_max > 0.45 * sub.a:
-            raise _err(where, f"substrate pits: pit_p must lie in [0, 1] and 0 < pit_width_min <= pit_width_max <= 0.45 a "
-                              f"(got {sub.pit_p!r}, {sub.pit_width_min!r}, {sub.pit_width_max!r} m)")
-    if sc.substrate.alpha >= 2:
-        raise _err(where, f"substrate.alpha = {sc.substrate.alpha!r} must be < 2 (patch friction stays positive)")
 
 
 def resolve_scenario(name_or_path) -> Path:

@@ -22,8 +22,8 @@ import pymunk.batch as B
 
 from . import units as U
 from .scenario import G, Scenario
+from .substrates import substrate_kind
 from .wear import Wear, pad_friction_split
-from .substrate import BumpTrack, PatchTrack, SelfAffineTrack, self_affine_kernel
 
 __all__ = ["Scene", "corrected_drag"]
 
@@ -59,7 +59,9 @@ class Scene:
         self.y_block = 10.0
         v0 = sc.steady_velocity * U.VELOCITY
 
-        self.asperities = sub.kind == "asperities"
+        self.substrate = substrate_kind(sub.kind)(sub, sc)  # the substrate part: builds and draws the tracks
+        self.asperities = self.substrate.shared  # one track under a sole of feet (free vertically)
+        self.run_ahead = 200 * v0 * self.dt * self.n_sub  # the tracks' margin ahead beyond the part's own
         block = pymunk.Body(sc.block.M * U.MASS, float("inf"))
         block.position = (0.0, self.y_block)
         block.velocity = (v0, 0.0)
@@ -85,18 +87,16 @@ class Scene:
         q_pad, f_particle = pad_friction_split(fr.mu0, wear.mu_pad, wear.mu_track) if wear.count else (1.0, 0.0)
         mu_track = fr.mu0 / q_pad
         self.q_pad = q_pad
-        if sub.kind == "self_affine":
-            dx_s = sub.lambda_s * U.LENGTH / 4
-            kernel = self_affine_kernel(sub.hurst, sub.lambda_r * U.LENGTH, sub.lambda_s * U.LENGTH, dx_s, sub.rms_slope)
         foot = p.foot_length * U.LENGTH
         self.width = p.N * foot if self.asperities else 0.0  # the block's contact width w (mm)
+        x_start = self.substrate.x_start(self)
         self.pads, self.tracks, self.pad_y, self.pad_x, self.tangential_springs = [], [], [], [], []
         self.track_surface, self.track_filter = [], []
         for i in range(p.N):
             pad = pymunk.Body(m_p, float("inf"))
             if self.asperities:
                 xp = (i - (p.N - 1) / 2) * foot
-                yp = sub.h_max * U.LENGTH + R + 1e-3  # the feet start just above the highest bump
+                yp = self.substrate.top() + R + 1e-3  # the feet start just above the highest bump
                 flt = pymunk.ShapeFilter(group=1)  # feet do not collide with each other
                 half = foot / 2 - R - 0.05 * foot  # a small gap between neighbouring feet
                 shape = pymunk.Segment(pad, (-half, 0.0), (half, 0.0), R)
@@ -117,20 +117,11 @@ class Scene:
             space.add(pymunk.DampedSpring(block, pad, (xp, ry + Ln), (0, 0), Ln + pre, kn, p.c_normal * U.DAMPING))
             if fr.c > 0:
                 space.add(pymunk.DampedSpring(pad, space.static_body, (0, 0), (_FAR, yp), 0.0, 0.0, c_set))
-            if sub.kind == "self_affine":
-                track = SelfAffineTrack(space, yt, kernel, dx_s, mu_track, rs, flt, np.random.default_rng(seeds[i]),
-                                        x_start=-4.0 * p.radius * U.LENGTH, chunk_points=64)
-            elif sub.kind == "patches":
-                track = PatchTrack(space, yt, sub.a * U.LENGTH, mu_track, sub.alpha, rs, flt,
-                                   np.random.default_rng(seeds[i]), x_start=-10 * sub.a * U.LENGTH, pit_p=sub.pit_p,
-                                   pit_width=(sub.pit_width_min * U.LENGTH, sub.pit_width_max * U.LENGTH),
-                                   pit_depth=sub.pit_depth * U.LENGTH)
-            elif i == 0:  # one shared track of sparse bumps
-                track = BumpTrack(space, 0.0, sub.cell * U.LENGTH, sub.p, sub.bump_radius * U.LENGTH,
-                                  sub.h_max * U.LENGTH, fr.mu0, pymunk.ShapeFilter(),
-                                  np.random.default_rng(seeds[0]), x_start=-self.width)
-            if not self.asperities or i == 0:
-                self.tracks.append(track)
+            if not self.asperities:  # each pad on its own track, its own random stream
+                self.tracks.append(self.substrate.build(space, yt, flt, np.random.default_rng(seeds[i]), mu_track, x_start))
+            elif i == 0:  # one track shared by the sole's feet
+                self.tracks.append(self.substrate.build(space, 0.0, pymunk.ShapeFilter(), np.random.default_rng(seeds[0]),
+                                                        fr.mu0, x_start))
             self.pads.append(pad)
             self.pad_y.append(yp)
             self.pad_x.append(xp)
@@ -183,15 +174,7 @@ class Scene:
         self.drive_spring = pymunk.DampedSpring(pulled, anchor, (0, 0), (0, 0), rest, kd, 0.0)
         space.add(anchor, self.drive_spring)
         self.driver = anchor
-        if sub.kind == "patches":
-            self.ahead = max(8 * sub.a, sc.wear.ahead + 2 * sub.a) * U.LENGTH + 200 * v0 * self.dt * self.n_sub
-            self.behind = 4 * sub.a * U.LENGTH
-        elif self.asperities:  # around the whole sole
-            self.ahead = self.width / 2 + 2 * R + 200 * v0 * self.dt * self.n_sub
-            self.behind = self.width / 2 + 2 * R
-        else:  # a pad touches the profile within its radius; keep a few radii either side
-            self.ahead = 4 * p.radius * U.LENGTH + 200 * v0 * self.dt * self.n_sub
-            self.behind = 2 * p.radius * U.LENGTH
+        self.ahead, self.behind = self.substrate.margins(self)
         self.wear = None
         if wear.count:
             self.wear = Wear(self, wear, np.random.default_rng(seeds[-1]), f_particle)

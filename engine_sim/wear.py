@@ -75,7 +75,7 @@ class Wear:
         self.ahead = spec.ahead * U.LENGTH
         self.behind = spec.behind * U.LENGTH
         self.R_pad = sc.pads.radius * U.LENGTH
-        self.floor_depth = (sc.substrate.pit_depth if sc.substrate.pit_p > 0 else 0.0) * U.LENGTH
+        self.floor_depth = scene.substrate.floor_depth()
         self.bodies, self.shapes = [], []
         self.recycled = 0
         self.lost = 0  # left the interface (above the pad or below the track) rather than falling behind
