@@ -40,6 +40,19 @@ class _StreamedTrack:
         self.segments.extend(new)
         self.generated += len(new)
 
+    def _add_polyline(self, pts: list):
+        """Straight segments through pts (continuing from the last point added), friction self.mu0, linked."""
+        if self._last is not None:
+            pts.insert(0, self._last)
+        new = []
+        for p0, p1 in zip(pts[:-1], pts[1:]):
+            s = pymunk.Segment(self.space.static_body, p0, p1, self.radius)
+            s.friction = self.mu0
+            s.filter = self.filter
+            new.append(s)
+        self._link_and_add(new)
+        self._last = pts[-1]
+
     def maintain(self, x: float, ahead: float, behind: float):
         """Keep segments covering [x - behind, x + ahead]; add ahead, remove behind."""
         while self._frontier() < x + ahead:
@@ -168,17 +181,7 @@ class SelfAffineTrack(_StreamedTrack):
         h = np.convolve(w, self.k, mode="valid")  # chunk_points heights
         self._noise = w[-(len(self.k) - 1):]
         xs = self._x_next + self.dx * np.arange(self.chunk)
-        pts = [(float(a), float(self.y + b)) for a, b in zip(xs, h)]
-        if self._last is not None:
-            pts.insert(0, self._last)
-        new = []
-        for p0, p1 in zip(pts[:-1], pts[1:]):
-            s = pymunk.Segment(self.space.static_body, p0, p1, self.radius)
-            s.friction = self.mu0
-            s.filter = self.filter
-            new.append(s)
-        self._link_and_add(new)
-        self._last = pts[-1]
+        self._add_polyline([(float(a), float(self.y + b)) for a, b in zip(xs, h)])
         self._x_next = float(xs[-1] + self.dx)
 
 

@@ -13,7 +13,6 @@ from importlib import resources
 from pathlib import Path
 
 import numpy as np
-import pymunk
 
 from .. import units as U
 from ..substrate import _StreamedTrack
@@ -164,16 +163,6 @@ class ProfileTrack(_StreamedTrack):
 
     def _extend(self):
         xs = self._x_next + self.dx * np.arange(self.chunk)
-        pts = [(float(a), float(self.y + b)) for a, b in zip(xs, self._heights(self._j, self.chunk))]
-        if self._last is not None:
-            pts.insert(0, self._last)
-        new = []
-        for p0, p1 in zip(pts[:-1], pts[1:]):
-            s = pymunk.Segment(self.space.static_body, p0, p1, self.radius)
-            s.friction = self.mu0
-            s.filter = self.filter
-            new.append(s)
-        self._link_and_add(new)
-        self._last = pts[-1]
+        self._add_polyline([(float(a), float(self.y + b)) for a, b in zip(xs, self._heights(self._j, self.chunk))])
         self._j += self.chunk
         self._x_next = float(xs[-1] + self.dx)
