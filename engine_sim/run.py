@@ -12,7 +12,7 @@ from frictionnoise import atomic_write, package_version
 
 from .record import EngineTrace, Recorder
 from .scenario import Scenario, load_scenario
-from .scene import Scene
+from .scene import Scene, describe
 
 __all__ = ["run"]
 
@@ -169,7 +169,7 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
         "steady_velocity_law": sc.steady_velocity, "drive_force": sc.drive_force if sc.drive.kind != "velocity" else None,
         "segments_generated": sum(t.generated for t in scene.tracks),
         "segments_live": sum(len(t.segments) for t in scene.tracks),
-        "partial": partial, "resumed_from_checkpoint": resumed,
+        "partial": partial, "resumed_from_checkpoint": resumed, "scene": describe(sc),
     }
     if scene.wear is not None:
         w = scene.wear

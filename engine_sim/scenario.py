@@ -14,6 +14,12 @@ from dataclasses import dataclass, field, fields, replace
 from importlib import resources
 from pathlib import Path
 
+from frictionnoise import G
+
+from .substrates import KINDS as SUBSTRATES, SubstrateSpec
+from .substrates.patches import PatchesSpec
+from .wear import WearSpec, check_wear
+
 __all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", "SubstrateSpec", "DriveSpec",
            "WearSpec", "RunSpec", "load_scenario", "scenario_from_dict", "shipped_scenarios", "resolve_scenario",
            "scenario_summary", "SCENARIO_DIR"]
@@ -21,20 +27,11 @@ __all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", 
 # the shipped scenarios are package data of the ``scenarios`` package (installed with every install, not found
 # relative to a source tree); a regular (non-zipped) install gives a real folder
 SCENARIO_DIR = Path(str(resources.files("scenarios")))
-from frictionnoise import G  # noqa: E402  (m/s^2, defined once for the distribution)
-
-from .substrates import KINDS as SUBSTRATES, SubstrateSpec
-from .substrates.patches import PatchesSpec
 
 # Explicit spring forces are accurate for omega dt < 0.3 (DESIGN.md, measured on pymunk 7.3).
 SPRING_OMEGA_DT = 0.3
 # Spring damping is exact-exponential but its effect is slowed by x/(e^x - 1), x = c dt / m: keep x < 0.1.
 SPRING_DAMPING_X = 0.1
-# No continuous collision detection in pymunk: a particle crosses a surface once v dt exceeds about 1.2 radii
-# (DESIGN.md). Particles are held to WEAR_SPEED_FACTOR x the sliding speed x dt < WEAR_TUNNEL_FRACTION r_min;
-# the tracks' segment radius (50 um by default) adds to the margin.
-WEAR_SPEED_FACTOR = 10.0
-WEAR_TUNNEL_FRACTION = 0.25
 
 
 class ScenarioError(ValueError):
@@ -118,45 +115,6 @@ class DriveSpec:
     k_drive: float = 1e3
     hanging_mass: float | None = None
     rope_length: float = 0.2
-
-
-@dataclass(frozen=True)
-class WearSpec:
-    """Wear particles as rigid circles (section 5, Appendix B), on the pads' flat tracks (substrate "patches").
-
-    count: number of particles, dealt round-robin to the pads' tracks (each collides only with its own pad, its
-    track and the particles on that track). Radii (m) follow ``distribution``: "lognormal" with median
-    ``r_median`` and log-std ``sigma``, or "power" with P(r) ~ r^-``exponent``, both cut to [r_min, r_max].
-    density (kg/m^3, per unit depth of a 2D disc: mass = density pi r^2 depth, depth = 1 mm), raised to at
-    least ``min_mass`` (kg): pymunk's iterative contact solver loses a light grain squeezed by a heavy pad (mass
-    ratios above ~1e3 at a few iterations push grains through the track). The raised inertia is not neutral:
-    on pads_with_wear (30 iterations, 6 s) the grains' mean force on the pads read 0.35, 0.47 and 0.55 N at
-    1e-4, 3e-4 and 1e-3 kg, and at 1e-5 kg the solver no longer closes the energy balance (3-4 %); mu_track,
-    mu_pad: friction with the track and with the pad; rotation: "locked" (moment = inf: the grain slides but
-    does not roll, as angular debris) or "free" (a rolling disc: squeezed under a sliding pad it rolls at v / 2
-    and is never trapped; measured). A particle is "trapped" when it touches its pad and its mean speed over the
-    last output step is below ``trapped_speed`` x the sliding speed (at rest relative to the substrate), "moving" when it touches its pad
-    and moves faster, and "idle" when it does not touch its pad. Particles more than ``behind`` (m) behind their
-    pad are recycled to a random place up to ``ahead`` (m) in front of it, at rest on the track; particles
-    that leave the interface (above their pad or below the track surface) are counted and recycled too.
-    Idle particles at rest fall asleep (pymunk sleeping), so they cost nothing until a pad reaches them.
-    """
-
-    count: int = 0
-    distribution: str = "lognormal"
-    r_min: float = 20e-6
-    r_max: float = 150e-6
-    r_median: float = 50e-6
-    sigma: float = 0.6
-    exponent: float = 2.0
-    density: float = 2500.0
-    min_mass: float = 0.0
-    mu_track: float = 0.8
-    mu_pad: float = 0.4
-    rotation: str = "locked"
-    trapped_speed: float = 0.1
-    ahead: float = 2e-3
-    behind: float = 1e-3
 
 
 @dataclass(frozen=True)
@@ -406,27 +364,13 @@ def _check_consistency(sc: Scenario, where: str):
         SUBSTRATES[sub.kind].validate(sub, sc, where)
     except ValueError as e:
         raise _err(where, str(e)) from None
-    w = sc.wear
-    if w.count > 0:
+    if sc.wear.count > 0:
         if not SUBSTRATES[sub.kind].hosts_wear:
             raise _err(where, f"wear particles need flat pad tracks (substrate.kind 'patches'; got {sub.kind!r})")
-        if not w.r_min < w.r_max:
-            raise _err(where, f"wear.r_min = {w.r_min!r} m must be below wear.r_max = {w.r_max!r} m")
-        if w.r_max > p.radius:
-            raise _err(where, f"wear.r_max = {w.r_max!r} m must not exceed the pad radius {p.radius!r} m")
-        v_max = WEAR_SPEED_FACTOR * max(sc.steady_velocity, 1e-12)
-        if v_max * r.dt > WEAR_TUNNEL_FRACTION * w.r_min:
-            raise _err(where, f"run.dt = {r.dt:.3g} s lets the smallest particle (wear.r_min = {w.r_min:.3g} m) tunnel: "
-                              f"{WEAR_SPEED_FACTOR:g} x the sliding speed x dt must stay below {WEAR_TUNNEL_FRACTION} r_min, "
-                              f"so dt <= {WEAR_TUNNEL_FRACTION * w.r_min / v_max:.3g} s")
-        per_track = math.ceil(w.count / p.N)
-        need = p.radius + per_track * 4 * w.r_max
-        if w.ahead < need:
-            raise _err(where, f"wear.ahead = {w.ahead:.3g} m cannot hold {per_track} particles per track: it must reach "
-                              f"past the pad by 4 r_max per particle, at least {need:.3g} m")
-        if w.ahead < 2 * p.radius or w.behind < p.radius:
-            raise _err(where, f"wear.ahead (>= 2 pad radii) and wear.behind (>= 1 pad radius) must reach past the pad "
-                              f"(got {w.ahead!r}, {w.behind!r} m)")
+        try:
+            check_wear(sc)
+        except ValueError as e:
+            raise _err(where, str(e)) from None
 
 
 def resolve_scenario(name_or_path) -> Path:

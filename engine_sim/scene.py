@@ -25,7 +25,7 @@ from .scenario import G, Scenario
 from .substrates import substrate_kind
 from .wear import Wear, pad_friction_split
 
-__all__ = ["Scene", "corrected_drag"]
+__all__ = ["Scene", "corrected_drag", "describe"]
 
 _FAR = 1e9  # mm: the drag springs' static anchors, so their axis stays horizontal over any run
 
@@ -34,6 +34,34 @@ def corrected_drag(c: float, m: float, dt: float) -> float:
     """Damping to give pymunk so a body of mass m feels a steady drag c at step dt (scene units)."""
     x = c * dt / m
     return (m / dt) * math.log1p(x)
+
+
+def describe(sc: Scenario) -> dict:
+    """What an analysis needs to know of a scenario's scene, in SI units, so it never reads the scenario's layout
+    (``compare.extract`` takes it from a trace's ``metadata["scene"]``):
+
+    effective_mass: the mass the drive accelerates (kg; Leonardo's slider adds the hanging mass, rope taut);
+    friction_law: the law's parameters per pad, for its slope dF/dv at any speed (law, c [N s/m], b, v_c [m/s],
+    load_per_pad [N]); friction_slope: that slope at the law's steady speed (N s/m); omega_star = N c / M (rad/s)
+    and response: "viscous" if omega_star lies above the fit band's top 30 v/a (model I's C_x ~ C_f / omega^2
+    there), else "inertial" (C_x = C_F / (M^2 omega^4)); length_scale: the substrate's renewal length a (m);
+    pads: N, mass (kg), k0 (N/m), c0 (N s/m), foot_length (m); contact_width: the sole's width N foot_length
+    (m; 0 for pads on tracks); substrate: the substrate part's own spec."""
+    part = substrate_kind(sc.substrate.kind)
+    fr, p = sc.friction, sc.pads
+    M = sc.block.M + (sc.hanging_mass if sc.drive.kind == "leonardo" else 0.0)
+    v = sc.steady_velocity
+    c = sc.friction_slope(v)
+    a = part(sc.substrate, sc).length_scale
+    omega_star = p.N * c / M
+    return {
+        "effective_mass": M, "block_mass": sc.block.M, "friction_slope": c, "omega_star": omega_star,
+        "friction_law": {"law": fr.law, "c": fr.c, "b": fr.b, "v_c": fr.v_c, "load_per_pad": sc.normal_load_per_pad},
+        "response": "viscous" if omega_star > 30 * v / a else "inertial", "length_scale": a,
+        "pads": {"N": p.N, "mass": p.mass, "k0": p.k0, "c0": p.c0, "foot_length": p.foot_length},
+        "contact_width": p.N * p.foot_length if part.shared else 0.0,
+        "substrate": sc.to_dict()["substrate"],
+    }
 
 
 class Scene:
