@@ -59,21 +59,16 @@ class _Interrupts:
 def _snapshot(scene, rec, k) -> bytes:
     if rec.k != k:
         raise RuntimeError(f"snapshot at an inconsistent point (loop at sample {k}, recorder at {rec.k})")
-    state = {"scene": scene, "t": rec.t, "out": rec.out, "pad_force": rec.pad_force, "n_contact": rec.n_contact,
-             "p_state": rec.p_state, "p_force": rec.p_force, "recycle": rec.recycle, "part": rec._part,
-             "rec_k": rec.k, "x0": rec.x0, "k": k}
-    return pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
+    # Scene and Recorder pickle through their own state methods (the recorder carries its scene)
+    return pickle.dumps({"recorder": rec, "k": k}, protocol=pickle.HIGHEST_PROTOCOL)
 
 
 def _restore(data: bytes, n_out: int):
     state = pickle.loads(data)
-    scene = state["scene"]
-    for tr in scene.tracks:
-        tr.restore_neighbors()
-    rec = Recorder(scene, n_out)
-    rec.t, rec.out, rec.pad_force, rec.n_contact = state["t"], state["out"], state["pad_force"], state["n_contact"]
-    rec.p_state, rec.p_force, rec.recycle, rec._part = state["p_state"], state["p_force"], state["recycle"], state["part"]
-    rec.k, rec.x0 = state["rec_k"], state["x0"]
+    if not isinstance(state, dict) or not isinstance(state.get("recorder"), Recorder):
+        raise ValueError("checkpoint holds no recorder (written by another version?): delete it and run again")
+    rec = state["recorder"]
+    scene = rec.scene
     if not (rec.k == state["k"] and 0 <= rec.k < n_out and rec.t.shape[0] == n_out):
         raise ValueError(f"checkpoint is inconsistent (loop at sample {state['k']}, recorder at {rec.k}, "
                          f"{n_out} samples): delete it and run again")

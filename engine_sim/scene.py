@@ -86,6 +86,10 @@ class Scene:
         dy = p.track_spacing * U.LENGTH
         self.y_block = 10.0
         v0 = sc.steady_velocity * U.VELOCITY
+        # scene-unit values, converted once here and read by the recorder, the particles and the renderer
+        self.m_pad, self.R_pad, self.M, self.v_law = m_p, R, sc.block.M * U.MASS, v0
+        self.c_drag = fr.c * U.DAMPING  # the linear law's c (the value the law asks for, before pymunk's correction)
+        self.v_trap = sc.wear.trapped_speed * v0  # a grain touching its pad is trapped below this mean speed
 
         self.substrate = substrate_kind(sub.kind)(sub, sc)  # the substrate part: builds and draws the tracks
         self.asperities = self.substrate.shared  # one track under a sole of feet (free vertically)
@@ -119,6 +123,8 @@ class Scene:
         self.width = p.N * foot if self.asperities else 0.0  # the block's contact width w (mm)
         x_start = self.substrate.x_start(self)
         self.pads, self.tracks, self.pad_y, self.pad_x, self.tangential_springs = [], [], [], [], []
+        # the springs that store energy, as built (the recorder asks for them): block-pad, then pad-pad
+        self.block_pad_springs, self.pad_pad_springs = [], []
         self.track_surface, self.track_filter = [], []
         for i in range(p.N):
             pad = pymunk.Body(m_p, float("inf"))
@@ -141,8 +147,9 @@ class Scene:
             ry = yp - self.y_block
             tangential = pymunk.DampedSpring(block, pad, (xp - Lt, ry), (0, 0), Lt, k0, p.c0 * U.DAMPING)
             self.tangential_springs.append(tangential)
-            space.add(tangential)
-            space.add(pymunk.DampedSpring(block, pad, (xp, ry + Ln), (0, 0), Ln + pre, kn, p.c_normal * U.DAMPING))
+            normal = pymunk.DampedSpring(block, pad, (xp, ry + Ln), (0, 0), Ln + pre, kn, p.c_normal * U.DAMPING)
+            space.add(tangential, normal)
+            self.block_pad_springs += [tangential, normal]
             if fr.c > 0:
                 space.add(pymunk.DampedSpring(pad, space.static_body, (0, 0), (_FAR, yp), 0.0, 0.0, c_set))
             if not self.asperities:  # each pad on its own track, its own random stream
@@ -159,11 +166,13 @@ class Scene:
             for i in range(p.N - 1):
                 a, b = self.pads[i], self.pads[i + 1]
                 if self.asperities:  # side by side: a spring of rest length foot between foot centres
-                    space.add(pymunk.DampedSpring(a, b, (0, 0), (0, 0), foot, p.k1 * U.STIFFNESS, p.c1 * U.DAMPING))
-                    continue
-                # anchor on pad i+1 at pad i's height so the coupling acts along x (tracks are offset in y)
-                off = self.pad_y[i] - self.pad_y[i + 1]
-                space.add(pymunk.DampedSpring(a, b, (0, 0), (-Lt, off), Lt, p.k1 * U.STIFFNESS, p.c1 * U.DAMPING))
+                    coupling = pymunk.DampedSpring(a, b, (0, 0), (0, 0), foot, p.k1 * U.STIFFNESS, p.c1 * U.DAMPING)
+                else:
+                    # anchor on pad i+1 at pad i's height so the coupling acts along x (tracks are offset in y)
+                    off = self.pad_y[i] - self.pad_y[i + 1]
+                    coupling = pymunk.DampedSpring(a, b, (0, 0), (-Lt, off), Lt, p.k1 * U.STIFFNESS, p.c1 * U.DAMPING)
+                space.add(coupling)
+                self.pad_pad_springs.append(coupling)
 
         # The drive is a spring from the block to an anchor: for a constant force a soft spring anchored
         # _FAR behind, compressed by _FAR so it pushes with F; over a metre of sliding its force changes
@@ -215,6 +224,19 @@ class Scene:
         self.log_law = None
         if fr.law == "log":
             self.log_law = (fr.b * (sc.normal_load_per_pad * U.FORCE), fr.v_c * U.VELOCITY)
+        self._pad_ids = np.array(sorted(pad.id for pad in self.pads), dtype=np.int64)
+
+    # ------------------------------------------------------------------ pickling (checkpoints)
+    def __getstate__(self):
+        state = self.__dict__.copy()
+        del state["_pad_ids"]  # pymunk ids are addresses: a restored body has a new one
+        return state
+
+    def __setstate__(self, state):
+        """A restored scene: segment neighbours re-applied (pymunk does not save them) and body ids re-read."""
+        self.__dict__.update(state)
+        for tr in self.tracks:
+            tr.restore_neighbors()
         self._pad_ids = np.array(sorted(pad.id for pad in self.pads), dtype=np.int64)
 
     @property
