@@ -168,7 +168,7 @@ def _cmd_render(args) -> int:
         raise UserError(f"{out}: exists and is not a folder")
     scene = Scene(sc, args.seed)
     renderer = SceneRenderer(scene)
-    steps = max(1, int(round(args.duration / sc.run.dt / args.frames)))
+    n_out = max(1, int(round(args.duration / sc.run.dt_out / args.frames)))  # output steps between frames
     images = []
     with atomic_folder(out) as tmp:
         for k in range(args.frames):
@@ -176,7 +176,9 @@ def _cmd_render(args) -> int:
             renderer.save_png(tmp / f"frame_{k:03d}.png")
             if args.gif:
                 images.append(img.copy())
-            scene.advance(steps)
+            for _ in range(n_out):  # output step by output step: grain states are the recorder's
+                scene.advance(scene.n_sub)
+                renderer.observe()
             scene.maintain()
         if args.gif:
             from PIL import Image

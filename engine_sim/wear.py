@@ -214,13 +214,7 @@ class Wear:
                     self.recycled += 1
 
     def snapshot(self):
-        """(positions (n, 2), radii, state codes) in scene units, for rendering; state: 0 idle, 1 trapped, 2 moving."""
+        """(positions (n, 2), radii) in scene units, for rendering. A grain's state (idle, trapped, moving) is the
+        recorder's alone (engine_sim.record: touching its pad, mean speed over the output step)."""
         xy = np.array([(b.position.x, b.position.y) for b in self.bodies])
-        v_slide = self.scene.sc.steady_velocity * U.VELOCITY
-        state = np.zeros(self.count, dtype=int)
-        for j, b in enumerate(self.bodies):
-            pad = self.scene.pads[self.track[j]]
-            touching = (b.position - pad.position).length < self.r[j] + self.R_pad + 1e-3
-            if touching:
-                state[j] = 1 if b.velocity.length < self.spec.trapped_speed * v_slide else 2
-        return xy, self.r, state
+        return xy, self.r

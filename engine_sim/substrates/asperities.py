@@ -58,14 +58,16 @@ class Asperities(Substrate):
                          shape_filter, rng, x_start=x_start)
 
     def draw(self, track, lo, hi, q_pad):
-        """The cap of each bump: its arc within 3 h_max of the top, drawn from the circle (not clipped)."""
-        segs, mus = [], []
+        """Each bump as its cap above the datum (the part of its circle a foot can touch, closed on the datum
+        line), and the datum line itself."""
+        segs, mus = [((lo, track.y), (hi, track.y))], [self.sc.friction.mu0]
         for sh in track.segments:
             c, r = sh.offset, sh.radius
-            if c.x + r < lo or c.x - r > hi:
+            h = c.y + r - track.y  # the cap's height above the datum
+            if h <= 0 or c.x + r < lo or c.x - r > hi:
                 continue
-            half = np.sqrt(2 * r * 3 * track.h_max + 1e-12)
+            half = np.sqrt(max(2 * r * h - h * h, 0.0))
             xs = np.linspace(c.x - half, c.x + half, 17)
-            segs.append(np.column_stack([xs, c.y + np.sqrt(np.maximum(r * r - (xs - c.x) ** 2, 0.0))]))
+            segs.append(np.column_stack([xs, np.maximum(c.y + np.sqrt(np.maximum(r * r - (xs - c.x) ** 2, 0.0)), track.y)]))
             mus.append(sh.friction * q_pad)
         return segs, mus
