@@ -91,7 +91,6 @@ def test_run_then_compare_round_trip(tmp_path):
 
 
 def test_render_png_and_gif_headless(tmp_path):
-
     from PIL import Image
 
     from engine_sim import Scene, load_scenario
