@@ -17,6 +17,7 @@ def quick_report(tmp_path_factory):
     return out
 
 
+@pytest.mark.slow  # the quick report (~1 min on 2 idle cores)
 def test_summary_holds_the_model_exponents(quick_report):
     s = json.loads((quick_report / "summary.json").read_text())
     for key, truth, tol in (("model_I", 4.0, 0.15), ("model_III", 6.0, 0.2), ("model_II", 5.0, 0.2)):
@@ -29,6 +30,7 @@ def test_summary_holds_the_model_exponents(quick_report):
     assert s["model_III"]["mean_force_over_F_f"] == pytest.approx(1.0, abs=0.02)
 
 
+@pytest.mark.slow  # the quick report (~1 min on 2 idle cores)
 def test_summary_holds_every_shipped_scenario(quick_report):
     # Quick mode: 12 s per scene (pads_rough_profile 8 s), 6 bands. The friction-patch scenes are in model I's regime: gamma near 4 and
     # model I built from the scene's own measured parameters within a factor 1.5 per band (measured
@@ -83,6 +85,7 @@ def test_summary_holds_every_shipped_scenario(quick_report):
             assert sc["extracted"]["a"]["value"] == pytest.approx(sc["extracted"]["a"]["substrate_value"], rel=0.15)
 
 
+@pytest.mark.slow  # the quick report (~1 min on 2 idle cores)
 def test_html_embeds_non_blank_figures(quick_report):
     import matplotlib.image as mpimg
 

@@ -38,3 +38,15 @@ def test_log_law_run_through_checkpoints_is_bitwise_the_uninterrupted_run():
     b = engine_sim.run(sc, checkpoint_every=0.1)
     assert np.array_equal(a.x, b.x) and np.array_equal(a.F_drag, b.F_drag)
     assert np.all(np.abs(b.F_drag[1:]) > 0.5 * np.abs(b.F_drag[1]))  # the law acts throughout
+
+
+def test_step_costs_taking_turns_rank_the_wear_scene_above_the_patches():
+    # engine_sim.timing: scenes measured in turns. The wear scene pays 20 solver iterations and 50 grains against
+    # the patch scene's 2 iterations: 4.9x measured (README); 2x is far below that and far above the noise of
+    # taking turns on a busy machine
+    from engine_sim.timing import step_costs
+
+    patches = load_scenario("pads_friction_patches")
+    wear = load_scenario("pads_with_wear")
+    c_patch, c_wear = step_costs([patches, wear], warmup=0.3, chunks=2)
+    assert c_wear > 2.0 * c_patch, (c_patch, c_wear)

@@ -82,6 +82,7 @@ def test_wear_validation_names_the_limit():
         scenario_from_dict({"wear": {"count": 1000}})
 
 
+@pytest.mark.slow  # paired wear runs
 def test_pads_with_wear_keeps_its_grains_and_closes_energy():
     # 3 s. Measured (20 s): deepest grain overlap 4.1 um, none lost, ~1150 recyclings, trapped 7 %, moving 27 %,
     # energy 1.5-1.8 %. Bounds: 8 um, 0 lost, both states seen, 2 %.
