@@ -265,7 +265,7 @@ def _cmd_compare(args) -> int:
 
         try:
             trace = load_trace(src)
-            sc = scenario_from_dict(trace.metadata.get("scenario", {}), where=f"{src} (metadata)")
+            sc = scenario_from_dict(trace.metadata.get("scenario", {}), where=f"{src} (metadata)", strict=False)
         except (TraceFileError, ScenarioError) as e:
             raise UserError(str(e)) from None
     else:

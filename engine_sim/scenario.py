@@ -283,10 +283,13 @@ def _check_value(where, name, ftype, val, positive=False, non_negative=False, ch
     return int(val) if is_int else float(val)
 
 
-def _section(where, sec, cls, raw):
+def _section(where, sec, cls, raw, strict=True):
     if sec == "substrate":  # the kind names the spec class
         kind = _check_value(where, "substrate.kind", str, raw.get("kind", "patches"), choices=tuple(SUBSTRATES))
         cls = SUBSTRATES[kind].Spec
+        if not strict:  # traces written before issue 14 list every kind's substrate fields
+            other = {f.name for k in SUBSTRATES.values() for f in fields(k.Spec)}
+            raw = {k: v for k, v in raw.items() if k in {f.name for f in fields(cls)} or k not in other}
     valid = {f.name: f.type for f in fields(cls)}
     bad = sorted(set(raw) - set(valid))
     if bad:
@@ -302,8 +305,9 @@ def _section(where, sec, cls, raw):
     return spec
 
 
-def scenario_from_dict(data: dict, where: str = "") -> Scenario:
-    """Build and validate a Scenario from a TOML-like dict (SI units)."""
+def scenario_from_dict(data: dict, where: str = "", strict: bool = True) -> Scenario:
+    """Build and validate a Scenario from a TOML-like dict (SI units). ``strict=False`` (a trace's metadata) ignores
+    substrate fields that belong to other substrate kinds, as written by versions before issue 14."""
     if not isinstance(data, dict):
         raise _err(where, "a scenario must be a table of sections")
     top_keys = {"name", "description", *_SECTIONS}
@@ -315,7 +319,7 @@ def scenario_from_dict(data: dict, where: str = "") -> Scenario:
         raw = data.get(sec, {})
         if not isinstance(raw, dict):
             raise _err(where, f"[{sec}] must be a table (got {type(raw).__name__})")
-        parts[sec] = _section(where, sec, cls, raw)
+        parts[sec] = _section(where, sec, cls, raw, strict)
     for key in ("name", "description"):
         if key in data and not isinstance(data[key], str):
             raise _err(where, f"{key} must be a string (got {type(data[key]).__name__})")

@@ -35,3 +35,15 @@ def test_effective_mass_of_leonardo_slider_is_block_plus_hanging_mass():
     sole = describe(load_scenario("asperity_field"))
     assert sole["contact_width"] == pytest.approx(30 * 0.4e-3, rel=1e-12)  # w = N foot_length = 12 mm
     assert sole["substrate"]["kind"] == "asperities" and math.isclose(sole["substrate"]["p"], 0.1)
+
+
+def test_traces_written_before_substrate_parts_still_load():
+    # before issue 14 a trace's metadata listed every kind's substrate fields; compare reads it leniently
+    from engine_sim import ScenarioError, scenario_from_dict
+
+    d = load_scenario("pads_rough_profile").to_dict()
+    d["substrate"].update(alpha=1.0, cell=1e-4, p=0.1, pit_p=0.0)  # other kinds' defaults, as written then
+    with pytest.raises(ScenarioError, match="unknown key substrate"):
+        scenario_from_dict(d)
+    sc = scenario_from_dict(d, strict=False)
+    assert sc.substrate == load_scenario("pads_rough_profile").substrate
