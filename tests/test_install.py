@@ -42,8 +42,10 @@ def test_non_editable_install_runs_shipped_scenarios_by_name(tmp_path):
     t_install = time.perf_counter() - t0
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
-    where = subprocess.run([py, "-c", "import engine_sim, scenarios; print(engine_sim.__file__); print(scenarios.__file__)"],
-                           cwd=elsewhere, check=True, capture_output=True, text=True).stdout.split()
+    r = subprocess.run([py, "-c", "import engine_sim, scenarios; print(engine_sim.__file__); print(scenarios.__file__)"],
+                       cwd=elsewhere, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr[-2000:]
+    where = r.stdout.split()
     assert all(Path(w).is_relative_to(venv) for w in where), where  # the installed copy, not this checkout
     exe = venv / "bin" / "frictionnoise"
     listed = subprocess.run([exe, "scenarios"], cwd=elsewhere, check=True, capture_output=True, text=True).stdout
