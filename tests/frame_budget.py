@@ -5,7 +5,7 @@ import time
 import warnings
 
 
-def frame_cost_ratio(renderer, turns: int = 3) -> float:
+def frame_cost_ratio(renderer, turns: int = 2) -> float:
     """Fastest renderer frame / fastest pymunk.matplotlib_util draw of the same scene."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure

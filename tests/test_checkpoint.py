@@ -28,6 +28,7 @@ def _kill_when(path, proc, timeout=120):
     proc.wait()
 
 
+@pytest.mark.slow  # subprocess runs, killed and resumed
 def test_model_I_killed_and_resumed_is_bitwise_identical(tmp_path):
     ck, res = tmp_path / "m1.ckpt", tmp_path / "m1.npz"
     script = tmp_path / "m1.py"

@@ -128,6 +128,7 @@ def _digest(tr):
     return h.hexdigest()
 
 
+@pytest.mark.slow  # a second process with its own JIT warm-up
 def test_same_seed_same_trace_across_processes():
     sc = _short(load_scenario(PATCHES), duration=0.5)
     here = _digest(engine_sim.run(sc, seed=3))

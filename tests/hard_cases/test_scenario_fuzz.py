@@ -18,6 +18,7 @@ docs = st.one_of(
 )
 
 
+@pytest.mark.slow  # hypothesis fuzzing of the loader
 @settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(docs)
 def test_loader_raises_only_scenario_errors(doc):
