@@ -1,6 +1,8 @@
 """The scenario loader under fuzzed input: nothing but the documented ScenarioError escapes."""
 import math
 
+import pytest
+
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
