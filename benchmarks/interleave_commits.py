@@ -17,7 +17,10 @@ import json, sys
 from benchmarks.bench_engine import loop_ratio
 from engine_sim import load_scenario, shipped_scenarios
 out = {}
+only = sys.argv[2].split(",") if len(sys.argv) > 2 and sys.argv[2] else None
 for name, path in shipped_scenarios().items():
+    if only and name not in only:
+        continue
     b, f = loop_ratio(load_scenario(path), int(sys.argv[1]), repeat=2)
     out[name] = [b, f]
 print(json.dumps(out))
@@ -31,16 +34,17 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--steps", type=int, default=20_000)
     ap.add_argument("--out", default=None)
+    ap.add_argument("--scenes", default="", help="comma-separated scene names (default: all)")
     a = ap.parse_args(argv)
     runs = {"base": [], "new": []}
     for r in range(a.repeats):
         for label, tree in (("base", a.base), ("new", a.new)):
-            p = subprocess.run([sys.executable, "-c", _CHILD, str(a.steps)], cwd=tree, capture_output=True, text=True,
+            p = subprocess.run([sys.executable, "-c", _CHILD, str(a.steps), a.scenes], cwd=tree, capture_output=True, text=True,
                                check=True)
             runs[label].append(json.loads(p.stdout.strip().splitlines()[-1]))
             print(f"turn {r + 1} {label} done", file=sys.stderr, flush=True)
     names = sorted(set(runs["base"][0]) | set(runs["new"][0]))
-    lines = ["| scene | base loop/bare (3 turns) | new loop/bare (3 turns) | base us/step (loop, best) | new us/step (loop, best) |",
+    lines = [f"| scene | base loop/bare ({a.repeats} turns) | new loop/bare ({a.repeats} turns) | base us/step (loop, best) | new us/step (loop, best) |",
              "|---|---|---|---|---|"]
     for n in names:
         cols = []
