@@ -129,7 +129,7 @@ class SceneRenderer:
         mass.set_xy((px + 1.2 - 1.5, my))
         label.set_position((px - 1.0, my + 4.0))
         slack = s.sc.drive.rope_length * U.LENGTH - used
-        label.set_text(f"hanging mass {s.hanging.mass / U.MASS:.3g} kg\nrope slack {slack * 1e3:+.2f} um")
+        label.set_text(f"hanging mass {s.hanging.mass / U.MASS:.3g} kg\nrope slack {slack / U.LENGTH * 1e6:+.2f} um")
 
     def frame(self) -> np.ndarray:
         """Update the artists to the scene's state and render; returns the RGBA image."""

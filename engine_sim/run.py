@@ -10,6 +10,7 @@ from pathlib import Path
 
 from frictionnoise import atomic_write, package_version
 
+from . import units as U
 from .record import EngineTrace, Recorder
 from .scenario import Scenario, load_scenario
 from .scene import Scene, describe
@@ -169,6 +170,6 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     if scene.wear is not None:
         w = scene.wear
         meta["wear"] = {"count": w.count, "recycled": w.recycled, "left_interface": w.lost,
-                        "radii_m": (w.r / 1e3).tolist(), "track": w.track.tolist(),
+                        "radii_m": (w.r / U.LENGTH).tolist(), "track": w.track.tolist(),
                         "asleep_at_end": int(sum(b.is_sleeping for b in w.bodies))}
     return rec.trace(meta)
