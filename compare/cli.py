@@ -40,7 +40,7 @@ def _build_parser() -> argparse.ArgumentParser:
     rep.set_defaults(func=_cmd_report)
 
     run = add("run", "run a scenario and write its trace (.npz arrays in SI units + .json metadata)")
-    run.add_argument("scenario", help="scenario TOML file")
+    run.add_argument("scenario", help="scenario TOML file or shipped name (see `frictionnoise scenarios`)")
     run.add_argument("-o", "--output", default=None, help="output folder (default: run-<scenario name>)")
     run.add_argument("--duration", type=float, default=None, help="simulated seconds (default: the scenario's)")
     run.add_argument("--seed", type=int, default=None,
@@ -50,7 +50,7 @@ def _build_parser() -> argparse.ArgumentParser:
     run.set_defaults(func=_cmd_run)
 
     cmp_ = add("compare", "report one scene (scenario TOML or trace .npz) against the reduced model that fits it")
-    cmp_.add_argument("source", help="scenario TOML file or trace .npz written by `frictionnoise run`")
+    cmp_.add_argument("source", help="scenario TOML file, shipped name, or trace .npz written by `frictionnoise run`")
     cmp_.add_argument("-o", "--output", default=None, help="output folder (default: compare-<name>)")
     cmp_.add_argument("--duration", type=float, default=None, help="simulated seconds when running a scenario")
     cmp_.add_argument("--seed", type=int, default=None,
@@ -58,7 +58,7 @@ def _build_parser() -> argparse.ArgumentParser:
     cmp_.set_defaults(func=_cmd_compare)
 
     ren = add("render", "render a scenario headless to PNG frames (and an animated GIF)")
-    ren.add_argument("scenario", help="scenario TOML file")
+    ren.add_argument("scenario", help="scenario TOML file or shipped name")
     ren.add_argument("-o", "--output", default=None, help="output folder (default: render-<scenario name>)")
     ren.add_argument("--frames", type=int, default=12, help="number of frames (default: %(default)s)")
     ren.add_argument("--duration", type=float, default=0.6, help="simulated seconds spanned (default: %(default)s)")
@@ -75,6 +75,9 @@ def _build_parser() -> argparse.ArgumentParser:
     sw.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes (default: %(default)s)")
     sw.add_argument("--serial", action="store_true", help="run in this process, without dask")
     sw.set_defaults(func=_cmd_sweep)
+
+    lst = add("scenarios", "list the shipped scenarios (run one by name: frictionnoise run NAME)")
+    lst.set_defaults(func=_cmd_scenarios)
 
     an = add("analyze", "analyse measured x(t) or friction force F(t) from a text export: spectra, exponent, rms and a "
                         "report (deterministic: no random numbers, so no --seed)")
@@ -104,6 +107,17 @@ def _build_parser() -> argparse.ArgumentParser:
     an.add_argument("-o", "--output", default=None, help="output folder (default: analyze-<file stem>)")
     an.set_defaults(func=_cmd_analyze)
     return ap
+
+
+def _cmd_scenarios(args) -> int:
+    from engine_sim import load_scenario, shipped_scenarios
+    from engine_sim.scenario import scenario_summary
+
+    shipped = shipped_scenarios()
+    width = max(map(len, shipped), default=0)
+    for name, path in shipped.items():
+        print(f"{name:{width}s}  {scenario_summary(load_scenario(path).description)}")
+    return 0
 
 
 def _cmd_sweep(args) -> int:
@@ -229,7 +243,7 @@ def _cmd_render(args) -> int:
         raise UserError(f"{out}: exists and is not a folder")
     scene = Scene(sc, args.seed)
     renderer = SceneRenderer(scene)
-    steps = max(1, int(round(args.duration / sc.run.dt / args.frames)))
+    n_out = max(1, int(round(args.duration / sc.run.dt_out / args.frames)))  # output steps between frames
     images = []
     with atomic_folder(out) as tmp:
         for k in range(args.frames):
@@ -237,7 +251,9 @@ def _cmd_render(args) -> int:
             renderer.save_png(tmp / f"frame_{k:03d}.png")
             if args.gif:
                 images.append(img.copy())
-            scene.advance(steps)
+            for _ in range(n_out):  # output step by output step: grain states are the recorder's
+                scene.advance(scene.n_sub)
+                renderer.observe()
             scene.maintain()
         if args.gif:
             from PIL import Image
@@ -328,7 +344,7 @@ def _cmd_compare(args) -> int:
     from .traceio import TraceFileError, load_trace
 
     src = Path(args.source)
-    if not src.exists():
+    if src.suffix == ".npz" and not src.exists():
         raise UserError(f"{src}: no such file")
     trace = None
     if src.suffix == ".npz":
@@ -336,7 +352,7 @@ def _cmd_compare(args) -> int:
 
         try:
             trace = load_trace(src)
-            sc = scenario_from_dict(trace.metadata.get("scenario", {}), where=f"{src} (metadata)")
+            sc = scenario_from_dict(trace.metadata.get("scenario", {}), where=f"{src} (metadata)", strict=False)
         except (TraceFileError, ScenarioError) as e:
             raise UserError(str(e)) from None
     else:

@@ -10,6 +10,10 @@ Model I (spring-block) from a pad scene:
   rms alpha f_kin / sqrt(12) (eq. A7), so alpha = sqrt(12) rms / f_kin.
 - c = dF/dv per pad (m eta1 in model I): from the friction law, checked against the recorded viscous force
   over the pads' speed; omega* = N c / M separates viscous (below) from inertial (above) response.
+
+What the scene is (effective mass, friction law, length scale, pads, contact width) comes from the trace's
+``metadata["scene"]`` (written by ``engine_sim.run``), not from the scenario's layout; a trace without it (older
+files) is described from its scenario with ``engine_sim.scene.describe``.
 """
 from __future__ import annotations
 
@@ -17,7 +21,7 @@ import math
 
 import numpy as np
 
-__all__ = ["model_I_parameters", "spring_block_params", "model_III_parameters", "asperity_force_params"]
+__all__ = ["model_I_parameters", "spring_block_params", "model_III_parameters", "asperity_force_params", "scene_info"]
 
 
 def _correlation_length(x: np.ndarray, f: np.ndarray, max_lag_distance: float) -> float:
@@ -37,40 +41,60 @@ def _correlation_length(x: np.ndarray, f: np.ndarray, max_lag_distance: float) -
     return float(np.trapezoid(seg[: end + 1], dx=dx))
 
 
-def model_I_parameters(trace, scenario) -> dict:
+def scene_info(trace, scenario=None) -> dict:
+    """The scene's description carried by the trace (see ``engine_sim.scene.describe``)."""
+    info = trace.metadata.get("scene")
+    if info is None:
+        if scenario is None:
+            raise ValueError("the trace carries no scene description (metadata['scene']): pass its scenario")
+        from engine_sim.scene import describe
+
+        info = describe(scenario)
+    return info
+
+
+def _friction_slope(law: dict, v: float) -> float:
+    """dF/dv of the friction law per pad at speed v (N s/m): c, plus b N_pad / (v_c + v) for the log law."""
+    extra = law["b"] * law["load_per_pad"] / (law["v_c"] + v) if law["law"] == "log" else 0.0
+    return law["c"] + extra
+
+
+def model_I_parameters(trace, scenario=None) -> dict:
     """Model I parameters of an engine trace: {name: {"value", "unit", "provenance", ...}}."""
-    sc = scenario
+    info = scene_info(trace, scenario)
+    pads = info["pads"]
     N_contact = float(np.mean(trace.n_contact))
     load = float(np.mean(trace.F_n)) / max(N_contact, 1.0)
     v = float((trace.x[-1] - trace.x[0]) / (trace.t[-1] - trace.t[0]))
     f = trace.pad_force
     f_kin = float(np.mean(f))
     rms = float(np.mean(np.std(f, axis=0)))
-    Lc = _correlation_length(trace.x, f, 10 * sc.substrate.a)
+    Lc = _correlation_length(trace.x, f, 10 * info["length_scale"])
     a = 12.0 / 7.0 * Lc
-    c_law = sc.friction_slope(v)
+    c_law = _friction_slope(info["friction_law"], v)
     c_meas = float(np.mean(trace.F_drag) / (N_contact * v))
-    if sc.drive.kind == "leonardo":  # the taut rope moves the hanging mass with the block
-        M, M_prov = sc.block.M + sc.hanging_mass, "scenario: block + hanging mass (Leonardo's slider, rope taut)"
+    M = info["effective_mass"]
+    if M != info["block_mass"]:  # Leonardo's slider: the taut rope moves the hanging mass with the block
+        M_prov = "scenario: block + hanging mass (Leonardo's slider, rope taut)"
     else:
-        M, M_prov = sc.block.M, "scenario"
+        M_prov = "scenario"
     return {
         "N": {"value": N_contact, "unit": "", "provenance": "mean number of pads touching their track"},
         "load_per_pad": {"value": load, "unit": "N", "provenance": "mean normal contact force / N"},
         "v": {"value": v, "unit": "m/s", "provenance": "block displacement / time"},
         "a": {"value": a, "unit": "m", "provenance": "(12/7) x integral correlation length of the pad forces in distance",
-              "substrate_value": sc.substrate.a},
+              "substrate_value": info["length_scale"]},
         "f_kin": {"value": f_kin, "unit": "N", "provenance": "mean tangential contact force per pad"},
         "alpha": {"value": math.sqrt(12.0) * rms / f_kin, "unit": "", "provenance": "sqrt(12) x rms pad force / f_kin (eq. A7)",
-                  "substrate_value": sc.substrate.alpha},
+                  "substrate_value": info["substrate"].get("alpha")},
         "c": {"value": c_law, "unit": "N s/m", "provenance": "friction law (scenario)", "measured": c_meas},
-        "k0": {"value": sc.pads.k0, "unit": "N/m", "provenance": "scenario"},
+        "k0": {"value": pads["k0"], "unit": "N/m", "provenance": "scenario"},
         "M": {"value": M, "unit": "kg", "provenance": M_prov},
-        "m": {"value": sc.pads.mass, "unit": "kg", "provenance": "scenario (pad mass)"},
-        "eta0": {"value": sc.pads.c0 / sc.pads.mass, "unit": "1/s", "provenance": "scenario (c0 / m)"},
+        "m": {"value": pads["mass"], "unit": "kg", "provenance": "scenario (pad mass)"},
+        "eta0": {"value": pads["c0"] / pads["mass"], "unit": "1/s", "provenance": "scenario (c0 / m)"},
         "omega_star": {"value": N_contact * c_law / M, "unit": "rad/s",
                        "provenance": "N c / M: viscous response below, inertial above"},
-        "omega_c": {"value": math.sqrt(N_contact * sc.pads.k0 / M), "unit": "rad/s",
+        "omega_c": {"value": math.sqrt(N_contact * pads["k0"] / M), "unit": "rad/s",
                     "provenance": "sqrt(N k0 / M): block-on-pads resonance, the top of the omega^-4 band"},
     }
 
@@ -87,7 +111,7 @@ def spring_block_params(ex: dict):
                              F_drive=N * (f_kin + c * v), F_kin=N * f_kin)
 
 
-def model_III_parameters(trace, scenario) -> dict:
+def model_III_parameters(trace, scenario=None) -> dict:
     """Model III (section 6) contact statistics of an asperity-field trace: {name: {"value", "unit", "provenance"}}.
 
     w is the sole's width N foot_length; N the mean number of foot-asperity contact pairs; the model's cell
@@ -96,8 +120,9 @@ def model_III_parameters(trace, scenario) -> dict:
     contact force and f0 = 2 F_f / N (model III's contact force is r f0 with r uniform in [0, 1]). The
     per-contact force distribution is measured on feet touching exactly one asperity: its coefficient of
     variation is compared with the uniform law's 1/sqrt(3)."""
-    sc = scenario
-    w = sc.pads.N * sc.pads.foot_length
+    info = scene_info(trace, scenario)
+    sub = info["substrate"]
+    w = info["contact_width"]
     N = float(np.mean(trace.n_pairs))
     F_f = float(np.mean(trace.F_t))
     v = float((trace.x[-1] - trace.x[0]) / (trace.t[-1] - trace.t[0]))
@@ -107,16 +132,16 @@ def model_III_parameters(trace, scenario) -> dict:
     return {
         "w": {"value": w, "unit": "m", "provenance": "N x foot_length (scenario)"},
         "N": {"value": N, "unit": "", "provenance": "mean number of foot-asperity contact pairs"},
-        "p": {"value": N * sc.substrate.cell / w, "unit": "", "provenance": "N cell / w: touching asperities per cell",
-              "substrate_value": sc.substrate.p},
+        "p": {"value": N * sub["cell"] / w, "unit": "", "provenance": "N cell / w: touching asperities per cell",
+              "substrate_value": sub["p"]},
         "F_f": {"value": F_f, "unit": "N", "provenance": "mean tangential contact force"},
         "f0": {"value": 2.0 * F_f / N, "unit": "N", "provenance": "2 F_f / N (model III: mean contact force f0 / 2)"},
         "contact_force_cv": {"value": cv, "unit": "", "provenance": "std / mean of the tangential force of feet in contact "
                              "(model III's uniform r f0: 0.577)"},
         "n_rel_std": {"value": float(np.std(trace.n_pairs) / N), "unit": "", "provenance": "relative std of the number of contacts"},
         "v": {"value": v, "unit": "m/s", "provenance": "block displacement / time"},
-        "M": {"value": sc.block.M, "unit": "kg", "provenance": "scenario"},
-        "omega_star": {"value": sc.pads.N * sc.friction_slope(v) / sc.block.M, "unit": "rad/s",
+        "M": {"value": info["block_mass"], "unit": "kg", "provenance": "scenario"},
+        "omega_star": {"value": info["pads"]["N"] * _friction_slope(info["friction_law"], v) / info["block_mass"], "unit": "rad/s",
                        "provenance": "N c / M: viscous response below, inertial above"},
     }
 

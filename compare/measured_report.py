@@ -22,7 +22,7 @@ import numpy as np
 from .fits import PowerLawFit, fit_power_law
 from .html import esc, paragraphs, table
 from .measured import MeasuredData, units_line
-from .spectra import Spectrum, _rescaled, average_spectra, rms_from_spectrum, series_spectrum
+from .spectra import G_STANDARD, Spectrum, _rescaled, average_spectra, rms_from_spectrum, series_spectrum
 from .study import Figure, StudyResult
 
 __all__ = ["Strokes", "ForceAnalysis", "find_strokes", "analyze_force", "build_force_report", "build_measured_report"]
@@ -315,7 +315,7 @@ def build_force_report(an: ForceAnalysis):
     return [result], summary
 
 
-def build_measured_report(data, mass: float, band=None, g: float = 9.81):
+def build_measured_report(data, mass: float, band=None, g: float = G_STANDARD):
     """Results (StudyResult list) and summary of measured x(t), with block mass ``mass`` (kg)."""
     from reduced_models._version import package_version
 

@@ -1,4 +1,6 @@
-"""Output folders written atomically: build in a hidden temporary sibling, rename into place when complete."""
+"""Outputs written atomically: a folder built in a hidden temporary sibling and renamed into place when complete
+(:func:`atomic_folder`); single files through the distribution's one writer (:func:`atomic_write`, defined in
+:mod:`frictionnoise` so that engine_sim's checkpoints use the same one)."""
 from __future__ import annotations
 
 import os
@@ -7,7 +9,9 @@ import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
-__all__ = ["atomic_folder"]
+from frictionnoise import atomic_write
+
+__all__ = ["atomic_folder", "atomic_write"]
 
 
 @contextmanager

@@ -37,7 +37,7 @@ __all__ = [
     "G_STANDARD",
 ]
 
-G_STANDARD = 9.81  # m/s^2, the paper's g
+from frictionnoise import G as G_STANDARD  # noqa: E402  (m/s^2, the paper's g, defined once)
 _MAX_PREWHITEN = 4
 _PILOT_SAMPLES = 1 << 20  # the pilot slope estimate looks at most at this many samples
 

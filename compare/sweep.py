@@ -23,14 +23,14 @@ import hashlib
 import itertools
 import json
 import math
-import os
-import tempfile
 import time
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+
+from frictionnoise import atomic_write
 
 __all__ = ["SweepSpec", "SweepError", "load_sweep", "expand", "run_task", "run_sweep", "load_results",
            "velocity_analysis"]
@@ -176,10 +176,7 @@ def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
 
 
 def _write_json(path: Path, obj):
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    with os.fdopen(fd, "w") as fh:
-        json.dump(obj, fh)
-    os.replace(tmp, path)
+    atomic_write(path, json.dumps(obj))
 
 
 def run_sweep(spec: SweepSpec, out_dir, *, scheduler: str | None = None, workers: int = 2, serial: bool = False,

@@ -89,10 +89,7 @@ def write_sweep_outputs(out_dir, results, summary):
     out = Path(out_dir)
     (out / "figures").mkdir(parents=True, exist_ok=True)
 
-    def atomic(path: Path, data: bytes):
-        tmp = path.with_name(f".{path.name}.tmp")
-        tmp.write_bytes(data)
-        tmp.replace(path)
+    from frictionnoise import atomic_write as atomic
 
     for r in results:
         for f in r.figures:

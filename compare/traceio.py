@@ -2,12 +2,12 @@
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from dataclasses import fields
 from pathlib import Path
 
 import numpy as np
+
+from frictionnoise import atomic_write
 
 __all__ = ["save_trace", "load_trace", "TraceFileError", "FORMAT"]
 
@@ -16,18 +16,6 @@ FORMAT = "frictionnoise-trace-2"
 
 class TraceFileError(ValueError):
     """A file that is not a readable frictionnoise trace; the message names the file and the problem."""
-
-
-def _atomic_write(path: Path, write):
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    os.close(fd)
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
 
 
 def save_trace(trace, path) -> Path:
@@ -41,8 +29,8 @@ def save_trace(trace, path) -> Path:
         with open(tmp, "wb") as fh:
             np.savez(fh, **arrays)
 
-    _atomic_write(path, w_npz)
-    _atomic_write(path.with_suffix(".json"), lambda tmp: Path(tmp).write_text(json.dumps(meta, indent=1, default=float)))
+    atomic_write(path, write=w_npz)
+    atomic_write(path.with_suffix(".json"), json.dumps(meta, indent=1, default=float))
     return path
 
 

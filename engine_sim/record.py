@@ -86,14 +86,6 @@ class Recorder:
         self.p_state = np.zeros((n_samples, n_p), dtype=np.int8)
         self.p_force = np.zeros((n_samples, n_p))
         self.recycle = np.zeros(n_samples)
-        # body table: sorted ids -> (kind, index); kinds 0 block, 1 pad, 2 particle, 3 hanging mass
-        rows = [(scene.block.id, 0, 0)] + [(pad.id, 1, i) for i, pad in enumerate(scene.pads)]
-        if wear is not None:
-            rows += [(b.id, 2, j) for j, b in enumerate(wear.bodies)]
-        if scene.hanging is not None:
-            rows += [(scene.hanging.id, 3, 0)]
-        rows.sort()
-        self._tab = np.array(rows, dtype=np.int64).reshape(-1, 3)
         # per particle: mass, moment, radius, asleep (set each sample), last known (x, y)
         if wear is not None:
             moment = np.where(np.isfinite(wear.moment), wear.moment, 0.0)  # locked grains: no rotational energy
@@ -103,35 +95,49 @@ class Recorder:
                 self._part[j, 4:6] = b.position.x, b.position.y
         else:
             self._part = np.zeros((0, 6))
+        self.x0 = None
+        self._tables()
+
+    def _tables(self):
+        """What the kernel needs of the scene, asked of it (its bodies, springs, scene-unit constants); pymunk ids are
+        addresses, so this is rebuilt after unpickling."""
+        scene = self.scene
+        # body table: sorted ids -> (kind, index); kinds 0 block, 1 pad, 2 particle, 3 hanging mass
+        rows = [(scene.block.id, 0, 0)] + [(pad.id, 1, i) for i, pad in enumerate(scene.pads)]
+        if scene.wear is not None:
+            rows += [(b.id, 2, j) for j, b in enumerate(scene.wear.bodies)]
+        if scene.hanging is not None:
+            rows += [(scene.hanging.id, 3, 0)]
+        rows.sort()
+        self._tab = np.array(rows, dtype=np.int64).reshape(-1, 3)
         self._bbuf = B.Buffer()
         self._abuf = B.Buffer()
-        sc = scene.sc
-        self.m_p = sc.pads.mass * U.MASS
-        self.M = sc.block.M * U.MASS
-        self.c = sc.friction.c * U.DAMPING
-        self.x0 = None
         bN, vc = scene.log_law if scene.log_law is not None else (0.0, 1.0)
         m_h = scene.hanging.mass if scene.hanging is not None else 0.0
-        v_trap = sc.wear.trapped_speed * sc.steady_velocity * U.VELOCITY
         # scalars for the kernel: drive k, anchor x, rest, anchor v, x0, dt, c, m_p, M, g, b N_pad, v_c, m_h,
         # trapped-speed threshold, output step
-        self._prm = np.array([0.0, 0.0, 0.0, 0.0, 0.0, scene.dt, self.c, self.m_p, self.M, -scene.space.gravity.y,
-                              bN, vc, m_h, v_trap, scene.dt * scene.n_sub])
-        # Springs with energy, as (pad, anchors, rest length, stiffness, damping) arrays for vectorised lengths;
-        # drag springs (stiffness 0) store none. Pad-pad springs use both pad positions.
-        bs, pp = [], []
+        self._prm = np.array([0.0, 0.0, 0.0, 0.0, 0.0, scene.dt, scene.c_drag, scene.m_pad, scene.M,
+                              -scene.space.gravity.y, bN, vc, m_h, scene.v_trap, scene.dt * scene.n_sub])
+        self._drive_spring = scene.drive_spring
+        # springs with energy as arrays for vectorised lengths: (pad, anchors, rest length, stiffness, damping);
+        # pad-pad springs use both pad positions; springs without stiffness (pure dampers) store none
         index = {pad: i for i, pad in enumerate(scene.pads)}
-        for c in scene.space.constraints:
-            if c is scene.drive_spring:
-                self._drive_spring = c
-            if not hasattr(c, "stiffness") or not hasattr(c, "rest_length") or c.stiffness <= 0:
-                continue
-            if c.a is scene.block and c.b in index:
-                bs.append((index[c.b], *c.anchor_a, *c.anchor_b, c.rest_length, c.stiffness, c.damping))
-            elif c.a in index and c.b in index:
-                pp.append((index[c.a], index[c.b], *c.anchor_a, *c.anchor_b, c.rest_length, c.stiffness, c.damping))
+        bs = [(index[c.b], *c.anchor_a, *c.anchor_b, c.rest_length, c.stiffness, c.damping)
+              for c in scene.block_pad_springs if c.stiffness > 0]
+        pp = [(index[c.a], index[c.b], *c.anchor_a, *c.anchor_b, c.rest_length, c.stiffness, c.damping)
+              for c in scene.pad_pad_springs if c.stiffness > 0]
         self._bs = np.array(bs).reshape(-1, 8)
         self._pp = np.array(pp).reshape(-1, 9)
+
+    def __getstate__(self):
+        state = self.__dict__.copy()
+        for k in ("_tab", "_bbuf", "_abuf", "_prm", "_drive_spring", "_bs", "_pp"):
+            del state[k]  # derived from the scene (pymunk ids change on unpickling; batch buffers do not pickle)
+        return state
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._tables()
 
     def sample(self):
         sc, k = self.scene, self.k

@@ -1,30 +1,23 @@
 """engine_sim.run: simulate a scenario and record it (SI trace)."""
 from __future__ import annotations
 
-import os
 import pickle
 import signal
-import tempfile
 import threading
 import time
 from contextlib import contextmanager
-from importlib import metadata as _md
 from pathlib import Path
 
+from frictionnoise import atomic_write, package_version
+
+from . import units as U
 from .record import EngineTrace, Recorder
 from .scenario import Scenario, load_scenario
-from .scene import Scene
+from .scene import Scene, describe
 
 __all__ = ["run"]
 
 _MAINTAIN_EVERY = 64  # output steps between substrate maintenance (the margin ahead covers 200 outputs)
-
-
-def _version() -> str:
-    try:
-        return _md.version("frictionnoise")
-    except _md.PackageNotFoundError:
-        return "0+unknown"
 
 
 def _warm_up(scene, n_out: int, interrupts=None):
@@ -67,21 +60,16 @@ class _Interrupts:
 def _snapshot(scene, rec, k) -> bytes:
     if rec.k != k:
         raise RuntimeError(f"snapshot at an inconsistent point (loop at sample {k}, recorder at {rec.k})")
-    state = {"scene": scene, "t": rec.t, "out": rec.out, "pad_force": rec.pad_force, "n_contact": rec.n_contact,
-             "p_state": rec.p_state, "p_force": rec.p_force, "recycle": rec.recycle, "part": rec._part,
-             "rec_k": rec.k, "x0": rec.x0, "k": k}
-    return pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
+    # Scene and Recorder pickle through their own state methods (the recorder carries its scene)
+    return pickle.dumps({"recorder": rec, "k": k}, protocol=pickle.HIGHEST_PROTOCOL)
 
 
 def _restore(data: bytes, n_out: int):
     state = pickle.loads(data)
-    scene = state["scene"]
-    for tr in scene.tracks:
-        tr.restore_neighbors()
-    rec = Recorder(scene, n_out)
-    rec.t, rec.out, rec.pad_force, rec.n_contact = state["t"], state["out"], state["pad_force"], state["n_contact"]
-    rec.p_state, rec.p_force, rec.recycle, rec._part = state["p_state"], state["p_force"], state["recycle"], state["part"]
-    rec.k, rec.x0 = state["rec_k"], state["x0"]
+    if not isinstance(state, dict) or not isinstance(state.get("recorder"), Recorder):
+        raise ValueError("checkpoint holds no recorder (written by another version?): delete it and run again")
+    rec = state["recorder"]
+    scene = rec.scene
     if not (rec.k == state["k"] and 0 <= rec.k < n_out and rec.t.shape[0] == n_out):
         raise ValueError(f"checkpoint is inconsistent (loop at sample {state['k']}, recorder at {rec.k}, "
                          f"{n_out} samples): delete it and run again")
@@ -89,10 +77,7 @@ def _restore(data: bytes, n_out: int):
 
 
 def _write_atomic(path: Path, key: dict, data: bytes):
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    with os.fdopen(fd, "wb") as fh:
-        pickle.dump({"key": key, "data": data}, fh, protocol=pickle.HIGHEST_PROTOCOL)
-    os.replace(tmp, path)
+    atomic_write(path, pickle.dumps({"key": key, "data": data}, protocol=pickle.HIGHEST_PROTOCOL))
 
 
 def run(scenario, duration: float | None = None, seed: int | None = None, progress=None, *,
@@ -175,16 +160,16 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     if progress is not None and not partial:
         progress(total, total)
     meta = {
-        "producer": "engine_sim", "scenario": sc.to_dict(), "seed": scene.seed, "version": _version(),
+        "producer": "engine_sim", "scenario": sc.to_dict(), "seed": scene.seed, "version": package_version(),
         "wall_s": wall, "steps": scene.steps, "us_per_step": wall / max(scene.steps, 1) * 1e6,
         "steady_velocity_law": sc.steady_velocity, "drive_force": sc.drive_force if sc.drive.kind != "velocity" else None,
         "segments_generated": sum(t.generated for t in scene.tracks),
         "segments_live": sum(len(t.segments) for t in scene.tracks),
-        "partial": partial, "resumed_from_checkpoint": resumed,
+        "partial": partial, "resumed_from_checkpoint": resumed, "scene": describe(sc),
     }
     if scene.wear is not None:
         w = scene.wear
         meta["wear"] = {"count": w.count, "recycled": w.recycled, "left_interface": w.lost,
-                        "radii_m": (w.r / 1e3).tolist(), "track": w.track.tolist(),
+                        "radii_m": (w.r / U.LENGTH).tolist(), "track": w.track.tolist(),
                         "asleep_at_end": int(sum(b.is_sleeping for b in w.bodies))}
     return rec.trace(meta)

@@ -8,25 +8,30 @@ file, the field and the limit, including the time-step limit that the pad spring
 from __future__ import annotations
 
 import math
+import re
 import tomllib
 from dataclasses import dataclass, field, fields, replace
+from importlib import resources
 from pathlib import Path
 
-__all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", "SubstrateSpec", "DriveSpec",
-           "WearSpec", "RunSpec", "load_scenario", "scenario_from_dict", "shipped_scenarios", "SCENARIO_DIR"]
+from frictionnoise import G
 
-SCENARIO_DIR = Path(__file__).resolve().parent.parent / "scenarios"
-G = 9.81  # m/s^2
+from .substrates import KINDS as SUBSTRATES, SubstrateSpec
+from .substrates.patches import PatchesSpec
+from .wear import WearSpec, check_wear
+
+__all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", "SubstrateSpec", "DriveSpec",
+           "WearSpec", "RunSpec", "load_scenario", "scenario_from_dict", "shipped_scenarios", "resolve_scenario",
+           "scenario_summary", "SCENARIO_DIR"]
+
+# the shipped scenarios are package data of the ``scenarios`` package (installed with every install, not found
+# relative to a source tree); a regular (non-zipped) install gives a real folder
+SCENARIO_DIR = Path(str(resources.files("scenarios")))
 
 # Explicit spring forces are accurate for omega dt < 0.3 (DESIGN.md, measured on pymunk 7.3).
 SPRING_OMEGA_DT = 0.3
 # Spring damping is exact-exponential but its effect is slowed by x/(e^x - 1), x = c dt / m: keep x < 0.1.
 SPRING_DAMPING_X = 0.1
-# No continuous collision detection in pymunk: a particle crosses a surface once v dt exceeds about 1.2 radii
-# (DESIGN.md). Particles are held to WEAR_SPEED_FACTOR x the sliding speed x dt < WEAR_TUNNEL_FRACTION r_min;
-# the tracks' segment radius (50 um by default) adds to the margin.
-WEAR_SPEED_FACTOR = 10.0
-WEAR_TUNNEL_FRACTION = 0.25
 
 
 class ScenarioError(ValueError):
@@ -91,43 +96,6 @@ class FrictionSpec:
 
 
 @dataclass(frozen=True)
-class SubstrateSpec:
-    """One independent track per pad.
-
-    kind "patches": a flat track of friction patches; patch boundaries at (j + r_j) a (so renewal
-    intervals follow model I's tau0 (1 + r - r')), each patch with mu = mu0 (1 + alpha (r - 1/2)).
-    kind "self_affine": a randomly rough profile by Fourier synthesis (streamed FIR filtering of white
-    noise): Hurst exponent ``hurst``, roll-off wavelength ``lambda_r`` (flat spectrum above it), short
-    cut-off ``lambda_s``, rms slope ``rms_slope``, grid spacing lambda_s / 4; friction mu0 everywhere.
-    ``a`` is then the renewal length used for the fit band (default: lambda_r).
-    Patches may hold cavities where wear particles get trapped: with probability ``pit_p`` per patch, a
-    flat-bottomed pit of depth ``pit_depth``, width uniform in [pit_width_min, pit_width_max] (m, between the
-    walls' centre lines: the opening is narrower by 2 segment_radius).
-    kind "asperities": sparse random asperities (model III's substrate): cells of length ``cell``, each
-    holding with probability ``p`` a bump (a circular cap of radius ``bump_radius``, much larger than its height,
-    so caps may overlap) whose top stands r ``h_max`` above the datum (r uniform in [0, 1]); one track shared
-    by all feet (see PadSpec); ``a`` is unused.
-    """
-
-    kind: str = "patches"
-    a: float = 1e-3
-    alpha: float = 1.0
-    segment_radius: float = 0.05e-3
-    hurst: float = 0.8
-    lambda_r: float = 2e-3
-    lambda_s: float = 0.1e-3
-    rms_slope: float = 0.1
-    cell: float = 0.1e-3
-    p: float = 0.1
-    bump_radius: float = 0.04e-3
-    h_max: float = 0.02e-3
-    pit_p: float = 0.0
-    pit_width_min: float = 0.15e-3
-    pit_width_max: float = 0.35e-3
-    pit_depth: float = 0.06e-3
-
-
-@dataclass(frozen=True)
 class DriveSpec:
     """How the block is driven.
 
@@ -150,45 +118,6 @@ class DriveSpec:
 
 
 @dataclass(frozen=True)
-class WearSpec:
-    """Wear particles as rigid circles (section 5, Appendix B), on the pads' flat tracks (substrate "patches").
-
-    count: number of particles, dealt round-robin to the pads' tracks (each collides only with its own pad, its
-    track and the particles on that track). Radii (m) follow ``distribution``: "lognormal" with median
-    ``r_median`` and log-std ``sigma``, or "power" with P(r) ~ r^-``exponent``, both cut to [r_min, r_max].
-    density (kg/m^3, per unit depth of a 2D disc: mass = density pi r^2 depth, depth = 1 mm), raised to at
-    least ``min_mass`` (kg): pymunk's iterative contact solver loses a light grain squeezed by a heavy pad (mass
-    ratios above ~1e3 at a few iterations push grains through the track). The raised inertia is not neutral:
-    on pads_with_wear (30 iterations, 6 s) the grains' mean force on the pads read 0.35, 0.47 and 0.55 N at
-    1e-4, 3e-4 and 1e-3 kg, and at 1e-5 kg the solver no longer closes the energy balance (3-4 %); mu_track,
-    mu_pad: friction with the track and with the pad; rotation: "locked" (moment = inf: the grain slides but
-    does not roll, as angular debris) or "free" (a rolling disc: squeezed under a sliding pad it rolls at v / 2
-    and is never trapped; measured). A particle is "trapped" when it touches its pad and its mean speed over the
-    last output step is below ``trapped_speed`` x the sliding speed (at rest relative to the substrate), "moving" when it touches its pad
-    and moves faster, and "idle" when it does not touch its pad. Particles more than ``behind`` (m) behind their
-    pad are recycled to a random place up to ``ahead`` (m) in front of it, at rest on the track; particles
-    that leave the interface (above their pad or below the track surface) are counted and recycled too.
-    Idle particles at rest fall asleep (pymunk sleeping), so they cost nothing until a pad reaches them.
-    """
-
-    count: int = 0
-    distribution: str = "lognormal"
-    r_min: float = 20e-6
-    r_max: float = 150e-6
-    r_median: float = 50e-6
-    sigma: float = 0.6
-    exponent: float = 2.0
-    density: float = 2500.0
-    min_mass: float = 0.0
-    mu_track: float = 0.8
-    mu_pad: float = 0.4
-    rotation: str = "locked"
-    trapped_speed: float = 0.1
-    ahead: float = 2e-3
-    behind: float = 1e-3
-
-
-@dataclass(frozen=True)
 class RunSpec:
     """dt: pymunk step (s); dt_out: output step (s), a multiple of dt; duration and warmup (s, the warm-up is
     simulated and discarded); iterations: pymunk solver iterations; seed."""
@@ -208,7 +137,7 @@ class Scenario:
     block: BlockSpec = field(default_factory=BlockSpec)
     pads: PadSpec = field(default_factory=PadSpec)
     friction: FrictionSpec = field(default_factory=FrictionSpec)
-    substrate: SubstrateSpec = field(default_factory=SubstrateSpec)
+    substrate: SubstrateSpec = field(default_factory=PatchesSpec)  # the kind's own spec (engine_sim/substrates/)
     drive: DriveSpec = field(default_factory=DriveSpec)
     wear: WearSpec = field(default_factory=WearSpec)
     run: RunSpec = field(default_factory=RunSpec)
@@ -305,35 +234,37 @@ class Scenario:
 
 _SECTIONS = {"block": BlockSpec, "pads": PadSpec, "friction": FrictionSpec, "substrate": SubstrateSpec,
              "drive": DriveSpec, "wear": WearSpec, "run": RunSpec}
-_CHOICES = {("friction", "law"): ("linear", "log"), ("substrate", "kind"): ("patches", "self_affine", "asperities"),
+_CHOICES = {("friction", "law"): ("linear", "log"),
             ("drive", "kind"): ("force", "tilted", "velocity", "leonardo"),
             ("wear", "distribution"): ("lognormal", "power"), ("wear", "rotation"): ("locked", "free")}
 _POSITIVE = {("block", "M"), ("pads", "N"), ("pads", "mass"), ("pads", "radius"), ("pads", "k0"),
-             ("pads", "k_normal"), ("pads", "track_spacing"), ("friction", "v_c"), ("substrate", "a"),
-             ("substrate", "segment_radius"), ("substrate", "lambda_r"), ("substrate", "lambda_s"),
-             ("substrate", "rms_slope"), ("substrate", "cell"),
-             ("substrate", "p"), ("substrate", "bump_radius"), ("pads", "foot_length"), ("drive", "v"), ("drive", "k_drive"), ("drive", "hanging_mass"),
+             ("pads", "k_normal"), ("pads", "track_spacing"), ("friction", "v_c"), ("pads", "foot_length"), ("drive", "v"), ("drive", "k_drive"), ("drive", "hanging_mass"),
              ("drive", "rope_length"), ("run", "dt"), ("run", "dt_out"),
              ("run", "duration"), ("run", "iterations"),
              ("wear", "r_min"), ("wear", "r_max"), ("wear", "r_median"), ("wear", "sigma"), ("wear", "density"),
              ("wear", "trapped_speed"), ("wear", "ahead"), ("wear", "behind")}
-_NON_NEGATIVE = {("pads", "c0"), ("pads", "k1"), ("pads", "c1"), ("pads", "c_normal"), ("substrate", "h_max"), ("friction", "mu0"), ("friction", "c"), ("friction", "b"),
-                 ("substrate", "alpha"),
-                 ("run", "warmup"), ("run", "seed"),
-                 ("substrate", "pit_p"), ("substrate", "pit_depth"), ("wear", "count"), ("wear", "exponent"), ("wear", "min_mass"), ("wear", "mu_track"), ("wear", "mu_pad")}
+_NON_NEGATIVE = {("pads", "c0"), ("pads", "k1"), ("pads", "c1"), ("pads", "c_normal"), ("friction", "mu0"), ("friction", "c"), ("friction", "b"),
+                 ("run", "warmup"), ("run", "seed"), ("wear", "count"), ("wear", "exponent"), ("wear", "min_mass"), ("wear", "mu_track"), ("wear", "mu_pad")}
 
 
 def _err(where: str, msg: str) -> ScenarioError:
     return ScenarioError(f"{where}: {msg}" if where else msg)
 
 
-def _check_value(where, sec, key, ftype, val):
-    name = f"{sec}.{key}"
+def _rules(sec, spec_cls=None):
+    """(positive, non-negative, choices) for a section's fields; a substrate kind declares its own."""
+    if sec == "substrate":
+        part = next(k for k in SUBSTRATES.values() if k.Spec is spec_cls)
+        return part.positive, part.non_negative, {**part.choices, "kind": tuple(SUBSTRATES)}
+    pick = lambda table: {k for s, k in table if s == sec}  # noqa: E731
+    return pick(_POSITIVE), pick(_NON_NEGATIVE), {k: v for (s, k), v in _CHOICES.items() if s == sec}
+
+
+def _check_value(where, name, ftype, val, positive=False, non_negative=False, choices=None):
     is_int = "int" in str(ftype) and "float" not in str(ftype)
     if "str" in str(ftype):
         if not isinstance(val, str):
             raise _err(where, f"{name} must be a string (got {type(val).__name__} {val!r})")
-        choices = _CHOICES.get((sec, key))
         if choices and val not in choices:
             raise _err(where, f"{name} = {val!r} is not one of: {', '.join(choices)}")
         return val
@@ -345,15 +276,38 @@ def _check_value(where, sec, key, ftype, val):
         raise _err(where, f"{name} must be an integer (got {val!r})")
     if not math.isfinite(val):
         raise _err(where, f"{name} must be finite (got {val!r})")
-    if (sec, key) in _POSITIVE and not val > 0:
+    if positive and not val > 0:
         raise _err(where, f"{name} must be > 0 (got {val!r})")
-    if (sec, key) in _NON_NEGATIVE and val < 0:
+    if non_negative and val < 0:
         raise _err(where, f"{name} must be >= 0 (got {val!r})")
     return int(val) if is_int else float(val)
 
 
-def scenario_from_dict(data: dict, where: str = "") -> Scenario:
-    """Build and validate a Scenario from a TOML-like dict (SI units)."""
+def _section(where, sec, cls, raw, strict=True):
+    if sec == "substrate":  # the kind names the spec class
+        kind = _check_value(where, "substrate.kind", str, raw.get("kind", "patches"), choices=tuple(SUBSTRATES))
+        cls = SUBSTRATES[kind].Spec
+        if not strict:  # traces written before issue 14 list every kind's substrate fields
+            other = {f.name for k in SUBSTRATES.values() for f in fields(k.Spec)}
+            raw = {k: v for k, v in raw.items() if k in {f.name for f in fields(cls)} or k not in other}
+    valid = {f.name: f.type for f in fields(cls)}
+    bad = sorted(set(raw) - set(valid))
+    if bad:
+        raise _err(where, f"unknown key {sec}.{bad[0]}; valid keys in [{sec}]: {', '.join(valid)}")
+    pos, nonneg, choices = _rules(sec, cls)
+    spec = cls(**{k: _check_value(where, f"{sec}.{k}", valid[k], v, k in pos, k in nonneg, choices.get(k))
+                  for k, v in raw.items()})
+    if sec == "substrate":
+        try:
+            spec = SUBSTRATES[spec.kind].prepare(spec, where)
+        except ValueError as e:
+            raise _err(where, str(e)) from None
+    return spec
+
+
+def scenario_from_dict(data: dict, where: str = "", strict: bool = True) -> Scenario:
+    """Build and validate a Scenario from a TOML-like dict (SI units). ``strict=False`` (a trace's metadata) ignores
+    substrate fields that belong to other substrate kinds, as written by versions before issue 14."""
     if not isinstance(data, dict):
         raise _err(where, "a scenario must be a table of sections")
     top_keys = {"name", "description", *_SECTIONS}
@@ -365,11 +319,7 @@ def scenario_from_dict(data: dict, where: str = "") -> Scenario:
         raw = data.get(sec, {})
         if not isinstance(raw, dict):
             raise _err(where, f"[{sec}] must be a table (got {type(raw).__name__})")
-        valid = {f.name: f.type for f in fields(cls)}
-        bad = sorted(set(raw) - set(valid))
-        if bad:
-            raise _err(where, f"unknown key {sec}.{bad[0]}; valid keys in [{sec}]: {', '.join(valid)}")
-        parts[sec] = cls(**{k: _check_value(where, sec, k, valid[k], v) for k, v in raw.items()})
+        parts[sec] = _section(where, sec, cls, raw, strict)
     for key in ("name", "description"):
         if key in data and not isinstance(data[key], str):
             raise _err(where, f"{key} must be a string (got {type(data[key]).__name__})")
@@ -414,58 +364,36 @@ def _check_consistency(sc: Scenario, where: str):
             raise _err(where, f"drive force {sc.drive_force:.4g} N does not exceed the kinetic friction "
                               f"{p.N * sc.friction.mu0 * sc.normal_load_per_pad:.4g} N: the block would not slide")
     sub = sc.substrate
-    if sub.kind == "self_affine":
-        if not 0 < sub.hurst < 1:
-            raise _err(where, f"substrate.hurst must lie in (0, 1) (got {sub.hurst!r})")
-        if not sub.lambda_s < sub.lambda_r:
-            raise _err(where, f"substrate.lambda_s = {sub.lambda_s!r} m must be shorter than lambda_r = {sub.lambda_r!r} m")
-        limit = 1.0 / (6.0 * max(sc.friction.mu0, 1e-9))
-        if sub.rms_slope > limit:
-            raise _err(where, f"substrate.rms_slope = {sub.rms_slope!r} exceeds the sliding limit {limit:.3g} = 1/(6 mu0): "
-                              "the steepest flanks (~4 rms slopes) near the locking slope 1/mu0 pin the pads "
-                              "(measured on pads_rough_profile: rms slope 0.4 pins the block, 0.3 slides unsteadily)")
-    if sub.kind == "asperities":
-        if sub.p > 1:
-            raise _err(where, f"substrate.p = {sub.p!r} is a probability per cell and must be <= 1")
-        if sub.bump_radius < 5 * sub.h_max:
-            raise _err(where, f"substrate.bump_radius = {sub.bump_radius!r} m must exceed 5 h_max = {5 * sub.h_max:.3g} m: "
-                              "a foot meeting a bump up to h_max above it must climb a flank less steep than 1/mu0")
-        if p.foot_length < 2.5 * p.radius:
-            raise _err(where, f"pads.foot_length = {p.foot_length!r} m must exceed 2.5 pad radii = {2.5 * p.radius:.3g} m")
-    w = sc.wear
-    if w.count > 0:
-        if sub.kind != "patches":
+    try:
+        SUBSTRATES[sub.kind].validate(sub, sc, where)
+    except ValueError as e:
+        raise _err(where, str(e)) from None
+    if sc.wear.count > 0:
+        if not SUBSTRATES[sub.kind].hosts_wear:
             raise _err(where, f"wear particles need flat pad tracks (substrate.kind 'patches'; got {sub.kind!r})")
-        if not w.r_min < w.r_max:
-            raise _err(where, f"wear.r_min = {w.r_min!r} m must be below wear.r_max = {w.r_max!r} m")
-        if w.r_max > p.radius:
-            raise _err(where, f"wear.r_max = {w.r_max!r} m must not exceed the pad radius {p.radius!r} m")
-        v_max = WEAR_SPEED_FACTOR * max(sc.steady_velocity, 1e-12)
-        if v_max * r.dt > WEAR_TUNNEL_FRACTION * w.r_min:
-            raise _err(where, f"run.dt = {r.dt:.3g} s lets the smallest particle (wear.r_min = {w.r_min:.3g} m) tunnel: "
-                              f"{WEAR_SPEED_FACTOR:g} x the sliding speed x dt must stay below {WEAR_TUNNEL_FRACTION} r_min, "
-                              f"so dt <= {WEAR_TUNNEL_FRACTION * w.r_min / v_max:.3g} s")
-        per_track = math.ceil(w.count / p.N)
-        need = p.radius + per_track * 4 * w.r_max
-        if w.ahead < need:
-            raise _err(where, f"wear.ahead = {w.ahead:.3g} m cannot hold {per_track} particles per track: it must reach "
-                              f"past the pad by 4 r_max per particle, at least {need:.3g} m")
-        if w.ahead < 2 * p.radius or w.behind < p.radius:
-            raise _err(where, f"wear.ahead (>= 2 pad radii) and wear.behind (>= 1 pad radius) must reach past the pad "
-                              f"(got {w.ahead!r}, {w.behind!r} m)")
-    if sub.pit_p > 0:
-        if sub.pit_p > 1 or not 0 < sub.pit_width_min <= sub.pit_width_max or sub.pit_width_max > 0.45 * sub.a:
-            raise _err(where, f"substrate pits: pit_p must lie in [0, 1] and 0 < pit_width_min <= pit_width_max <= 0.45 a "
-                              f"(got {sub.pit_p!r}, {sub.pit_width_min!r}, {sub.pit_width_max!r} m)")
-    if sc.substrate.alpha >= 2:
-        raise _err(where, f"substrate.alpha = {sc.substrate.alpha!r} must be < 2 (patch friction stays positive)")
+        try:
+            check_wear(sc)
+        except ValueError as e:
+            raise _err(where, str(e)) from None
+
+
+def resolve_scenario(name_or_path) -> Path:
+    """The file of a scenario given as a path or as the name of a shipped one (``pads_friction_patches``, with
+    or without ``.toml``): an existing path wins over a shipped name of the same spelling."""
+    path = Path(name_or_path)
+    if path.exists():
+        return path
+    shipped = shipped_scenarios()
+    stem = path.name[:-5] if path.name.endswith(".toml") else path.name
+    if path.parent == Path(".") and stem in shipped:
+        return shipped[stem]
+    raise ScenarioError(f"{path}: no such file, nor a shipped scenario (frictionnoise scenarios lists them: "
+                        f"{', '.join(shipped)})")
 
 
 def load_scenario(path) -> Scenario:
-    """Read and validate a TOML scenario file."""
-    path = Path(path)
-    if not path.exists():
-        raise ScenarioError(f"{path}: no such file")
+    """Read and validate a TOML scenario file, given as a path or a shipped scenario's name."""
+    path = resolve_scenario(path)
     try:
         data = tomllib.loads(path.read_text())
     except UnicodeDecodeError:
@@ -476,5 +404,13 @@ def load_scenario(path) -> Scenario:
 
 
 def shipped_scenarios() -> dict:
-    """name -> path of the scenarios shipped in scenarios/."""
+    """name -> path of the scenarios shipped in the ``scenarios`` package."""
     return {p.stem: p for p in sorted(SCENARIO_DIR.glob("*.toml"))}
+
+
+def scenario_summary(description: str, width: int = 110) -> str:
+    """The first sentence of a scenario's description on one line, cut to ``width`` characters."""
+    text = " ".join(description.split())
+    end = re.search(r"(?<!Fig)(?<!eq)(?<!e\.g)\. (?=[A-Z(])", text)  # a sentence end, not an abbreviation
+    first = text if end is None else text[: end.start() + 1]
+    return first if len(first) <= width else first[: width - 3].rstrip() + "..."

@@ -22,10 +22,10 @@ import pymunk.batch as B
 
 from . import units as U
 from .scenario import G, Scenario
+from .substrates import substrate_kind
 from .wear import Wear, pad_friction_split
-from .substrate import BumpTrack, PatchTrack, SelfAffineTrack, self_affine_kernel
 
-__all__ = ["Scene", "corrected_drag"]
+__all__ = ["Scene", "corrected_drag", "describe"]
 
 _FAR = 1e9  # mm: the drag springs' static anchors, so their axis stays horizontal over any run
 
@@ -34,6 +34,34 @@ def corrected_drag(c: float, m: float, dt: float) -> float:
     """Damping to give pymunk so a body of mass m feels a steady drag c at step dt (scene units)."""
     x = c * dt / m
     return (m / dt) * math.log1p(x)
+
+
+def describe(sc: Scenario) -> dict:
+    """What an analysis needs to know of a scenario's scene, in SI units, so it never reads the scenario's layout
+    (``compare.extract`` takes it from a trace's ``metadata["scene"]``):
+
+    effective_mass: the mass the drive accelerates (kg; Leonardo's slider adds the hanging mass, rope taut);
+    friction_law: the law's parameters per pad, for its slope dF/dv at any speed (law, c [N s/m], b, v_c [m/s],
+    load_per_pad [N]); friction_slope: that slope at the law's steady speed (N s/m); omega_star = N c / M (rad/s)
+    and response: "viscous" if omega_star lies above the fit band's top 30 v/a (model I's C_x ~ C_f / omega^2
+    there), else "inertial" (C_x = C_F / (M^2 omega^4)); length_scale: the substrate's renewal length a (m);
+    pads: N, mass (kg), k0 (N/m), c0 (N s/m), foot_length (m); contact_width: the sole's width N foot_length
+    (m; 0 for pads on tracks); substrate: the substrate part's own spec."""
+    part = substrate_kind(sc.substrate.kind)
+    fr, p = sc.friction, sc.pads
+    M = sc.block.M + (sc.hanging_mass if sc.drive.kind == "leonardo" else 0.0)
+    v = sc.steady_velocity
+    c = sc.friction_slope(v)
+    a = part(sc.substrate, sc).length_scale
+    omega_star = p.N * c / M
+    return {
+        "effective_mass": M, "block_mass": sc.block.M, "friction_slope": c, "omega_star": omega_star,
+        "friction_law": {"law": fr.law, "c": fr.c, "b": fr.b, "v_c": fr.v_c, "load_per_pad": sc.normal_load_per_pad},
+        "response": "viscous" if omega_star > 30 * v / a else "inertial", "length_scale": a,
+        "pads": {"N": p.N, "mass": p.mass, "k0": p.k0, "c0": p.c0, "foot_length": p.foot_length},
+        "contact_width": p.N * p.foot_length if part.shared else 0.0,
+        "substrate": sc.to_dict()["substrate"],
+    }
 
 
 class Scene:
@@ -58,8 +86,14 @@ class Scene:
         dy = p.track_spacing * U.LENGTH
         self.y_block = 10.0
         v0 = sc.steady_velocity * U.VELOCITY
+        # scene-unit values, converted once here and read by the recorder, the particles and the renderer
+        self.m_pad, self.R_pad, self.M, self.v_law = m_p, R, sc.block.M * U.MASS, v0
+        self.c_drag = fr.c * U.DAMPING  # the linear law's c (the value the law asks for, before pymunk's correction)
+        self.v_trap = sc.wear.trapped_speed * v0  # a grain touching its pad is trapped below this mean speed
 
-        self.asperities = sub.kind == "asperities"
+        self.substrate = substrate_kind(sub.kind)(sub, sc)  # the substrate part: builds and draws the tracks
+        self.asperities = self.substrate.shared  # one track under a sole of feet (free vertically)
+        self.run_ahead = 200 * v0 * self.dt * self.n_sub  # the tracks' margin ahead beyond the part's own
         block = pymunk.Body(sc.block.M * U.MASS, float("inf"))
         block.position = (0.0, self.y_block)
         block.velocity = (v0, 0.0)
@@ -85,18 +119,18 @@ class Scene:
         q_pad, f_particle = pad_friction_split(fr.mu0, wear.mu_pad, wear.mu_track) if wear.count else (1.0, 0.0)
         mu_track = fr.mu0 / q_pad
         self.q_pad = q_pad
-        if sub.kind == "self_affine":
-            dx_s = sub.lambda_s * U.LENGTH / 4
-            kernel = self_affine_kernel(sub.hurst, sub.lambda_r * U.LENGTH, sub.lambda_s * U.LENGTH, dx_s, sub.rms_slope)
         foot = p.foot_length * U.LENGTH
         self.width = p.N * foot if self.asperities else 0.0  # the block's contact width w (mm)
+        x_start = self.substrate.x_start(self)
         self.pads, self.tracks, self.pad_y, self.pad_x, self.tangential_springs = [], [], [], [], []
+        # the springs that store energy, as built (the recorder asks for them): block-pad, then pad-pad
+        self.block_pad_springs, self.pad_pad_springs = [], []
         self.track_surface, self.track_filter = [], []
         for i in range(p.N):
             pad = pymunk.Body(m_p, float("inf"))
             if self.asperities:
                 xp = (i - (p.N - 1) / 2) * foot
-                yp = sub.h_max * U.LENGTH + R + 1e-3  # the feet start just above the highest bump
+                yp = self.substrate.top() + R + 1e-3  # the feet start just above the highest bump
                 flt = pymunk.ShapeFilter(group=1)  # feet do not collide with each other
                 half = foot / 2 - R - 0.05 * foot  # a small gap between neighbouring feet
                 shape = pymunk.Segment(pad, (-half, 0.0), (half, 0.0), R)
@@ -113,24 +147,16 @@ class Scene:
             ry = yp - self.y_block
             tangential = pymunk.DampedSpring(block, pad, (xp - Lt, ry), (0, 0), Lt, k0, p.c0 * U.DAMPING)
             self.tangential_springs.append(tangential)
-            space.add(tangential)
-            space.add(pymunk.DampedSpring(block, pad, (xp, ry + Ln), (0, 0), Ln + pre, kn, p.c_normal * U.DAMPING))
+            normal = pymunk.DampedSpring(block, pad, (xp, ry + Ln), (0, 0), Ln + pre, kn, p.c_normal * U.DAMPING)
+            space.add(tangential, normal)
+            self.block_pad_springs += [tangential, normal]
             if fr.c > 0:
                 space.add(pymunk.DampedSpring(pad, space.static_body, (0, 0), (_FAR, yp), 0.0, 0.0, c_set))
-            if sub.kind == "self_affine":
-                track = SelfAffineTrack(space, yt, kernel, dx_s, mu_track, rs, flt, np.random.default_rng(seeds[i]),
-                                        x_start=-4.0 * p.radius * U.LENGTH, chunk_points=64)
-            elif sub.kind == "patches":
-                track = PatchTrack(space, yt, sub.a * U.LENGTH, mu_track, sub.alpha, rs, flt,
-                                   np.random.default_rng(seeds[i]), x_start=-10 * sub.a * U.LENGTH, pit_p=sub.pit_p,
-                                   pit_width=(sub.pit_width_min * U.LENGTH, sub.pit_width_max * U.LENGTH),
-                                   pit_depth=sub.pit_depth * U.LENGTH)
-            elif i == 0:  # one shared track of sparse bumps
-                track = BumpTrack(space, 0.0, sub.cell * U.LENGTH, sub.p, sub.bump_radius * U.LENGTH,
-                                  sub.h_max * U.LENGTH, fr.mu0, pymunk.ShapeFilter(),
-                                  np.random.default_rng(seeds[0]), x_start=-self.width)
-            if not self.asperities or i == 0:
-                self.tracks.append(track)
+            if not self.asperities:  # each pad on its own track, its own random stream
+                self.tracks.append(self.substrate.build(space, yt, flt, np.random.default_rng(seeds[i]), mu_track, x_start))
+            elif i == 0:  # one track shared by the sole's feet
+                self.tracks.append(self.substrate.build(space, 0.0, pymunk.ShapeFilter(), np.random.default_rng(seeds[0]),
+                                                        fr.mu0, x_start))
             self.pads.append(pad)
             self.pad_y.append(yp)
             self.pad_x.append(xp)
@@ -140,11 +166,13 @@ class Scene:
             for i in range(p.N - 1):
                 a, b = self.pads[i], self.pads[i + 1]
                 if self.asperities:  # side by side: a spring of rest length foot between foot centres
-                    space.add(pymunk.DampedSpring(a, b, (0, 0), (0, 0), foot, p.k1 * U.STIFFNESS, p.c1 * U.DAMPING))
-                    continue
-                # anchor on pad i+1 at pad i's height so the coupling acts along x (tracks are offset in y)
-                off = self.pad_y[i] - self.pad_y[i + 1]
-                space.add(pymunk.DampedSpring(a, b, (0, 0), (-Lt, off), Lt, p.k1 * U.STIFFNESS, p.c1 * U.DAMPING))
+                    coupling = pymunk.DampedSpring(a, b, (0, 0), (0, 0), foot, p.k1 * U.STIFFNESS, p.c1 * U.DAMPING)
+                else:
+                    # anchor on pad i+1 at pad i's height so the coupling acts along x (tracks are offset in y)
+                    off = self.pad_y[i] - self.pad_y[i + 1]
+                    coupling = pymunk.DampedSpring(a, b, (0, 0), (-Lt, off), Lt, p.k1 * U.STIFFNESS, p.c1 * U.DAMPING)
+                space.add(coupling)
+                self.pad_pad_springs.append(coupling)
 
         # The drive is a spring from the block to an anchor: for a constant force a soft spring anchored
         # _FAR behind, compressed by _FAR so it pushes with F; over a metre of sliding its force changes
@@ -183,15 +211,7 @@ class Scene:
         self.drive_spring = pymunk.DampedSpring(pulled, anchor, (0, 0), (0, 0), rest, kd, 0.0)
         space.add(anchor, self.drive_spring)
         self.driver = anchor
-        if sub.kind == "patches":
-            self.ahead = max(8 * sub.a, sc.wear.ahead + 2 * sub.a) * U.LENGTH + 200 * v0 * self.dt * self.n_sub
-            self.behind = 4 * sub.a * U.LENGTH
-        elif self.asperities:  # around the whole sole
-            self.ahead = self.width / 2 + 2 * R + 200 * v0 * self.dt * self.n_sub
-            self.behind = self.width / 2 + 2 * R
-        else:  # a pad touches the profile within its radius; keep a few radii either side
-            self.ahead = 4 * p.radius * U.LENGTH + 200 * v0 * self.dt * self.n_sub
-            self.behind = 2 * p.radius * U.LENGTH
+        self.ahead, self.behind = self.substrate.margins(self)
         self.wear = None
         if wear.count:
             self.wear = Wear(self, wear, np.random.default_rng(seeds[-1]), f_particle)
@@ -204,6 +224,19 @@ class Scene:
         self.log_law = None
         if fr.law == "log":
             self.log_law = (fr.b * (sc.normal_load_per_pad * U.FORCE), fr.v_c * U.VELOCITY)
+        self._pad_ids = np.array(sorted(pad.id for pad in self.pads), dtype=np.int64)
+
+    # ------------------------------------------------------------------ pickling (checkpoints)
+    def __getstate__(self):
+        state = self.__dict__.copy()
+        del state["_pad_ids"]  # pymunk ids are addresses: a restored body has a new one
+        return state
+
+    def __setstate__(self, state):
+        """A restored scene: segment neighbours re-applied (pymunk does not save them) and body ids re-read."""
+        self.__dict__.update(state)
+        for tr in self.tracks:
+            tr.restore_neighbors()
         self._pad_ids = np.array(sorted(pad.id for pad in self.pads), dtype=np.int64)
 
     @property

@@ -1,9 +1,4 @@
-"""The installed package version, for trace metadata."""
-from importlib import metadata
+"""The installed package version, for trace metadata (defined once, in :mod:`frictionnoise`)."""
+from frictionnoise import package_version
 
-
-def package_version() -> str:
-    try:
-        return metadata.version("frictionnoise")
-    except metadata.PackageNotFoundError:  # running from a source tree without install
-        return "0+unknown"
+__all__ = ["package_version"]

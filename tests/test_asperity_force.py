@@ -11,11 +11,16 @@ from reduced_models.asperity_force import (
 )
 
 
-def test_reference_derived_quantities():
-    p = AsperityForceParams.reference()
-    assert p.dx == pytest.approx(0.1 * 0.01 / 30)
-    assert p.f0 == pytest.approx(2 * 5 / 30)
-    assert p.N_w == 300 and p.dt == pytest.approx(p.dx / 0.5e-3)
+@pytest.mark.parametrize("N", [30, 300])
+def test_grid_holds_the_papers_contacts_under_the_block(N):
+    # section 7's picture, not its formulas restated: the window of N_w cells covers the block (w), the block moves
+    # one cell per step (v dt = dx), the cells under it hold N asperities on average (p N_w = N), whose mean force
+    # r f0 with r uniform in [0, 1] adds up to the friction force F_f
+    p = AsperityForceParams.reference(N)
+    assert p.N_w * p.dx == pytest.approx(p.w, rel=1e-12)
+    assert p.v * p.dt == pytest.approx(p.dx, rel=1e-12)
+    assert p.p * p.N_w == pytest.approx(N, rel=1e-12)
+    assert p.p * p.N_w * p.f0 / 2 == pytest.approx(p.F_f, rel=1e-12)
 
 
 @pytest.mark.parametrize("N", [30, 300])

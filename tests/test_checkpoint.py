@@ -28,6 +28,7 @@ def _kill_when(path, proc, timeout=120):
     proc.wait()
 
 
+@pytest.mark.slow  # subprocess runs, killed and resumed
 def test_model_I_killed_and_resumed_is_bitwise_identical(tmp_path):
     ck, res = tmp_path / "m1.ckpt", tmp_path / "m1.npz"
     script = tmp_path / "m1.py"
@@ -47,6 +48,7 @@ def test_model_I_killed_and_resumed_is_bitwise_identical(tmp_path):
     assert np.array_equal(r["ev"], ref.events["times"])
 
 
+@pytest.mark.slow  # engine runs in subprocesses, 8-60 s
 def test_engine_killed_and_resumed_is_bitwise_identical(tmp_path):
     out = tmp_path / "run"
     cmd = [sys.executable, "-m", "compare.cli", "run", str(PATCHES), "--duration", "8", "--seed", "3",
@@ -63,6 +65,7 @@ def test_engine_killed_and_resumed_is_bitwise_identical(tmp_path):
     assert not (out / "checkpoint.pkl").exists()  # removed once complete
 
 
+@pytest.mark.slow  # engine runs in subprocesses, 8-60 s
 def test_sigint_writes_checkpoint_and_partial_trace(tmp_path):
     out = tmp_path / "run"
     cmd = [sys.executable, "-m", "compare.cli", "run", str(PATCHES), "--duration", "60", "--checkpoint-every", "1",
@@ -84,6 +87,7 @@ def test_sigint_writes_checkpoint_and_partial_trace(tmp_path):
     assert (out / "checkpoint.pkl").exists()
 
 
+@pytest.mark.slow  # engine runs in subprocesses, 8-60 s
 def test_sigint_at_random_moments_then_resume_is_bitwise_identical(tmp_path):
     """A Ctrl-C lands anywhere in the loop (mid-step, mid-sample, mid-checkpoint); the checkpoint it leaves must
     resume without writing past the recorder's buffers (it once aborted with heap corruption in 3 of 3 tries)

@@ -91,8 +91,6 @@ def test_run_then_compare_round_trip(tmp_path):
 
 
 def test_render_png_and_gif_headless(tmp_path):
-    import time
-
     from PIL import Image
 
     from engine_sim import Scene, load_scenario
@@ -109,8 +107,9 @@ def test_render_png_and_gif_headless(tmp_path):
     # a frame of 30 pads and ~300 visible segments renders in <= 0.1 s (measured 0.05 s)
     r = SceneRenderer(Scene(load_scenario(PATCHES)))
     r.frame()
-    t0 = time.perf_counter()
-    for _ in range(5):
-        r.frame()
-    assert (time.perf_counter() - t0) / 5 < 0.1
+    from tests.frame_budget import frame_cost_ratio
+
+    ratio = frame_cost_ratio(r)  # against pymunk's own drawing in turns: an absolute budget failed on busy machines
+    print(f"frame cost / pymunk.matplotlib_util: {ratio:.2f}")
+    assert ratio < 0.2  # measured 0.03-0.04
     r.close()

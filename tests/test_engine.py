@@ -66,6 +66,7 @@ def patches_run():
     return sc, engine_sim.run(sc)
 
 
+@pytest.mark.slow  # 60 s scene (~30 s wall)
 def test_steady_sliding_and_force_balance(patches_run):
     sc, tr = patches_run
     assert np.all(np.isfinite(tr.x)) and np.all(np.isfinite(tr.pad_force))
@@ -84,6 +85,7 @@ def test_steady_sliding_and_force_balance(patches_run):
     assert tr.penetration.max() < 1e-6
 
 
+@pytest.mark.slow  # 60 s scene (~30 s wall)
 def test_energy_balance(patches_run):
     # work of the drive = dissipation (Coulomb + viscous) + change of mechanical energy, within 2 %
     # (measured 6e-6: the powers are sampled at 1 kHz, the pad dynamics sit below 1000 rad/s)
@@ -92,6 +94,7 @@ def test_energy_balance(patches_run):
     assert (W - D - dE) / W == pytest.approx(0.0, abs=0.02)
 
 
+@pytest.mark.slow  # 60 s scene (~30 s wall)
 def test_gamma_4_and_model_I_with_the_scenes_own_parameters(patches_run):
     # The model I regime: abrupt patch changes, viscous response up to sqrt(N k0 / M) = 1000 rad/s.
     # Fit over 3 v/a .. 30 v/a (one decade): measured 3.94 +- 0.12 in the prototype.
@@ -125,6 +128,7 @@ def _digest(tr):
     return h.hexdigest()
 
 
+@pytest.mark.slow  # a second process with its own JIT warm-up
 def test_same_seed_same_trace_across_processes():
     sc = _short(load_scenario(PATCHES), duration=0.5)
     here = _digest(engine_sim.run(sc, seed=3))
@@ -139,6 +143,7 @@ def test_same_seed_same_trace_across_processes():
     assert _digest(engine_sim.run(sc, seed=4)) != here
 
 
+@pytest.mark.slow  # 60 s scene (~30 s wall)
 def test_substrate_is_dropped_behind():
     # memory independent of track length: the live segments stay bounded while many are generated
     sc = _short(load_scenario(PATCHES), duration=4.0)

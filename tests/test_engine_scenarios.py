@@ -8,6 +8,7 @@ from compare.spectra import band_average, displacement_spectrum, force_series_sp
 from engine_sim import load_scenario, shipped_scenarios
 
 
+@pytest.mark.slow  # every shipped scene, 6-30 s each
 @pytest.mark.parametrize("name", sorted(shipped_scenarios()))
 def test_shipped_scenario_slides_steadily(name):
     sc = load_scenario(shipped_scenarios()[name]).with_run(duration=6.0, warmup=1.0)
@@ -36,6 +37,7 @@ def test_shipped_scenario_slides_steadily(name):
         assert v_all == pytest.approx(sc.steady_velocity, rel=0.10)
 
 
+@pytest.mark.slow  # every shipped scene, 6-30 s each
 def test_constant_force_and_constant_velocity_drives():
     # Same seed and substrate, 30 s each. Measured: C_x agrees within 1.5 % per band over 2-1000 rad/s
     # (the soft drive spring's corner, k_drive / (N c) = 0.33 rad/s, lies below the band), while the

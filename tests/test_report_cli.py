@@ -17,6 +17,7 @@ def quick_report(tmp_path_factory):
     return out
 
 
+@pytest.mark.slow  # the quick report (~1 min on 2 idle cores)
 def test_summary_holds_the_model_exponents(quick_report):
     s = json.loads((quick_report / "summary.json").read_text())
     for key, truth, tol in (("model_I", 4.0, 0.15), ("model_III", 6.0, 0.2), ("model_II", 5.0, 0.2)):
@@ -29,11 +30,11 @@ def test_summary_holds_the_model_exponents(quick_report):
     assert s["model_III"]["mean_force_over_F_f"] == pytest.approx(1.0, abs=0.02)
 
 
+@pytest.mark.slow  # the quick report (~1 min on 2 idle cores)
 def test_summary_holds_every_shipped_scenario(quick_report):
-    # Quick mode: 12 s per scene (pads_rough_profile 8 s), 6 bands. The friction-patch scenes are in model I's regime: gamma near 4 and
-    # model I built from the scene's own measured parameters within a factor 1.5 per band (measured
-    # 0.80-1.05). The rough profile is not: its pad forces follow the local slope smoothly, and model I
-    # (abrupt renewals) overpredicts its noise in the top bands by 3-5x (measured ratios 0.22-0.30).
+    # Quick mode: 12 s per scene (the profile scenes 8 s), 6 bands. The friction-patch scenes are in model I's regime:
+    # gamma near 4 and model I built from the scene's own measured parameters within a factor 1.5 per band
+    # (measured 0.80-1.05). On rough profiles the pad force follows the local slope.
     from engine_sim import shipped_scenarios
 
     s = json.loads((quick_report / "summary.json").read_text())
@@ -66,23 +67,35 @@ def test_summary_holds_every_shipped_scenario(quick_report):
             continue
         ratios = np.array([b["ratio"] for b in sc["band_ratios_vs_model_I"]])
         if name == "leonardo_slider":
-            # Model I with M = block + hanging mass (the rope taut) agrees within 1.5 up to ~1000 rad/s (measured
-            # 0.81-1.09); the top band (above the bare block's resonance on its pads, sqrt(N k0 / M) = 1000 rad/s)
-            # reads 18.6x: the rope joint stretches by up to 0.33 um (solver compliance), so there the block
-            # vibrates apart from the hanging mass. Asserted as measured, said in the report.
-            assert np.all(np.abs(np.log(ratios[:-1])) < np.log(1.5)), ratios
-            assert ratios[-1] > 1.5
+            # Model I with M = block + hanging mass holds while the rope moves both as one body: below the bare
+            # block's resonance on its pads, sqrt(N k0 / M_block) = 1000 rad/s (measured 0.81-1.09). Above it the
+            # block vibrates apart from the hanging mass on the rope joint's compliance (a solver property, not
+            # asserted; the report says so).
+            edges = np.array([b["band"] for b in sc["band_ratios_vs_model_I"]])
+            M_block = sc["extracted"]["M"]["value"] - 0.2309  # the scenario's hanging mass
+            w_bare = np.sqrt(sc["extracted"]["N"]["value"] * sc["extracted"]["k0"]["value"] / M_block)
+            below = edges[:, 1] <= w_bare * 1.01
+            assert below.sum() >= 4 and np.all(np.abs(np.log(ratios[below])) < np.log(1.5)), (ratios, edges)
             assert abs(sc["gamma"] - 4.0) < 0.4 + sc["gamma_err"], (name, sc["gamma"], sc["gamma_err"])
             continue
-        if name == "pads_rough_profile":
-            assert not sc["model_I_within_factor_1p5"]
-            assert np.all(ratios[-2:] < 0.5) and ratios.min() < 1 / 1.5, ratios
+        if name in ("pads_rough_profile", "line_scan_example"):
+            # the pad force follows the local slope of the profile, so the forces decorrelate over its short
+            # wavelengths, not its roll-off (quick: 0.38 mm against 2 mm; the line scan 0.096 mm against 1 mm)
+            ex, ff = sc["extracted"], sc["substrate_force_fit"]
+            assert ex["a"]["value"] < 0.5 * ex["a"]["substrate_value"], ex["a"]
+            if name == "pads_rough_profile":
+                # the fit band (39-379 rad/s) lies below omega* = N c / M = 3000 and omega_c = 1000 rad/s: the block
+                # responds viscously, C_x = C_F / (N c omega)^2, so gamma = 2 + the substrate force's exponent
+                # (quick: 3.69 +- 0.24 against 2 + 1.73 +- 0.26; 60 s: 3.69 against 3.68)
+                assert ff["band"][1] < 0.5 * min(ex["omega_c"]["value"], ex["omega_star"]["value"])
+                assert abs(sc["gamma"] - 2 - ff["gamma"]) < 2 * np.hypot(sc["gamma_err"], ff["gamma_err"]), (sc["gamma"], ff)
         else:
             assert abs(sc["gamma"] - 4.0) < 0.3 + sc["gamma_err"], (name, sc["gamma"], sc["gamma_err"])
             assert sc["model_I_within_factor_1p5"], (name, ratios)
             assert sc["extracted"]["a"]["value"] == pytest.approx(sc["extracted"]["a"]["substrate_value"], rel=0.15)
 
 
+@pytest.mark.slow  # the quick report (~1 min on 2 idle cores)
 def test_html_embeds_non_blank_figures(quick_report):
     import matplotlib.image as mpimg
 

@@ -25,6 +25,7 @@ def _flat(d, prefix=""):
     return out
 
 
+@pytest.mark.slow  # report studies in worker processes
 def test_studies_in_workers_match_one_process():
     studies = [model_III.STUDY, model_II.STUDY]
     serial_events, pooled_events = [], []
@@ -44,6 +45,7 @@ def test_studies_in_workers_match_one_process():
                     assert b[k] == pytest.approx(a[k], rel=1e-9, abs=1e-300), k
 
 
+@pytest.mark.slow  # report stages in worker processes
 def test_particles_cost_more_side_by_side():
     # 50 grains cost 1.4-1.6x the particle-free twin at 20 iterations (benchmarks/wear_iterations.py);
     # asserted only as "more", since a timing can be disturbed, and as finite positive numbers

@@ -138,6 +138,7 @@ def test_output_step_does_not_change_the_trajectory():
     np.testing.assert_allclose(a.events["times"], c.events["times"], atol=1e-9)
 
 
+@pytest.mark.slow  # many long model I runs (45 s on a busy machine)
 def test_random_walk_of_appendix_A():
     # <(zeta(t + L0/v) - zeta(t))^2> = 7 alpha^2 a L0 / (72 N) for L0 >> a. A 36,000 s run at 0.1 s
     # gives ~900 independent lags of L0 = 20 a: ~5 % scatter; tolerance 15 %.

@@ -23,6 +23,7 @@ def _small(tmp_path, n_v=3, duration=60.0, seeds=(0, 1)):
     return p
 
 
+@pytest.mark.slow  # dask cluster / long model I runs
 def test_dask_local_cluster_equals_serial_bit_for_bit(tmp_path):
     spec = load_sweep(_small(tmp_path))
     a = run_sweep(spec, tmp_path / "serial", serial=True)
@@ -35,6 +36,7 @@ def test_dask_local_cluster_equals_serial_bit_for_bit(tmp_path):
         assert ra[k]["C"] == rb[k]["C"] and ra[k]["omega"] == rb[k]["omega"] and ra[k]["fit"] == rb[k]["fit"]
 
 
+@pytest.mark.slow  # dask cluster / long model I runs
 def test_killed_sweep_reruns_only_missing_tasks(tmp_path):
     spec_path = _small(tmp_path, n_v=6, duration=400.0, seeds=(0,))
     out = tmp_path / "out"
@@ -70,6 +72,7 @@ def test_failed_task_is_reported_and_does_not_lose_the_others(tmp_path):
     assert fail["params"]["v"] == -1.0 and "v must be a positive" in fail["error"]
 
 
+@pytest.mark.slow  # dask cluster / long model I runs
 def test_velocity_analysis_of_model_I(tmp_path):
     # 5 velocities, 0.1-5 mm/s, 600 s each. Eq. (6): C_x ~ v^3 at fixed omega in the omega^-4 band
     # (measured 2.994 +- 0.019); the distance-domain collapse cuts the spread 38x (target >= 5x).

@@ -66,6 +66,7 @@ def test_above_one_over_tau_min_the_slope_tends_to_minus_2(one_over_f_run):
     assert fit.gamma == pytest.approx(2.0, abs=0.15)
 
 
+@pytest.mark.slow  # long model II runs (6-14 s)
 def test_independent_times_bend_the_one_over_f_law():
     # With tau_A and tau_B drawn independently, (B2) carries a log divergence at small tau' and the
     # force spectrum is C_F ~ omega^-1 ln(1/(omega tau_min)), not omega^-1: the exact (B2) slope over
@@ -90,6 +91,7 @@ def test_paper_cumulant_closure_overestimates_for_exponential_durations():
     assert np.all((r > 1.05) & (r < 1.3)), r
 
 
+@pytest.mark.slow  # long model II runs (6-14 s)
 def test_fixed_and_pareto_laws_follow_B2():
     # Renewal processes with independent +-c forces: (B2) with the exact <cos> is exact for any law.
     for law in (DurationLaw(0.05, 0.05, "fixed"), DurationLaw(0.05, 0.05, "pareto", shape=2.5)):

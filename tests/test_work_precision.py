@@ -1,4 +1,6 @@
 """The engine's shipped defaults sit on the speed-against-error Pareto front (issue 9)."""
+import pytest
+
 from compare.workprec import engine_work_precision, pareto
 from engine_sim import load_scenario, shipped_scenarios
 
@@ -7,6 +9,7 @@ def test_pareto_front():
     assert pareto([(1, 3), (2, 2), (3, 1), (3, 3), (2, 2.5)]) == [0, 1, 2]
 
 
+@pytest.mark.slow  # two 3 s scene runs
 def test_default_is_on_the_front_and_iterations_change_nothing():
     # 3 s of pads_friction_patches. Error is measured against dt = 2.5e-5 s, 20 iterations, same seed.
     # Measured (8 s): the default (1e-4 s, 2 iterations) has error 0.004 at 0.21 wall s per simulated s; 10

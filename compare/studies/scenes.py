@@ -44,7 +44,7 @@ def scene_result(name, sc, quick, seed, trace=None, duration=None, progress=None
         from .scene_asperity import asperity_result
         # its corner 2 pi v / w lies near 4 rad/s: resolving below it takes 8 s segments
         return asperity_result(name, sc, quick, seed, trace, duration or (16.0 if quick else None), progress)
-    if sc.substrate.kind == "self_affine":
+    if sc.substrate.kind in ("self_affine", "line_scan"):
         # quick: 8 s, not 12: streaming its short segments makes it ~1 wall s per simulated s (4x the patches)
         duration = duration or (8.0 if quick else None)
     return _model_I_result(name, sc, quick, seed, trace, duration, progress)
@@ -101,7 +101,7 @@ def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
         + f"The substrate force on the pads falls as omega^-{fit_f.gamma:.2f} &plusmn; {fit_f.gamma_err:.2f} there "
         "(model I: omega^-2, abrupt renewals of a force white on long times). The renewal length from the pad-force "
         f"correlation is {1e3 * ex['a']['value']:.3f} mm (substrate: {1e3 * sc.substrate.a:.3f} mm) and alpha = "
-        f"{ex['alpha']['value']:.3f} (substrate: {sc.substrate.alpha:g}).",
+        f"{ex['alpha']['value']:.3f} (substrate: {getattr(sc.substrate, 'alpha', float('nan')):g}).",
         "Models II and III do not apply to this scene: it has no wear particles, and its contacts are spring-mounted "
         "pads rather than a rigid flat block on sparse asperities.",
     ]

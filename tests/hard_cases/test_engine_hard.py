@@ -5,6 +5,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+pytestmark = pytest.mark.slow  # hard cases: long or extreme runs
+
 import engine_sim
 from engine_sim import ScenarioError, load_scenario, scenario_from_dict, shipped_scenarios
 

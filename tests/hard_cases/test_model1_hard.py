@@ -4,6 +4,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+pytestmark = pytest.mark.slow  # hard cases: long or extreme runs
+
 from compare.spectra import band_average, displacement_spectrum
 from compare.testing import assert_spectrum_matches
 from reduced_models.spring_block import SpringBlockParams, displacement_variance, simulate, theory_spectrum

@@ -1,0 +1,109 @@
+"""Substrate kinds, one class each: its spec (a frozen SI dataclass, the ``[substrate]`` section of a scenario),
+validation, build (the tracks, in scene units), length scale and drawing. The scene, the loader and the renderer
+ask the part; none of them checks kinds.
+
+A new kind is one module here defining a :class:`Substrate` subclass decorated with :func:`register`, and one
+import line below (see ``line_scan.py``).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+from .. import units as U
+
+__all__ = ["SubstrateSpec", "Substrate", "register", "substrate_kind", "KINDS"]
+
+KINDS: dict = {}
+
+
+@dataclass(frozen=True)
+class SubstrateSpec:
+    """Fields every substrate has. kind: the registered name; a: the length over which the force on a pad renews
+    (m; the fit band is 3-30 v/a); segment_radius: thickness of the track segments (m)."""
+
+    kind: str = "patches"
+    a: float = 1e-3
+    segment_radius: float = 0.05e-3
+
+
+class Substrate:
+    """One substrate kind. Subclasses set ``kind``, ``Spec`` and override what differs.
+
+    shared: one track under the whole sole (a flat block on feet, free vertically) instead of one track per pad;
+    hosts_wear: flat tracks where wear particles can rest; positive / non_negative / choices: field checks made by
+    the loader (names of Spec fields)."""
+
+    kind: ClassVar[str] = ""
+    Spec: ClassVar[type] = SubstrateSpec
+    shared: ClassVar[bool] = False
+    hosts_wear: ClassVar[bool] = False
+    positive: ClassVar[frozenset] = frozenset({"a", "segment_radius"})
+    non_negative: ClassVar[frozenset] = frozenset()
+    choices: ClassVar[dict] = {}
+
+    def __init__(self, spec, scenario):
+        self.spec, self.sc = spec, scenario
+
+    @classmethod
+    def prepare(cls, spec, where: str = ""):
+        """The spec as the scene will use it (e.g. a file name resolved beside the scenario file ``where``)."""
+        return spec
+
+    @classmethod
+    def validate(cls, spec, scenario, where: str = "") -> None:
+        """Raise ValueError (its message names the field) if the spec cannot make a working scene."""
+
+    @property
+    def length_scale(self) -> float:
+        """The renewal length a (m) that sets the fit band (3-30 v/a) and the correlation window of extract."""
+        return self.spec.a
+
+    def top(self) -> float:
+        """The highest point of the substrate above its datum (mm): feet on a shared track start above it."""
+        return 0.0
+
+    def floor_depth(self) -> float:
+        """How far below its surface a particle may sit on this track (mm; pits)."""
+        return 0.0
+
+    def mu_range(self, mu0: float):
+        """(lo, hi) of the friction coefficient along the track (a colour bar is drawn when they differ)."""
+        return mu0, mu0
+
+    def margins(self, scene) -> tuple[float, float]:
+        """(ahead, behind) of a pad, in mm, over which its track must exist."""
+        r = self.sc.pads.radius
+        return 4 * r * U.LENGTH + scene.run_ahead, 2 * r * U.LENGTH
+
+    def build(self, space, y: float, shape_filter, rng, mu: float, x_start: float):
+        """A streamed track (scene units) at height y with friction mu, its own generator rng."""
+        raise NotImplementedError
+
+    def x_start(self, scene) -> float:
+        """Where a track begins (mm)."""
+        return -4.0 * self.sc.pads.radius * U.LENGTH
+
+    def draw(self, track, lo: float, hi: float, q_pad: float):
+        """Polylines (lists of (x, y) points, mm) and their friction coefficients within [lo, hi]."""
+        segs, mus = [], []
+        for sh in track.segments:
+            if sh.b.x >= lo and sh.a.x <= hi:
+                segs.append(((sh.a.x, sh.a.y), (sh.b.x, sh.b.y)))
+                mus.append(sh.friction * q_pad)
+        return segs, mus
+
+
+def register(cls):
+    """Class decorator: make a Substrate subclass available as ``[substrate] kind = cls.kind``."""
+    KINDS[cls.kind] = cls
+    return cls
+
+
+def substrate_kind(name: str):
+    """The Substrate class registered as ``name`` (KeyError if none)."""
+    return KINDS[name]
+
+
+# the kinds shipped: each module registers its class
+from . import patches, self_affine, asperities, line_scan  # noqa: E402,F401

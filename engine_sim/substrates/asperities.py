@@ -1,0 +1,73 @@
+"""Sparse random asperities under an elastic sole (model III's substrate, sections 6-7)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import units as U
+from ..substrate import BumpTrack
+from . import Substrate, SubstrateSpec, register
+
+
+@dataclass(frozen=True)
+class AsperitiesSpec(SubstrateSpec):
+    """Cells of length ``cell`` (m), each holding with probability ``p`` a bump (a circular cap of radius
+    ``bump_radius``, much larger than its height, so caps may overlap) whose top stands r ``h_max`` above the datum
+    (r uniform in [0, 1]); one track shared by all feet of the sole (see PadSpec); ``a`` is unused."""
+
+    kind: str = "asperities"
+    cell: float = 0.1e-3
+    p: float = 0.1
+    bump_radius: float = 0.04e-3
+    h_max: float = 0.02e-3
+
+
+@register
+class Asperities(Substrate):
+    kind = "asperities"
+    Spec = AsperitiesSpec
+    shared = True
+    positive = Substrate.positive | {"cell", "p", "bump_radius"}
+    non_negative = frozenset({"h_max"})
+
+    @classmethod
+    def validate(cls, s, sc, where=""):
+        if s.p > 1:
+            raise ValueError(f"substrate.p = {s.p!r} is a probability per cell and must be <= 1")
+        if s.bump_radius < 5 * s.h_max:
+            raise ValueError(f"substrate.bump_radius = {s.bump_radius!r} m must exceed 5 h_max = {5 * s.h_max:.3g} m: "
+                             "a foot meeting a bump up to h_max above it must climb a flank less steep than 1/mu0")
+        p = sc.pads
+        if p.foot_length < 2.5 * p.radius:
+            raise ValueError(f"pads.foot_length = {p.foot_length!r} m must exceed 2.5 pad radii = {2.5 * p.radius:.3g} m")
+
+    def top(self):
+        return self.spec.h_max * U.LENGTH
+
+    def margins(self, scene):  # around the whole sole
+        half = scene.width / 2 + 2 * (self.sc.pads.radius * U.LENGTH)
+        return half + scene.run_ahead, half
+
+    def x_start(self, scene):
+        return -scene.width
+
+    def build(self, space, y, shape_filter, rng, mu, x_start):
+        s = self.spec
+        return BumpTrack(space, y, s.cell * U.LENGTH, s.p, s.bump_radius * U.LENGTH, s.h_max * U.LENGTH, mu,
+                         shape_filter, rng, x_start=x_start)
+
+    def draw(self, track, lo, hi, q_pad):
+        """Each bump as its cap above the datum (the part of its circle a foot can touch, closed on the datum
+        line), and the datum line itself."""
+        segs, mus = [((lo, track.y), (hi, track.y))], [self.sc.friction.mu0]
+        for sh in track.segments:
+            c, r = sh.offset, sh.radius
+            h = c.y + r - track.y  # the cap's height above the datum
+            if h <= 0 or c.x + r < lo or c.x - r > hi:
+                continue
+            half = np.sqrt(max(2 * r * h - h * h, 0.0))
+            xs = np.linspace(c.x - half, c.x + half, 17)
+            segs.append(np.column_stack([xs, np.maximum(c.y + np.sqrt(np.maximum(r * r - (xs - c.x) ** 2, 0.0)), track.y)]))
+            mus.append(sh.friction * q_pad)
+        return segs, mus

@@ -1,0 +1,59 @@
+"""Friction patches on flat tracks (model I's substrate, section 3), optionally with cavities for wear particles."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .. import units as U
+from ..substrate import PatchTrack
+from . import Substrate, SubstrateSpec, register
+
+
+@dataclass(frozen=True)
+class PatchesSpec(SubstrateSpec):
+    """A flat track of friction patches: boundaries at (j + r_j) a (renewal intervals a (1 + r - r'), model I's
+    tau0 (1 + r - r')), each patch with mu = mu0 (1 + alpha (r - 1/2)). Cavities where wear particles get trapped:
+    with probability ``pit_p`` per patch, a flat-bottomed pit of depth ``pit_depth`` (m), width uniform in
+    [pit_width_min, pit_width_max] (m, between the walls' centre lines: the opening is narrower by 2
+    segment_radius)."""
+
+    kind: str = "patches"
+    alpha: float = 1.0
+    pit_p: float = 0.0
+    pit_width_min: float = 0.15e-3
+    pit_width_max: float = 0.35e-3
+    pit_depth: float = 0.06e-3
+
+
+@register
+class Patches(Substrate):
+    kind = "patches"
+    Spec = PatchesSpec
+    hosts_wear = True
+    non_negative = frozenset({"alpha", "pit_p", "pit_depth"})
+
+    @classmethod
+    def validate(cls, s, sc, where=""):
+        if s.pit_p > 0 and (s.pit_p > 1 or not 0 < s.pit_width_min <= s.pit_width_max or s.pit_width_max > 0.45 * s.a):
+            raise ValueError(f"substrate pits: pit_p must lie in [0, 1] and 0 < pit_width_min <= pit_width_max <= 0.45 a "
+                             f"(got {s.pit_p!r}, {s.pit_width_min!r}, {s.pit_width_max!r} m)")
+        if s.alpha >= 2:
+            raise ValueError(f"substrate.alpha = {s.alpha!r} must be < 2 (patch friction stays positive)")
+
+    def floor_depth(self):
+        return (self.spec.pit_depth if self.spec.pit_p > 0 else 0.0) * U.LENGTH
+
+    def mu_range(self, mu0):
+        return mu0 * (1 - self.spec.alpha / 2), mu0 * (1 + self.spec.alpha / 2)
+
+    def margins(self, scene):
+        a = self.spec.a
+        return max(8 * a, self.sc.wear.ahead + 2 * a) * U.LENGTH + scene.run_ahead, 4 * a * U.LENGTH
+
+    def x_start(self, scene):
+        return -10 * self.spec.a * U.LENGTH
+
+    def build(self, space, y, shape_filter, rng, mu, x_start):
+        s = self.spec
+        return PatchTrack(space, y, s.a * U.LENGTH, mu, s.alpha, s.segment_radius * U.LENGTH, shape_filter, rng,
+                          x_start=x_start, pit_p=s.pit_p, pit_width=(s.pit_width_min * U.LENGTH, s.pit_width_max * U.LENGTH),
+                          pit_depth=s.pit_depth * U.LENGTH)

@@ -1,0 +1,41 @@
+"""Shipped scenarios have names: `frictionnoise run NAME` from any folder; an existing path wins over a name."""
+import pytest
+
+from compare.cli import main
+from engine_sim import ScenarioError, load_scenario, shipped_scenarios
+from engine_sim.scenario import resolve_scenario, scenario_summary
+
+
+def test_name_resolves_from_another_folder(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert resolve_scenario("pads_friction_patches") == shipped_scenarios()["pads_friction_patches"]
+    assert resolve_scenario("pads_friction_patches.toml") == shipped_scenarios()["pads_friction_patches"]
+    assert load_scenario("leonardo_slider").drive.kind == "leonardo"
+
+
+def test_existing_path_wins_over_shipped_name(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "pads_friction_patches.toml").write_text('name = "mine"\n[block]\nM = 0.2\n')
+    sc = load_scenario("pads_friction_patches.toml")
+    assert (sc.name, sc.block.M) == ("mine", 0.2)
+
+
+def test_unknown_name_lists_the_shipped_ones(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ScenarioError, match="pads_with_wear"):
+        resolve_scenario("no_such_scene")
+    with pytest.raises(ScenarioError):  # a path with folders is never taken for a name
+        resolve_scenario("some/dir/pads_friction_patches")
+    assert main(["run", "no_such_scene"]) == 2
+    assert "no_such_scene" in capsys.readouterr().err
+
+
+def test_scenarios_command_lists_every_scene_with_one_line(capsys):
+    assert main(["scenarios"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert [ln.split()[0] for ln in lines] == sorted(shipped_scenarios())
+    assert all(len(ln) < 140 for ln in lines)
+
+
+def test_summary_keeps_abbreviations_whole():
+    assert scenario_summary("A slider (paper Fig. 7) on pads. More text.") == "A slider (paper Fig. 7) on pads."
