@@ -27,10 +27,16 @@ def measure(name: str, rounds: int, block: int):
     _warm_up(scene, int(round(sc.run.warmup / sc.run.dt_out)))
     epoch = default_epoch(scene, sc.run.dt_out)
     est = estimated_costs(scene)
-    n_out = rounds * block + 1
+    n_out = (rounds + 1) * block + 1
     rec = Recorder(scene, n_out)
     rt, st = [], []
     k = 0
+    for _ in range(block):  # untimed: compiles (or loads) the recorder's kernels
+        rec.sample()
+        if k % _MAINTAIN_EVERY == 0:
+            scene.maintain()
+        scene.advance(scene.n_sub)
+        k += 1
     for _ in range(rounds):
         t0 = time.perf_counter()
         for _ in range(block):  # the run's loop body: sample, maintain, advance

@@ -582,7 +582,7 @@ def build_scene_report(sc, trace=None, duration=None, seed=None, progress=None):
                           progress=progress)
     speed = Section("Speed")
     speed.tables.append(("Run", ["what", "run", "wall (s)", "mean |ln ratio| vs model I"], timings))
-    summary["timings"] = [dict(zip(["model", "run", "wall_s", "mean_abs_log_ratio"], r)) for r in timings]
+    summary["timings"] = _timing_rows(timings)
     return [sec, speed], summary
 
 
@@ -592,6 +592,16 @@ _MODEL_STAGES = [("model I", ["model I reference", "model I variations"]), ("mod
 # relative wall cost, to hand the longest stages to workers first (measured in the quick report: the wear pair
 # 18 s, the rough profile 9 s, the asperity field 7 s, every other stage 0.5-3 s)
 _COST_HINT = {"scene pads_with_wear": 18.0, "scene pads_rough_profile": 9.0, "scene asperity_field": 7.0}
+
+
+def _timing_rows(timings: list) -> list:
+    """summary.json's timing rows: wall time and error as numbers (the table shows them as text), null for n/a."""
+    def num(v):
+        try:
+            return float(v)
+        except ValueError:
+            return None
+    return [{"model": m, "run": r, "wall_s": num(w), "mean_abs_log_ratio": num(e)} for m, r, w, e in timings]
 
 
 def _stage(stage: str, quick: bool, seed: int):
@@ -624,12 +634,11 @@ def _run_stages(stages, quick, seed, workers, progress):
             for label in labels:
                 progress(label)
         return out
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures import as_completed
 
-    # spawn, not fork: the parent may hold threads (a progress bar's monitor) whose locks a fork would copy held
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"))
-    try:
+    from .pool import process_pool
+
+    with process_pool(workers) as pool:  # on Ctrl-C or an error its processes end at once
         order = sorted(range(len(stages)), key=lambda i: -_COST_HINT.get(stages[i][0], 1.0))
         futures = {pool.submit(_stage, stages[i][0], quick, seed): i for i in order}
         out = [None] * len(stages)
@@ -638,10 +647,6 @@ def _run_stages(stages, quick, seed, workers, progress):
             out[i] = fut.result()
             for label in stages[i][1]:
                 progress(label)
-    except BaseException:
-        pool.shutdown(wait=False, cancel_futures=True)
-        raise
-    pool.shutdown()
     return out
 
 
@@ -676,7 +681,7 @@ def build_report(quick: bool = False, seed: int = 0, progress=lambda stage: None
     if not quick:
         sections.append(_work_precision_section(summary))
         progress("work-precision")
-    summary["timings"] = [dict(zip(["model", "run", "wall_s", "mean_abs_log_ratio"], r)) for r in timings]
+    summary["timings"] = _timing_rows(timings)
     summary["total_wall_s"] = time.perf_counter() - t0
     return sections, summary
 

@@ -19,8 +19,9 @@ class TraceFileError(ValueError):
 
 
 def _atomic_write(path: Path, write):
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    os.close(fd)
+    # a temporary name of our own, created by open() like any file (0666 less the umask; mkstemp's 0600 made run's
+    # files private while report's were not)
+    tmp = str(path.with_name(f".{path.name}.{os.getpid()}.{tempfile.gettempprefix()}{os.urandom(4).hex()}"))
     try:
         write(tmp)
         os.replace(tmp, path)

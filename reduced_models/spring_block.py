@@ -439,6 +439,11 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float, seed=Non
                 ev_index = np.concatenate([ev_index, np.empty(grow, dtype=np.int64)])
         start = ptr
         k_stop = min(n, next_ckpt)
+        # the kernel writes x, f rows k..k_stop-1 and one event per renewal passed, unchecked (numba)
+        if not (x.shape[0] >= k_stop and f.shape[0] >= k_stop and ev_time.shape[0] >= ev_count + len(pos) - ptr
+                and qr.shape == gr.shape == md.lam_r.shape and qc.shape == gc.shape == md.lam_c.shape):
+            raise RuntimeError(f"spring_block._run: buffers too small (x {x.shape[0]}, f {f.shape[0]} rows for "
+                               f"{k_stop}; events {ev_time.shape[0]} for {ev_count + len(pos) - ptr})")
         k_new, ptr, new_count = _run(md.lam_r, md.c0_r, md.B_r, md.lam_c, md.c0_c, md.B_c, qr, gr, qc, gc, forces,
                                      params.v, dt_out, k, k_stop, pos, idx, val, ptr, boundary, x, f, ev_time, ev_count)
         ev_index[ev_count:new_count] = idx[start:ptr]

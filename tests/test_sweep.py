@@ -94,3 +94,59 @@ def test_sweep_file_errors(tmp_path):
     p.write_text('target = "model_I"\n[grid]\nvelocity = [1e-3]\n')
     with pytest.raises(SweepError, match="velocity"):
         load_sweep(p)
+
+
+@pytest.mark.parametrize("body, needle", [
+    ('[grid]\nvel = [1e-3]\n', "unknown key 'vel' in [grid]; valid names: F_drive, F_kin, M, N, a, alpha"),
+    ('[fixed]\nduration = "long"\n[grid]\nv = [1e-3]\n',
+     "fixed.duration must be a number of seconds in (0, 100000] (got 'long')"),
+    ('[fixed]\nduration = nan\n[grid]\nv = [1e-3]\n', "fixed.duration must be a number of seconds"),
+    ('[fixed]\nduration = -5.0\n[grid]\nv = [1e-3]\n', "fixed.duration must be a number of seconds"),
+    ('[grid]\nv = ["fast"]\n', "grid.v must be a finite number (got 'fast')"),
+    ('[grid]\nv = [inf]\n', "grid.v must be a finite number (got inf)"),
+    ('[grid]\nN = [2.5]\n', "grid.N must be a whole number (got 2.5)"),
+    ('[grid]\nv = [1e-3]\nseed = [-1]\n', "grid.seed must be a list of whole numbers >= 0"),
+    ('[grid]\nv = [1e-3]\n[analysis]\nomega = 3\n', "unknown key 'omega' in [analysis]"),
+    ('[grid]\nv = [1e-3]\n[analysis]\nomega_ref = [140.0, 70.0]\n', "analysis.omega_ref must be two numbers"),
+    ('name = 3\n[grid]\nv = [1e-3]\n', "name must be a string"),
+    ('scenario = "x.toml"\n[grid]\nv = [1e-3]\n', "scenario = ... applies only to target = 'scenario'"),
+])
+def test_sweep_file_validated_at_load(tmp_path, body, needle):
+    """Every key's name, type and range is checked when the file is read, before any task runs (a misspelled
+    grid key once reached the user as a TypeError from SpringBlockParams, `duration = "long"` failed every task)."""
+    from compare.sweep import SweepError
+
+    p = tmp_path / "s.toml"
+    p.write_text('target = "model_I"\n' + body)
+    with pytest.raises(SweepError) as e:
+        load_sweep(p)
+    assert needle in str(e.value) and "s.toml" in str(e.value)
+
+
+def test_unreachable_scheduler_one_line_after_the_timeout_nothing_left(tmp_path):
+    import socket
+
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))  # a port nobody listens on
+    port = s.getsockname()[1]
+    s.close()
+    out = tmp_path / "o"
+    t0 = time.perf_counter()
+    r = subprocess.run([sys.executable, "-m", "compare.cli", "sweep", str(_small(tmp_path)), "--scheduler",
+                        f"tcp://127.0.0.1:{port}", "--connect-timeout", "2", "-o", str(out)],
+                       capture_output=True, text=True, timeout=60)
+    wall = time.perf_counter() - t0
+    assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+    assert f"no dask scheduler reachable at tcp://127.0.0.1:{port} within 2 s" in r.stderr
+    assert not out.exists()
+    assert wall < 15  # the 2 s timeout plus the interpreter and dask imports (was a 30 s hang and 59 lines)
+
+
+def test_results_sorted_by_parameters(tmp_path):
+    from compare.sweep import _write_json
+
+    (tmp_path / "tasks").mkdir()
+    for i, (v, seed) in enumerate([(3e-3, 0), (1e-4, 1), (1e-3, 0), (1e-4, 0)]):
+        _write_json(tmp_path / "tasks" / f"{9 - i}.json", {"params": {"v": v, "duration": 5.0}, "seed": seed})
+    got = [(r["params"]["v"], r["seed"]) for r in load_results(tmp_path)]
+    assert got == [(1e-4, 0), (1e-4, 1), (1e-3, 0), (3e-3, 0)]
