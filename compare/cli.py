@@ -13,8 +13,15 @@ class UserError(Exception):
     """An error in the user's input: printed as one line, exit status 2."""
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's usage errors as one line too (exit 2), like every other user error."""
+
+    def error(self, message):
+        self.exit(2, f"frictionnoise: error: {self.prog}: {message} (see {self.prog} --help)\n")
+
+
 def _build_parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(
+    ap = _Parser(
         prog="frictionnoise",
         description="Displacement noise of sliding friction: reduced models, scenes and spectra.",
     )
@@ -131,7 +138,10 @@ def _cmd_analyze(args) -> int:
 
     from .inputs import input_file, output_folder
 
-    input_file(args.data)  # kind and emptiness; the format is read by compare.measured
+    from .inputs import sniff
+
+    if sniff(input_file(args.data)) != "text":  # kind, emptiness, binary; the format is read by compare.measured
+        raise UserError(f"{args.data}: binary data, not a CSV text file")
     if not args.mass > 0:
         raise UserError(f"--mass must be positive (got {args.mass})")
     try:
@@ -159,6 +169,7 @@ def _cmd_render(args) -> int:
     from .inputs import output_folder
 
     sc = _load_scenario(args.scenario)
+    _check_seed(args.seed)
     if not 1 <= args.frames <= 10_000:
         raise UserError(f"--frames must be between 1 and 10000 (got {args.frames})")
     if not 0 < args.duration < float("inf"):
@@ -187,6 +198,11 @@ def _cmd_render(args) -> int:
     renderer.close()
     print(f"wrote {args.frames} frames{' and animation.gif' if args.gif else ''} to {out}")
     return 0
+
+
+def _check_seed(seed):
+    if seed is not None and not 0 <= seed < 2**63:
+        raise UserError(f"--seed must be a whole number from 0 to 2^63 - 1 (got {seed})")
 
 
 def _load_scenario(path):
@@ -219,6 +235,7 @@ def _cmd_run(args) -> int:
     from .inputs import output_folder
 
     sc = _load_scenario(args.scenario)
+    _check_seed(args.seed)
     if args.duration is not None and not 0 < args.duration < float("inf"):
         raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
     out = output_folder(args.output or f"run-{sc.name}")
@@ -282,6 +299,7 @@ def _cmd_compare(args) -> int:
     from .inputs import input_file, output_folder, sniff
 
     src = input_file(args.source)
+    _check_seed(args.seed)
     kind = sniff(src)
     if kind == "binary":
         raise UserError(f"{src}: binary data, neither a scenario TOML file nor a trace .npz")
@@ -337,6 +355,7 @@ def _cmd_report(args) -> int:
     from .inputs import output_folder
 
     out = output_folder(args.output)
+    _check_seed(args.seed)
     if args.workers is not None and args.workers < 1:
         raise UserError(f"--workers must be at least 1 (got {args.workers})")
     workers = args.workers or _usable_cores(cap=4)

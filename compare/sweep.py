@@ -54,6 +54,8 @@ class SweepSpec:
     description: str = ""
 
 
+# a task's simulated duration when the sweep sets none (as in run_task)
+_DEFAULT_DURATION = {"model_I": lambda p: 300.0, "model_II": lambda p: 500.0, "model_III": lambda p: 2**18 * p.dt}
 _TOP = {"name": str, "description": str, "target": str, "scenario": str, "fixed": dict, "grid": dict,
         "analysis": dict}
 _MAX_DURATION = 1e5  # s of simulated time per task
@@ -196,8 +198,16 @@ def load_sweep(path) -> SweepSpec:
                      scenario=scen, description=d.get("description", ""))
     try:  # every grid point's parameters once (the models' and the scenario's own range checks)
         for params, _ in expand(spec):
-            _build(spec, params)
+            obj, run = _build(spec, params)
+            if target in ("model_I", "model_II", "model_III"):
+                step = obj.dt if target == "model_III" else run.get("dt_out", 1e-3)
+                dur = run.get("duration", _DEFAULT_DURATION[target](obj))
+                if not dur >= 2 * step:
+                    raise SweepError(f"{path}: duration = {dur:g} s holds fewer than two steps of {step:.3g} s "
+                                     f"(at {', '.join(f'{k} = {v}' for k, v in params.items())})")
     except (TypeError, ValueError) as e:
+        if isinstance(e, SweepError):
+            raise
         raise SweepError(f"{path}: {e}") from None
     return spec
 
