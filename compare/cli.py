@@ -136,9 +136,7 @@ def _cmd_analyze(args) -> int:
     from .measured import DataFileError, read_displacement_csv
     from .report import build_measured_report, write_report
 
-    from .inputs import input_file, output_folder
-
-    from .inputs import sniff
+    from .inputs import input_file, output_folder, sniff
 
     if sniff(input_file(args.data)) != "text":  # kind, emptiness, binary; the format is read by compare.measured
         raise UserError(f"{args.data}: binary data, not a CSV text file")
@@ -164,9 +162,8 @@ def _cmd_analyze(args) -> int:
 def _cmd_render(args) -> int:
     from pathlib import Path
 
-    from .outputs import atomic_folder
-
     from .inputs import output_folder
+    from .outputs import atomic_folder
 
     sc = _load_scenario(args.scenario)
     _check_seed(args.seed)
@@ -319,9 +316,9 @@ def _cmd_compare(args) -> int:
     else:
         sc = _load_scenario(src)
     out = output_folder(args.output or f"compare-{sc.name}")
+    note = None
     if trace is not None and trace.metadata.get("partial"):
-        print(f"frictionnoise: note: {src} is a partial trace (interrupted at t = {trace.t[-1]:.3f} s); the "
-              "spectra cover only what was recorded", file=sys.stderr)
+        note = f"{src} is a partial trace (interrupted at t = {trace.t[-1]:.3f} s)"
     try:
         if trace is None:
             bar, update = _progress_bar(sc.name)
@@ -330,7 +327,10 @@ def _cmd_compare(args) -> int:
         else:
             sections, summary = build_scene_report(sc, trace=trace)
     except ValueError as e:  # e.g. a record too short for the fit band
-        raise UserError(f"{src}: {e}") from None
+        raise UserError(f"{src}: {e}" + (f"; {note}" if note else "")) from None
+    if note:
+        summary["partial_trace"] = note
+        print(f"frictionnoise: note: {note}; the spectra cover only what was recorded", file=sys.stderr)
     path = write_report(out, sections, summary)
     f = summary["scenarios"][sc.name]
     print(f"wrote {path / 'index.html'}: gamma = {f['gamma']:.3f} +- {f['gamma_err']:.3f} over "

@@ -241,8 +241,23 @@ def test_compare_says_a_trace_is_partial(tmp_path, capsys):
     tr = engine_sim.run(load_scenario(PATCHES).with_run(duration=0.5), seed=0)
     tr.metadata["partial"] = True
     save_trace(tr, tmp_path / "p.npz")
-    # 0.5 s is too short for the report's band: the note, then one error line (it once was a ValueError traceback)
+    # 0.5 s is too short for the report's band: one error line that also says the trace is partial (this was a
+    # ValueError traceback)
     assert main(["compare", str(tmp_path / "p.npz"), "-o", str(tmp_path / "c")]) == 2
     err = capsys.readouterr().err
-    assert "partial trace (interrupted at t = 0.500 s)" in err and "Traceback" not in err, err
-    assert err.count("\n") == 2 and "lies outside the resolved range" in err and not (tmp_path / "c").exists()
+    assert "is a partial trace (interrupted at t = 0.500 s)" in err and "Traceback" not in err, err
+    assert err.count("\n") == 1 and "lies outside the resolved range" in err and not (tmp_path / "c").exists()
+    long = engine_sim.run(load_scenario(PATCHES).with_run(duration=4.0), seed=0)  # long enough for the fit
+    long.metadata["partial"] = True
+    save_trace(long, tmp_path / "q.npz")
+    import os
+
+    old = os.umask(0o022)
+    try:
+        assert main(["compare", str(tmp_path / "q.npz"), "-o", str(tmp_path / "d")]) == 0
+    finally:
+        os.umask(old)
+    assert (tmp_path / "d" / "summary.json").stat().st_mode & 0o777 == 0o644  # as run's files (report's writer)
+    err = capsys.readouterr().err
+    assert "note: " in err and "is a partial trace (interrupted at t = 4.000 s)" in err, err
+    assert "partial trace" in json.loads((tmp_path / "d" / "summary.json").read_text())["partial_trace"]
