@@ -4,6 +4,8 @@ from __future__ import annotations
 import argparse
 import sys
 
+from .inputs import InputError
+
 __all__ = ["main"]
 
 
@@ -11,10 +13,17 @@ class UserError(Exception):
     """An error in the user's input: printed as one line, exit status 2."""
 
 
-def _build_parser() -> argparse.ArgumentParser:
-    from reduced_models._version import package_version
+class _Parser(argparse.ArgumentParser):
+    """argparse's usage errors as one line too (exit 2), like every other user error."""
 
-    ap = argparse.ArgumentParser(
+    def error(self, message):
+        self.exit(2, f"frictionnoise: error: {self.prog}: {message} (see {self.prog} --help)\n")
+
+
+def _build_parser() -> argparse.ArgumentParser:
+    from frictionnoise import package_version  # the leaf package: no numerics imported to build the parser
+
+    ap = _Parser(
         prog="frictionnoise",
         description="Displacement noise of sliding friction: reduced models, scenes and spectra.",
         epilog="Seeds: report, run, compare and render take --seed K (the same seed gives the same numbers, bit for "
@@ -46,7 +55,11 @@ def _build_parser() -> argparse.ArgumentParser:
     run.add_argument("--seed", type=int, default=None,
                      help="random seed of the substrate and the scene (default: the scenario's [run] seed)")
     run.add_argument("--checkpoint-every", type=float, default=None, metavar="S",
-                     help="checkpoint every S simulated seconds to DIR/checkpoint.pkl; rerunning resumes from it")
+                     help="checkpoint to DIR/checkpoint.pkl about every S simulated seconds (rounded to whole epochs, "
+                          "at least one); rerunning the same command resumes from it, bit for bit")
+    run.add_argument("--epoch", type=float, default=None, metavar="S",
+                     help="simulated seconds between the run's state round trips (default: the scene's, chosen so "
+                          "they cost at most 5 %% of the stepping); part of the run's definition, like --seed")
     run.set_defaults(func=_cmd_run)
 
     cmp_ = add("compare", "report one scene (scenario TOML or trace .npz) against the reduced model that fits it")
@@ -74,6 +87,8 @@ def _build_parser() -> argparse.ArgumentParser:
     sw.add_argument("--scheduler", default=None, help="address of a running dask scheduler, e.g. tcp://host:8786")
     sw.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes (default: %(default)s)")
     sw.add_argument("--serial", action="store_true", help="run in this process, without dask")
+    sw.add_argument("--connect-timeout", type=float, default=10.0, metavar="S",
+                    help="give up on --scheduler after S seconds (default: %(default)s)")
     sw.set_defaults(func=_cmd_sweep)
 
     lst = add("scenarios", "list the shipped scenarios (run one by name: frictionnoise run NAME)")
@@ -121,22 +136,23 @@ def _cmd_scenarios(args) -> int:
 
 
 def _cmd_sweep(args) -> int:
-    from pathlib import Path
 
     from tqdm import tqdm
 
     from .sweep_report import build_sweep_report, write_sweep_outputs
-    from .sweep import SweepError, load_results, load_sweep, run_sweep
+    from .sweep import SchedulerError, SweepError, load_results, load_sweep, run_sweep
 
     try:
         spec = load_sweep(args.sweep)
     except SweepError as e:
         raise UserError(str(e)) from None
-    if args.workers < 1:
-        raise UserError(f"--workers must be at least 1 (got {args.workers})")
-    out = Path(args.output or f"sweep-{spec.name}")
-    if out.exists() and not out.is_dir():
-        raise UserError(f"{out}: exists and is not a folder")
+    if not 1 <= args.workers <= 64:
+        raise UserError(f"--workers must be between 1 and 64 (got {args.workers})")
+    if not 0 < args.connect_timeout <= 3600:
+        raise UserError(f"--connect-timeout must be in (0, 3600] seconds (got {args.connect_timeout})")
+    from .inputs import output_folder
+
+    out = output_folder(args.output or f"sweep-{spec.name}")
     bar = tqdm(total=0, desc=spec.name, unit="task", file=sys.stderr, disable=not sys.stderr.isatty())
 
     def progress(done, total):
@@ -144,7 +160,11 @@ def _cmd_sweep(args) -> int:
         bar.n = done
         bar.refresh()
     with bar:
-        counts = run_sweep(spec, out, scheduler=args.scheduler, workers=args.workers, serial=args.serial, progress=progress)
+        try:
+            counts = run_sweep(spec, out, scheduler=args.scheduler, workers=args.workers, serial=args.serial,
+                               progress=progress, connect_timeout=args.connect_timeout)
+        except SchedulerError as e:
+            raise UserError(str(e)) from None
     import json
     failures = [json.loads(p.read_text()) for p in sorted((out / "failures").glob("*.json"))]
     sections, summary = build_sweep_report(spec, load_results(out), failures)
@@ -166,6 +186,10 @@ def _cmd_analyze(args) -> int:
 
     import math
 
+    from .inputs import input_file, output_folder, sniff
+
+    if sniff(input_file(args.data)) != "text":  # kind, emptiness, binary; the format is read by compare.measured
+        raise UserError(f"{args.data}: binary data, not a CSV text file")
     force = args.force_col is not None
     if args.mass is not None and not (args.mass > 0 and math.isfinite(args.mass)):
         raise UserError(f"--mass must be positive (got {args.mass})")
@@ -189,9 +213,7 @@ def _cmd_analyze(args) -> int:
         raise UserError(str(e)) from None
     if data.warning:
         print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)
-    out = Path(args.output or f"analyze-{Path(args.data).stem}")
-    if out.exists() and not out.is_dir():
-        raise UserError(f"{out}: exists and is not a folder")
+    out = output_folder(args.output or f"analyze-{Path(args.data).stem}")
     band = tuple(args.band) if args.band else None
     try:
         if force:
@@ -226,21 +248,20 @@ def _cmd_analyze(args) -> int:
 
 
 def _cmd_render(args) -> int:
-    from pathlib import Path
 
+    from .inputs import output_folder
     from .outputs import atomic_folder
 
     sc = _load_scenario(args.scenario)
-    if args.frames < 1:
-        raise UserError(f"--frames must be at least 1 (got {args.frames})")
-    if not args.duration > 0:
-        raise UserError(f"--duration must be positive (got {args.duration})")
+    _check_seed(args.seed)
+    if not 1 <= args.frames <= 10_000:
+        raise UserError(f"--frames must be between 1 and 10000 (got {args.frames})")
+    if not 0 < args.duration < float("inf"):
+        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
     from engine_sim import Scene
     from engine_sim.render import SceneRenderer
 
-    out = Path(args.output or f"render-{sc.name}")
-    if out.exists() and not out.is_dir():
-        raise UserError(f"{out}: exists and is not a folder")
+    out = output_folder(args.output or f"render-{sc.name}")
     scene = Scene(sc, args.seed)
     renderer = SceneRenderer(scene)
     n_out = max(1, int(round(args.duration / sc.run.dt_out / args.frames)))  # output steps between frames
@@ -265,11 +286,36 @@ def _cmd_render(args) -> int:
     return 0
 
 
-def _load_scenario(path):
-    from engine_sim import ScenarioError, load_scenario
+def _check_seed(seed):
+    if seed is not None and not 0 <= seed < 2**63:
+        raise UserError(f"--seed must be a whole number from 0 to 2^63 - 1 (got {seed})")
 
+
+def _scenario_path(arg) -> str:
+    """A scenario argument as a path: an existing path as given (it wins over a shipped name of the same
+    spelling), else the shipped scenario of that name, else as given (the input layer then names the problem)."""
+    import os
+
+    from engine_sim import ScenarioError
+    from engine_sim.scenario import resolve_scenario
+
+    if os.path.lexists(arg):
+        return arg
     try:
-        return load_scenario(path)
+        return str(resolve_scenario(arg))
+    except ScenarioError:
+        return arg
+
+
+def _load_scenario(path):
+    from engine_sim import ScenarioError, scenario_from_dict
+
+    from .inputs import read_toml
+
+    path = _scenario_path(path)
+    data = read_toml(path, "scenario TOML file")
+    try:
+        return scenario_from_dict(data, where=str(path))
     except ScenarioError as e:
         raise UserError(str(e)) from None
 
@@ -300,54 +346,83 @@ def _progress_bar(desc, stream=None):
 
 
 def _cmd_run(args) -> int:
+    from .inputs import output_folder
+
+    sc = _load_scenario(args.scenario)
+    _check_seed(args.seed)
+    if args.duration is not None and not 0 < args.duration < float("inf"):
+        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
+    out = output_folder(args.output or f"run-{sc.name}")
+    if args.epoch is not None and not 0 < args.epoch < float("inf"):
+        raise UserError(f"--epoch must be a positive number of seconds (got {args.epoch})")
+    ck = None
+    if args.checkpoint_every is not None:
+        if not 0 < args.checkpoint_every < float("inf"):
+            raise UserError(f"--checkpoint-every must be a positive number of seconds (got {args.checkpoint_every})")
+        ck = out / "checkpoint.pkl"
+    created = not out.exists()
+    try:
+        return _run_into(args, sc, out, ck)
+    except BaseException:
+        if created and out.is_dir() and not any(out.iterdir()):
+            out.rmdir()  # nothing half-written: a folder made for a checkpoint that never came
+        raise
+
+
+def _run_into(args, sc, out, ck) -> int:
     import engine_sim
-    from pathlib import Path
+
+    from engine_sim.run import CheckpointError
 
     from .traceio import save_trace
 
-    sc = _load_scenario(args.scenario)
-    if args.duration is not None and not args.duration > 0:
-        raise UserError(f"--duration must be positive (got {args.duration})")
-    out = Path(args.output or f"run-{sc.name}")
-    if out.exists() and not out.is_dir():
-        raise UserError(f"{out}: exists and is not a folder")
-    ck = None
-    if args.checkpoint_every is not None:
-        if not args.checkpoint_every > 0:
-            raise UserError(f"--checkpoint-every must be positive (got {args.checkpoint_every})")
+    if ck is not None:
         out.mkdir(parents=True, exist_ok=True)
-        ck = out / "checkpoint.pkl"
+
+    def on_plan(epoch_s, every_s):
+        if every_s is not None and abs(every_s - args.checkpoint_every) > 1e-9:
+            print(f"checkpoints every {every_s:g} s (whole epochs of {epoch_s:g} s)", file=sys.stderr)
     bar, update = _progress_bar(sc.name)
     with bar:
         try:
             tr = engine_sim.run(sc, duration=args.duration, seed=args.seed, progress=update, checkpoint=ck,
-                                checkpoint_every=args.checkpoint_every)
-        except ValueError as e:  # e.g. a checkpoint of another run in the folder
+                                checkpoint_every=args.checkpoint_every, epoch=args.epoch, on_plan=on_plan)
+        except CheckpointError as e:  # a checkpoint of another run, or a corrupt one
             raise UserError(str(e)) from None
     out.mkdir(parents=True, exist_ok=True)
     path = save_trace(tr, out / "trace.npz")
-    if tr.metadata["partial"]:
-        print(f"interrupted at t = {tr.t[-1]:.3f} s: partial trace (marked partial) written to {path}"
-              + ("; rerun the same command to resume" if ck else ""), file=sys.stderr)
-        return 130
+    meta = tr.metadata
+    if meta["partial"]:
+        at = meta.get("checkpoint_at_s")
+        print(f"interrupted ({meta['interrupted_by']}) at t = {tr.t[-1]:.3f} s: partial trace (marked partial) "
+              f"written to {path}" + (f"; rerun the same command to resume from t = {at:g} s" if at else ""),
+              file=sys.stderr)
+        return 143 if meta["interrupted_by"] == "SIGTERM" else 130
     if ck is not None and ck.exists():
         ck.unlink()
-    print(f"wrote {path} and {path.with_suffix('.json')} ({len(tr.t)} samples, {tr.metadata['wall_s']:.1f} s wall)")
+    print(f"wrote {path} and {path.with_suffix('.json')} ({len(tr.t)} samples, {meta['wall_s']:.1f} s wall)")
     return 0
 
 
 def _cmd_compare(args) -> int:
-    from pathlib import Path
 
     from .html import write_report
     from .report import build_scene_report
     from .traceio import TraceFileError, load_trace
 
-    src = Path(args.source)
-    if src.suffix == ".npz" and not src.exists():
-        raise UserError(f"{src}: no such file")
+    from .inputs import input_file, output_folder, sniff
+
+    src = input_file(_scenario_path(args.source))
+    _check_seed(args.seed)
+    kind = sniff(src)
+    if kind == "binary":
+        raise UserError(f"{src}: binary data, neither a scenario TOML file nor a trace .npz")
+    if src.suffix.lower() == ".npz" and kind != "npz":
+        raise UserError(f"{src}: not a .npz trace file (text, not a zip archive)")
+    if args.duration is not None and not 0 < args.duration < float("inf"):
+        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
     trace = None
-    if src.suffix == ".npz":
+    if kind == "npz":
         from engine_sim import ScenarioError, scenario_from_dict
 
         try:
@@ -357,15 +432,22 @@ def _cmd_compare(args) -> int:
             raise UserError(str(e)) from None
     else:
         sc = _load_scenario(src)
-    out = Path(args.output or f"compare-{sc.name}")
-    if out.exists() and not out.is_dir():
-        raise UserError(f"{out}: exists and is not a folder")
-    if trace is None:
-        bar, update = _progress_bar(sc.name)
-        with bar:
-            sections, summary = build_scene_report(sc, duration=args.duration, seed=args.seed, progress=update)
-    else:
-        sections, summary = build_scene_report(sc, trace=trace)
+    out = output_folder(args.output or f"compare-{sc.name}")
+    note = None
+    if trace is not None and trace.metadata.get("partial"):
+        note = f"{src} is a partial trace (interrupted at t = {trace.t[-1]:.3f} s)"
+    try:
+        if trace is None:
+            bar, update = _progress_bar(sc.name)
+            with bar:
+                sections, summary = build_scene_report(sc, duration=args.duration, seed=args.seed, progress=update)
+        else:
+            sections, summary = build_scene_report(sc, trace=trace)
+    except ValueError as e:  # e.g. a record too short for the fit band
+        raise UserError(f"{src}: {e}" + (f"; {note}" if note else "")) from None
+    if note:
+        summary["partial_trace"] = note
+        print(f"frictionnoise: note: {note}; the spectra cover only what was recorded", file=sys.stderr)
     path = write_report(out, sections, summary)
     f = summary["scenarios"][sc.name]
     print(f"wrote {path / 'index.html'}: gamma = {f['gamma']:.3f} +- {f['gamma_err']:.3f} over "
@@ -381,16 +463,16 @@ def _usable_cores(cap: int) -> int:
 
 
 def _cmd_report(args) -> int:
-    from pathlib import Path
 
     from . import studies
     from .html import write_report
     from .progress import StageProgress
     from .report import build_report
 
-    out = Path(args.output)
-    if out.exists() and not out.is_dir():
-        raise UserError(f"{out}: exists and is not a folder")
+    from .inputs import output_folder
+
+    out = output_folder(args.output)
+    _check_seed(args.seed)
     if args.workers is not None and args.workers < 1:
         raise UserError(f"--workers must be at least 1 (got {args.workers})")
     workers = args.workers or _usable_cores(cap=4)
@@ -406,17 +488,47 @@ def _cmd_report(args) -> int:
     return 0
 
 
+def _sigterm(signum, frame):
+    raise KeyboardInterrupt
+
+
 def main(argv=None) -> int:
-    ap = _build_parser()
-    args = ap.parse_args(argv)
+    """Run the command line. Exit status: 0 done, 1 some work failed (sweep tasks), 2 a user error (one line),
+    130 interrupted by Ctrl-C (SIGINT; SIGTERM likewise, 143 when a run stopped on it), no traceback."""
+    import signal
+    import threading
+
+    try:
+        ap = _build_parser()
+        args = ap.parse_args(argv)
+    except KeyboardInterrupt:  # Ctrl-C while the parser is built: nothing started, nothing written
+        print("frictionnoise: interrupted", file=sys.stderr)
+        return 130
     if args.command is None:
         ap.print_help()
         return 0
+    main_thread = threading.current_thread() is threading.main_thread()
+    old = signal.signal(signal.SIGTERM, _sigterm) if main_thread else None
     try:
         return args.func(args)
-    except UserError as e:
-        print(f"frictionnoise: error: {e}", file=sys.stderr)
+    except (UserError, InputError) as e:
+        print("frictionnoise: error: " + " ".join(str(e).split()), file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print("frictionnoise: interrupted; no output written for the unfinished step", file=sys.stderr)
+        if argv is None:  # the command line itself: everything is cleaned up by now (outputs are written atomically,
+            # worker processes ended); skip the interpreter's exit, where dask's threads held it 10 s after a sweep
+            import os
+
+            sys.stdout.flush()
+            sys.stderr.flush()
+            os._exit(130)
+        return 130
+    finally:
+        if main_thread:
+            signal.signal(signal.SIGTERM, old)
+            if argv is None:  # the command line itself: the work is over, a late Ctrl-C must not kill the exit
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 if __name__ == "__main__":

@@ -13,7 +13,6 @@ the motion). The numerics here are pure; :func:`build_force_report` turns an ana
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from pathlib import Path
 

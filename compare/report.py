@@ -41,12 +41,11 @@ def run_studies(studies, quick: bool, seed: int, workers: int = 1, progress=None
             out.append(res)
             progress(st.label, "done", wall)
         return out
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures import as_completed
 
-    # spawn, not fork: the parent may hold threads (a progress bar's monitor) whose locks a fork would copy held
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"))
-    try:
+    from .pool import process_pool
+
+    with process_pool(workers) as pool:  # on Ctrl-C or an error its processes end at once
         order = sorted(range(len(studies)), key=lambda i: -studies[i].cost)
         futures = {pool.submit(_run_study, studies[i], quick, seed): i for i in order}
         queue = list(order)
@@ -61,17 +60,19 @@ def run_studies(studies, quick: bool, seed: int, workers: int = 1, progress=None
             if started < len(queue):
                 progress(studies[queue[started]].label, "start", None)
                 started += 1
-    except BaseException:
-        pool.shutdown(wait=False, cancel_futures=True)
-        raise
-    pool.shutdown()
     return out
+
+
+def _row(r: dict) -> list:
+    """A speed-table row as text (n/a where a number is None)."""
+    fmt = lambda v: "n/a" if v is None else v if isinstance(v, str) else f"{v:.4g}"
+    return [r["model"], r["run"], fmt(r["wall_s"]), fmt(r["mean_abs_log_ratio"])]
 
 
 def _speed(rows: list, title: str, note: str) -> StudyResult:
     return StudyResult("timings", title, rows, html=(paragraphs([note]) if note else "") + table(
         "Runs in this report", ["model", "run", "wall (s)", "mean |ln ratio|"],
-        [[r["model"], r["run"], r["wall_s"], r["mean_abs_log_ratio"]] for r in rows]))
+        [_row(r) for r in rows]))
 
 
 def build_report(quick: bool = False, seed: int = 0, progress=None, workers: int = 1, studies=None):
@@ -112,6 +113,6 @@ def build_scene_report(sc, trace=None, duration=None, seed=None, progress=None):
     res = scene_result(sc.name, sc, False, header["seed"], trace=trace, duration=duration, progress=progress)
     speed = StudyResult("timings", "Speed", list(res.timings), html=table(
         "Run", ["what", "run", "wall (s)", "mean |ln ratio| vs model I"],
-        [[r["model"], r["run"], r["wall_s"], r["mean_abs_log_ratio"]] for r in res.timings]))
+        [_row(r) for r in res.timings]))
     results = [res, speed]
     return results, summary_of(results, header)

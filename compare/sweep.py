@@ -23,8 +23,8 @@ import hashlib
 import itertools
 import json
 import math
+import sys
 import time
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -32,7 +32,7 @@ import numpy as np
 
 from frictionnoise import atomic_write
 
-__all__ = ["SweepSpec", "SweepError", "load_sweep", "expand", "run_task", "run_sweep", "load_results",
+__all__ = ["SweepSpec", "SweepError", "SchedulerError", "load_sweep", "expand", "run_task", "run_sweep", "load_results",
            "velocity_analysis"]
 
 _TARGETS = ("model_I", "model_II", "model_III", "scenario")
@@ -54,22 +54,95 @@ class SweepSpec:
     description: str = ""
 
 
+# a task's simulated duration when the sweep sets none (as in run_task)
+_DEFAULT_DURATION = {"model_I": lambda p: 300.0, "model_II": lambda p: 500.0, "model_III": lambda p: 2**18 * p.dt}
+_TOP = {"name": str, "description": str, "target": str, "scenario": str, "fixed": dict, "grid": dict,
+        "analysis": dict}
+_MAX_DURATION = 1e5  # s of simulated time per task
+
+
+def _params_class(target):
+    if target == "model_I":
+        from reduced_models.spring_block import SpringBlockParams
+        return SpringBlockParams
+    if target == "model_III":
+        from reduced_models.asperity_force import AsperityForceParams
+        return AsperityForceParams
+    from reduced_models.wear_particle import WearParticleParams
+    return WearParticleParams
+
+
+def _is_number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _model_fields(target) -> dict:
+    """Settable fields of a model's parameters: name -> default value (its type is the expected one)."""
+    import dataclasses
+
+    out = {}
+    for f in dataclasses.fields(_params_class(target)):
+        if not f.init or not f.repr:
+            continue  # derived flags, not parameters
+        # a field built by a factory (e.g. a distribution spec) is left to the model's own validation
+        out[f.name] = f.default if f.default is not dataclasses.MISSING else (_ANY if f.default_factory
+                                                                             is not dataclasses.MISSING else None)
+    return out
+
+
+_ANY = object()
+
+
+def _check_value(where: str, key: str, v, expected):
+    """Type per key: numbers where the default is a number (finite; ints where an int is expected), strings and
+    booleans where those are."""
+    if expected is _ANY:
+        return
+    if isinstance(expected, bool):
+        ok = isinstance(v, bool)
+        kind = "true or false"
+    elif isinstance(expected, int):
+        ok = isinstance(v, int) and not isinstance(v, bool)
+        kind = "a whole number"
+    elif isinstance(expected, float) or expected is None:
+        ok = _is_number(v)
+        kind = "a finite number"
+    elif isinstance(expected, str):
+        ok = isinstance(v, str)
+        kind = "a string"
+    else:
+        ok = True
+        kind = ""
+    if not ok:
+        raise SweepError(f"{where}: {key} must be {kind} (got {v!r})")
+
+
+def _check_run(where: str, key: str, v):
+    if not _is_number(v) or not 0 < v <= _MAX_DURATION:
+        raise SweepError(f"{where}: {key} must be a number of seconds in (0, {_MAX_DURATION:g}] (got {v!r})")
+
+
 def load_sweep(path) -> SweepSpec:
+    """Read and validate a sweep file, every key and every grid point, before anything runs: unknown keys are
+    named with the list of valid ones; types and ranges are checked per key (the models' own validation names
+    the field for ranges)."""
+    from .inputs import InputError, read_toml
+
     path = Path(path)
-    if not path.exists():
-        raise SweepError(f"{path}: no such file")
     try:
-        d = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as e:
-        raise SweepError(f"{path}: not valid TOML ({e})") from None
-    valid = {"name", "description", "target", "scenario", "fixed", "grid", "analysis"}
-    bad = sorted(set(d) - valid)
+        d = read_toml(path, "sweep TOML file")
+    except InputError as e:
+        raise SweepError(str(e)) from None
+    bad = sorted(set(d) - set(_TOP))
     if bad:
-        raise SweepError(f"{path}: unknown key {bad[0]!r}; valid keys: {', '.join(sorted(valid))}")
+        raise SweepError(f"{path}: unknown key {bad[0]!r}; valid keys: {', '.join(sorted(_TOP))}")
+    for k, typ in _TOP.items():
+        if k in d and not isinstance(d[k], typ):
+            raise SweepError(f"{path}: {k} must be a {'table' if typ is dict else 'string'} (got {d[k]!r})")
     target = d.get("target")
     if target not in _TARGETS:
         raise SweepError(f"{path}: target must be one of {', '.join(_TARGETS)} (got {target!r})")
-    grid = d.get("grid", {})
+    grid, fixed, analysis = d.get("grid", {}), d.get("fixed", {}), d.get("analysis", {})
     if not grid or not all(isinstance(v, list) and v for v in grid.values()):
         raise SweepError(f"{path}: [grid] must hold non-empty lists of values")
     scen = d.get("scenario")
@@ -79,12 +152,62 @@ def load_sweep(path) -> SweepSpec:
         scen = str((path.parent / scen).resolve())
         if not Path(scen).exists():
             raise SweepError(f"{path}: scenario {scen}: no such file")
-    spec = SweepSpec(name=d.get("name", path.stem), target=target, fixed=d.get("fixed", {}), grid=grid,
-                     analysis=d.get("analysis", {}), scenario=scen, description=d.get("description", ""))
-    try:  # validate every grid point's parameters once, before anything runs
+    elif scen is not None:
+        raise SweepError(f"{path}: scenario = ... applies only to target = 'scenario' (target is {target!r})")
+    if target != "scenario":
+        model = _model_fields(target)
+        valid = sorted(model) + sorted(_RUN_KEYS)
+        for sec, table in (("fixed", fixed), ("grid", grid)):
+            for key in table:
+                if key == "seed" and sec == "grid":
+                    continue
+                if key not in model and key not in _RUN_KEYS:
+                    extra = ", seed" if sec == "grid" else ""
+                    raise SweepError(f"{path}: unknown key {key!r} in [{sec}]; valid names: {', '.join(valid)}{extra}")
+                values = table[key] if sec == "grid" else [table[key]]
+                for v in values:
+                    if key in _RUN_KEYS:
+                        _check_run(path, f"{sec}.{key}", v)
+                    else:
+                        _check_value(path, f"{sec}.{key}", v, model[key])
+    else:
+        for sec, table in (("fixed", fixed), ("grid", grid)):
+            for key in table:
+                if key == "duration":
+                    for v in (table[key] if sec == "grid" else [table[key]]):
+                        _check_run(path, f"{sec}.{key}", v)
+                elif key == "seed" and sec == "grid":
+                    pass
+                elif "." not in key:
+                    raise SweepError(f"{path}: unknown key {key!r} in [{sec}]; scenario parameters are written "
+                                     "section.key (e.g. drive.v), besides duration and seed")
+    seeds = grid.get("seed", [0])
+    if not all(isinstance(x, int) and not isinstance(x, bool) and 0 <= x < 2**63 for x in seeds):
+        raise SweepError(f"{path}: grid.seed must be a list of whole numbers >= 0 (got {seeds!r})")
+    bad = sorted(set(analysis) - {"omega_ref", "omega_max"})
+    if bad:
+        raise SweepError(f"{path}: unknown key {bad[0]!r} in [analysis]; valid names: omega_max, omega_ref")
+    ref = analysis.get("omega_ref")
+    if ref is not None and not (isinstance(ref, list) and len(ref) == 2 and all(_is_number(x) for x in ref)
+                                and 0 < ref[0] < ref[1]):
+        raise SweepError(f"{path}: analysis.omega_ref must be two numbers 0 < lo < hi in rad/s (got {ref!r})")
+    om = analysis.get("omega_max")
+    if om is not None and not (_is_number(om) and om > 0):
+        raise SweepError(f"{path}: analysis.omega_max must be a positive number in rad/s (got {om!r})")
+    spec = SweepSpec(name=d.get("name", path.stem), target=target, fixed=fixed, grid=grid, analysis=analysis,
+                     scenario=scen, description=d.get("description", ""))
+    try:  # every grid point's parameters once (the models' and the scenario's own range checks)
         for params, _ in expand(spec):
-            _build(spec, params)
+            obj, run = _build(spec, params)
+            if target in ("model_I", "model_II", "model_III"):
+                step = obj.dt if target == "model_III" else run.get("dt_out", 1e-3)
+                dur = run.get("duration", _DEFAULT_DURATION[target](obj))
+                if not dur >= 2 * step:
+                    raise SweepError(f"{path}: duration = {dur:g} s holds fewer than two steps of {step:.3g} s "
+                                     f"(at {', '.join(f'{k} = {v}' for k, v in params.items())})")
     except (TypeError, ValueError) as e:
+        if isinstance(e, SweepError):
+            raise
         raise SweepError(f"{path}: {e}") from None
     return spec
 
@@ -179,22 +302,85 @@ def _write_json(path: Path, obj):
     atomic_write(path, json.dumps(obj))
 
 
+class SchedulerError(RuntimeError):
+    """The dask scheduler could not be reached; nothing was written."""
+
+
+def _connect(scheduler: str | None, workers: int, connect_timeout: float):
+    """(client, cluster or None): a client of the scheduler at ``scheduler`` (given up after ``connect_timeout``
+    seconds with a SchedulerError) or of a new LocalCluster of ``workers`` single-threaded processes."""
+    import logging
+
+    from distributed import Client, LocalCluster
+
+    if scheduler:
+        # distributed logs every retry at ERROR with a traceback: quiet while connecting, the error says it all
+        log = logging.getLogger("distributed")
+        level = log.level
+        log.setLevel(logging.CRITICAL)
+        try:
+            return Client(scheduler, timeout=f"{connect_timeout}s"), None
+        except (OSError, TimeoutError, ValueError, TypeError) as e:
+            reason = " ".join(str(e).split()) or type(e).__name__
+            raise SchedulerError(f"no dask scheduler reachable at {scheduler} within {connect_timeout:g} s "
+                                 f"({reason[:200]})") from None
+        finally:
+            log.setLevel(level)
+    # silence_logs: the workers' warnings (a task cancelled by Ctrl-C, ...) would be printed under our one line
+    # the workers' semaphores, left to multiprocessing's resource tracker when Ctrl-C ends them, are cleaned up by
+    # it with a warning printed under our one line: the tracker (started with this process's -W options) stays quiet
+    if "ignore:resource_tracker:UserWarning" not in sys.warnoptions:
+        sys.warnoptions.append("ignore:resource_tracker:UserWarning")
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+                           silence_logs=logging.ERROR)
+    return Client(cluster), cluster
+
+
+def _close(client, cluster, interrupted: bool = False):
+    """Close; on Ctrl-C (``interrupted``) at once: the local workers' processes are ended first (a graceful close
+    took 13 s and logged the cancelled tasks), queued tasks are dropped with the client."""
+    import logging
+    import multiprocessing
+
+    if interrupted:
+        logging.getLogger("distributed").setLevel(logging.CRITICAL)  # the cancelled tasks' complaints
+        procs = multiprocessing.active_children() if cluster is not None else []  # the LocalCluster's workers
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            p.join(timeout=1)
+            if p.is_alive():
+                p.kill()
+    for c in (client, cluster):
+        if c is not None:
+            try:
+                c.close(timeout=0.2 if interrupted else 10)  # interrupted: the workers are gone already
+            except BaseException:
+                pass
+
+
 def run_sweep(spec: SweepSpec, out_dir, *, scheduler: str | None = None, workers: int = 2, serial: bool = False,
-              progress=None) -> dict:
-    """Run the tasks whose results are not yet in ``out_dir/tasks``; return {"done", "ran", "failed"}.
+              progress=None, connect_timeout: float = 10.0) -> dict:
+    """Run the tasks whose results are not yet in ``out_dir/tasks``; return {"done", "ran", "failed", "total"}.
 
     ``serial``: in this process. Otherwise on dask.distributed: ``scheduler`` (an address such as
-    tcp://host:8786) or a LocalCluster of ``workers`` single-threaded processes.
+    tcp://host:8786, given up after ``connect_timeout`` seconds with a :class:`SchedulerError`, before anything
+    is written) or a LocalCluster of ``workers`` single-threaded processes. Each task's result is stored as it
+    completes, so an interrupted sweep (KeyboardInterrupt, which is re-raised once the workers are stopped) keeps
+    what was done and a rerun completes only the rest.
     """
     out = Path(out_dir)
-    (out / "tasks").mkdir(parents=True, exist_ok=True)
-    (out / "failures").mkdir(exist_ok=True)
     todo = []
     for params, seed in expand(spec):
         tid = task_id(spec, params, seed)
         if not (out / "tasks" / f"{tid}.json").exists():
             todo.append((tid, params, seed))
     ran, failed = 0, 0
+    client = cluster = None
+    if todo and not serial:
+        client, cluster = _connect(scheduler, workers, connect_timeout)
+    (out / "tasks").mkdir(parents=True, exist_ok=True)
+    (out / "failures").mkdir(exist_ok=True)
 
     def store(tid, res):
         nonlocal ran, failed
@@ -210,33 +396,36 @@ def run_sweep(spec: SweepSpec, out_dir, *, scheduler: str | None = None, workers
         if progress is not None:
             progress(ran + failed, len(todo))
 
-    if serial or not todo:
+    if client is None:
         for tid, params, seed in todo:
             store(tid, run_task(spec, params, seed))
     else:
-        from distributed import Client, LocalCluster, as_completed
+        from distributed import as_completed
 
-        cluster = None
-        if scheduler:
-            client = Client(scheduler)
-        else:
-            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
-            client = Client(cluster)
         try:
             futs = {client.submit(run_task, spec, params, seed, pure=False, key=f"task-{tid}"): tid
                     for tid, params, seed in todo}
             for fut in as_completed(futs):
                 store(futs[fut], fut.result())
-        finally:
-            client.close()
-            if cluster is not None:
-                cluster.close()
-    done = sorted((out / "tasks").glob("*.json"))
+        except BaseException:
+            _close(client, cluster, interrupted=True)
+            raise
+        _close(client, cluster)
+    done = list((out / "tasks").glob("*.json"))
     return {"done": len(done), "ran": ran, "failed": failed, "total": len(expand(spec))}
 
 
+def _order_key(r: dict):
+    """Sort key of a result: its parameters by name (numbers before strings), then its seed."""
+    def one(v):
+        return (0, v, "") if isinstance(v, (int, float)) and not isinstance(v, bool) else (1, 0, json.dumps(v))
+    return tuple(one(r["params"][k]) for k in sorted(r["params"])) + (one(r["seed"]),)
+
+
 def load_results(out_dir) -> list:
-    return [json.loads(p.read_text()) for p in sorted(Path(out_dir, "tasks").glob("*.json"))]
+    """The stored task results, sorted by their parameters (then seed), whatever order they completed in."""
+    rs = [json.loads(p.read_text()) for p in Path(out_dir, "tasks").glob("*.json")]
+    return sorted(rs, key=_order_key)
 
 
 # ----------------------------------------------------------------------------- velocity analysis

@@ -240,7 +240,7 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, k, out, pad_force, n_contac
     pout = 0.0
     kinds = np.empty(2, dtype=np.int64)  # per arbiter: kind and index of bodies A and B (-1: static)
     idx = np.empty(2, dtype=np.int64)
-    for r in range(ai.shape[0] // 3):
+    for r in _arbiter_order(ai, af, tab):  # sums over several contacts of one pad must not depend on the batch's order
         if ai[3 * r + 2] <= 0:
             continue
         a0 = 7 * r  # batch order: impulse (2), normal (2), point A 1 (2), distance 1
@@ -368,3 +368,41 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, k, out, pad_force, n_contac
     out[k, 10] = pairs
     out[k, 11] = max(p_pen, 0.0)
     n_contact[k] = nc
+
+
+@numba.njit(cache=True)
+def _less(key, af, r, q):
+    """Arbiter r before q: by the bodies' (kind, index), then contact point and impulse (all deterministic)."""
+    for c in range(4):
+        if key[r, c] != key[q, c]:
+            return key[r, c] < key[q, c]
+    for c in (4, 5, 0, 1):
+        if af[7 * r + c] != af[7 * q + c]:
+            return af[7 * r + c] < af[7 * q + c]
+    return False
+
+
+@numba.njit(cache=True)
+def _arbiter_order(ai, af, tab):
+    """The arbiters in a fixed order (insertion sort, tens of rows). pymunk's batch lists them in its hash set's
+    order and names bodies by address, both of which vary from run to run: the last bits of per-pad and summed
+    forces and of the friction power did. Bodies are keyed by their (kind, index) in the body table (-1, 0:
+    static)."""
+    n = ai.shape[0] // 3
+    tab_ids = tab[:, 0]
+    key = np.empty((n, 4), dtype=np.int64)
+    for r in range(n):
+        for s in range(2):
+            key[r, 2 * s], key[r, 2 * s + 1] = -1, 0
+            t = np.searchsorted(tab_ids, ai[3 * r + s])
+            if t < tab.shape[0] and tab_ids[t] == ai[3 * r + s]:
+                key[r, 2 * s], key[r, 2 * s + 1] = tab[t, 1], tab[t, 2]
+    order = np.arange(n)
+    for i in range(1, n):
+        r = order[i]
+        j = i - 1
+        while j >= 0 and _less(key, af, r, order[j]):
+            order[j + 1] = order[j]
+            j -= 1
+        order[j + 1] = r
+    return order

@@ -13,9 +13,10 @@ from frictionnoise import atomic_write, package_version
 from . import units as U
 from .record import EngineTrace, Recorder
 from .scenario import Scenario, load_scenario
+from .epoch import default_epoch
 from .scene import Scene, describe
 
-__all__ = ["run"]
+__all__ = ["run", "CheckpointError"]
 
 _MAINTAIN_EVERY = 64  # output steps between substrate maintenance (the margin ahead covers 200 outputs)
 
@@ -30,110 +31,180 @@ def _warm_up(scene, n_out: int, interrupts=None):
         scene.advance(scene.n_sub)
 
 
+class CheckpointError(ValueError):
+    """A checkpoint file that is corrupt or belongs to another run; the message says which and what to do."""
+
+
+_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
 class _Interrupts:
-    """SIGINT deferred to the loop's consistent points (between output steps, where the loop's counter and the
-    recorder's agree and no pymunk step is half done). A KeyboardInterrupt raised anywhere else left a checkpoint
-    whose counters disagreed by one sample; resuming from it wrote past the recorder's buffers (heap corruption)."""
+    """SIGINT and SIGTERM deferred to the loop's consistent points (between output steps, where the loop's counter
+    and the recorder's agree and no pymunk step or round trip is half done). A KeyboardInterrupt raised anywhere
+    else left a checkpoint whose counters disagreed by one sample; resuming from it wrote past the recorder's
+    buffers (heap corruption)."""
 
     def __init__(self):
-        self.pending = False
+        self.signum = None
 
     def _handler(self, signum, frame):
-        self.pending = True
+        self.signum = signum
 
     @contextmanager
     def deferred(self):
         if threading.current_thread() is not threading.main_thread():
             yield self  # signals reach the main thread only; nothing to defer here
             return
-        old = signal.signal(signal.SIGINT, self._handler)
+        old = {s: signal.signal(s, self._handler) for s in _SIGNALS}
         try:
             yield self
         finally:
-            signal.signal(signal.SIGINT, old)
+            for s, h in old.items():
+                signal.signal(s, h)
 
     def check(self):
-        if self.pending:
+        if self.signum is not None:
             raise KeyboardInterrupt
 
 
-def _snapshot(scene, rec, k) -> bytes:
+_REC_ARRAYS = ("t", "out", "pad_force", "n_contact", "p_state", "p_force", "recycle")
+_FORMAT = "frictionnoise-checkpoint-3"
+
+
+def _rec_state(rec, k) -> dict:
+    """The recorder's state at sample k: rows below k of its buffers (by reference) and its small mutable parts."""
     if rec.k != k:
-        raise RuntimeError(f"snapshot at an inconsistent point (loop at sample {k}, recorder at {rec.k})")
-    # Scene and Recorder pickle through their own state methods (the recorder carries its scene)
-    return pickle.dumps({"recorder": rec, "k": k}, protocol=pickle.HIGHEST_PROTOCOL)
+        raise RuntimeError(f"epoch at an inconsistent point (loop at sample {k}, recorder at {rec.k})")
+    return {"k": k, "x0": rec.x0, "part": rec._part.copy(), "arrays": {a: getattr(rec, a) for a in _REC_ARRAYS}}
 
 
-def _restore(data: bytes, n_out: int):
-    state = pickle.loads(data)
-    if not isinstance(state, dict) or not isinstance(state.get("recorder"), Recorder):
-        raise ValueError("checkpoint holds no recorder (written by another version?): delete it and run again")
-    rec = state["recorder"]
-    scene = rec.scene
-    if not (rec.k == state["k"] and 0 <= rec.k < n_out and rec.t.shape[0] == n_out):
-        raise ValueError(f"checkpoint is inconsistent (loop at sample {state['k']}, recorder at {rec.k}, "
-                         f"{n_out} samples): delete it and run again")
-    return scene, rec, state["k"]
+def _rebind(scene_bytes: bytes, rs: dict, n_out: int):
+    """The scene restored from its pickle and a recorder on it holding ``rs``: the one path by which every run
+    continues at an epoch, live or resumed from a file."""
+    scene = pickle.loads(scene_bytes)  # Scene.__setstate__ re-applies segment neighbours and re-reads body ids
+    rec = Recorder(scene, n_out)
+    k = rs["k"]
+    for a in _REC_ARRAYS:
+        src = rs["arrays"][a]
+        dst = getattr(rec, a)
+        if src.shape[1:] != dst.shape[1:] or src.shape[0] < k or src.dtype != dst.dtype:
+            raise CheckpointError(f"recorder array {a!r} of shape {src.shape} does not fit {dst.shape}")
+        if src.shape[0] == dst.shape[0]:
+            setattr(rec, a, src)  # live: keep the buffers
+        else:
+            dst[:k] = src[:k]
+    rec._part, rec.k, rec.x0 = rs["part"].copy(), k, rs["x0"]
+    return scene, rec
 
 
-def _write_atomic(path: Path, key: dict, data: bytes):
-    atomic_write(path, pickle.dumps({"key": key, "data": data}, protocol=pickle.HIGHEST_PROTOCOL))
+def _write_checkpoint(path: Path, key: dict, e_out: int, scene_bytes: bytes, rs: dict):
+    k = rs["k"]
+    rec = {"k": k, "x0": rs["x0"], "part": rs["part"], "arrays": {a: v[:k] for a, v in rs["arrays"].items()}}
+    _write_atomic(path, {"format": _FORMAT, "key": key, "epoch_outputs": e_out, "scene": scene_bytes, "rec": rec})
+
+
+def _read_checkpoint(path: Path, key: dict, n_out: int):
+    what = "delete it (or write to another -o folder) and run again"
+    try:
+        with open(path, "rb") as fh:
+            saved = pickle.load(fh)
+        if not isinstance(saved, dict) or saved.get("format") != _FORMAT:
+            raise ValueError("not a checkpoint of this version")
+        rs, e_out = saved["rec"], saved["epoch_outputs"]
+        if not (isinstance(rs, dict) and 0 < rs["k"] < n_out and isinstance(e_out, int) and e_out > 0
+                and rs["k"] % e_out == 0):
+            raise ValueError(f"sample counter {rs.get('k')!r} is not an epoch in 1..{n_out - 1}")
+    except Exception as e:  # anything unpickling junk can raise
+        raise CheckpointError(f"{path}: not a readable checkpoint ({type(e).__name__}: {e}); {what}") from None
+    old = saved.get("key", {})
+    if old != key:
+        diff = [f for f in key if old.get(f) != key[f]]
+        raise CheckpointError(f"{path}: checkpoint of another run ({', '.join(diff) or 'key'} {'differs' if len(diff) == 1 else 'differ'}); {what}")
+    try:
+        scene, rec = _rebind(saved["scene"], rs, n_out)
+    except Exception as e:
+        raise CheckpointError(f"{path}: not a readable checkpoint ({type(e).__name__}: {e}); {what}") from None
+    return scene, rec, rs["k"], e_out
+
+
+def _write_atomic(path: Path, obj):
+    """A pickle written atomically (the one writer: created 0666 less the umask)."""
+    atomic_write(path, pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL))
+
+
+def _every(e_out: int, dt_out: float, checkpoint_every: float | None) -> int | None:
+    """The checkpoint interval in output steps: the whole number of epochs nearest ``checkpoint_every``, at
+    least one."""
+    if not checkpoint_every:
+        return None
+    return e_out * max(1, int(round(checkpoint_every / (e_out * dt_out))))
 
 
 def run(scenario, duration: float | None = None, seed: int | None = None, progress=None, *,
-        checkpoint: str | None = None, checkpoint_every: float | None = None) -> EngineTrace:
+        checkpoint: str | None = None, checkpoint_every: float | None = None, epoch: float | None = None,
+        on_plan=None) -> EngineTrace:
     """Run a scenario (a path or a :class:`Scenario`) and return its trace.
 
     ``duration`` and ``seed`` override the scenario's ``[run]`` values. The warm-up (``run.warmup``) is
     simulated first and not recorded. ``progress(t_done, t_total)`` is called now and then (seconds).
 
-    ``checkpoint``/``checkpoint_every``: every that many simulated seconds the whole scene is pickled to the
-    file (atomically) and, since a restored pymunk space is not an exact continuation of the live one, the run
-    itself continues from the restored copy; a run started with an existing checkpoint of the same scenario,
-    duration and seed resumes from it, and the trace is identical bit for bit to an uninterrupted run.
-    Ctrl-C (KeyboardInterrupt) stops at the next output step, writes a checkpoint if one is configured and
-    returns the trace so far with ``metadata["partial"] = True``.
+    Exact continuation: every ``epoch`` simulated seconds of the recorded part (default: the scene's, see
+    :mod:`engine_sim.epoch`), every run pickles its scene and continues from the restored copy, since a
+    restored pymunk space is not an exact continuation of the live one. The epoch is part of the run's
+    definition (in its metadata); whether, how often and where a run is checkpointed or interrupted is not: the
+    bits are the same. ``checkpoint``/``checkpoint_every``: the epochs nearest every ``checkpoint_every``
+    seconds (at least one epoch) are also written to the file (atomically); a run started with a checkpoint of
+    the same scenario, duration, seed, epoch and version resumes from it. A checkpoint of another run or a
+    corrupt one raises :class:`CheckpointError`. SIGINT or SIGTERM (KeyboardInterrupt) stops at the next output
+    step, writes the latest epoch as checkpoint if one is configured and returns the trace so far with
+    ``metadata["partial"] = True``. ``on_plan(epoch_s, every_s)`` is told the epoch and checkpoint interval.
     """
     sc = scenario if isinstance(scenario, Scenario) else load_scenario(Path(scenario))
     if duration is not None:
         if not duration > 0:
             raise ValueError(f"duration must be positive (got {duration!r})")
         sc = sc.with_run(duration=float(duration))
+    if epoch is not None and not (epoch > 0 and epoch < float("inf")):
+        raise ValueError(f"epoch must be positive (got {epoch!r})")
     n_warm = int(round(sc.run.warmup / sc.run.dt_out))
     n_out = int(round(sc.run.duration / sc.run.dt_out)) + 1
     total = (n_warm + n_out) * sc.run.dt_out
-    every = max(1, int(round(checkpoint_every / sc.run.dt_out))) if checkpoint_every else None
     ck_path = Path(checkpoint) if checkpoint else None
-    key = {"scenario": sc.to_dict(), "seed": seed, "n_out": n_out, "every": every}
+    if ck_path is not None:  # a write cut short by SIGKILL leaves its temporary file: never read, removed here
+        for stale in ck_path.parent.glob(f".{ck_path.name}.*.tmp"):
+            stale.unlink(missing_ok=True)
+    seed_used = sc.run.seed if seed is None else int(seed)
     t0 = time.perf_counter()
     resumed = False
     intr = _Interrupts()
     with intr.deferred():
+        scen = sc.to_dict()
+        scen["run"] = {k: v for k, v in scen["run"].items() if k not in ("duration", "seed")}  # compared on their own
+        key = {"scenario": scen, "duration": n_out * sc.run.dt_out, "seed": seed_used, "epoch": epoch,
+               "version": package_version()}
         if ck_path is not None and ck_path.exists():
-            try:
-                with open(ck_path, "rb") as fh:
-                    saved = pickle.load(fh)
-                if not isinstance(saved, dict) or "data" not in saved:
-                    raise ValueError("not a checkpoint")
-            except (OSError, EOFError, ValueError, TypeError, AttributeError, ImportError, pickle.UnpicklingError) as e:
-                raise ValueError(f"{ck_path}: not a readable checkpoint ({type(e).__name__}: {e}); delete it and run "
-                                 "again") from None
-            if saved.get("key") != key:
-                raise ValueError(f"{ck_path}: checkpoint of a different run (scenario, duration, seed or interval "
-                                 "differ)")
-            scene, rec, k0 = _restore(saved["data"], n_out)
+            scene, rec, k0, e_out = _read_checkpoint(ck_path, key, n_out)
+            every = _every(e_out, sc.run.dt_out, checkpoint_every)
             resumed = True
         else:
             scene = Scene(sc, seed)
             _warm_up(scene, n_warm, intr)
             rec = Recorder(scene, n_out)
             k0 = 0
+            ep = epoch if epoch is not None else default_epoch(scene, sc.run.dt_out)
+            e_out = max(1, int(round(ep / sc.run.dt_out)))
+            every = _every(e_out, sc.run.dt_out, checkpoint_every)
+        if on_plan is not None:
+            on_plan(e_out * sc.run.dt_out, every * sc.run.dt_out if every else None)
         n_sub = scene.n_sub
         partial = False
         k = k0
+        last = None  # (scene bytes, recorder state) of the latest epoch, kept for a checkpoint on interrupt
+        saved_k = k0 if resumed else 0
+        round_trip_s = 0.0
         try:
             while k < n_out:
-                intr.check()  # the one place a Ctrl-C takes effect: here k == rec.k
+                intr.check()  # the one place a signal takes effect: here k == rec.k
                 rec.sample()
                 # maintenance (substrate streaming, particle recycling) right after a sample and before the next
                 # steps: pymunk recomputes a cached arbiter's contact points from the bodies' current positions,
@@ -145,17 +216,25 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
                 if k + 1 < n_out:
                     scene.advance(n_sub)
                 k += 1
-                if every and k % every == 0 and k < n_out:
-                    data = _snapshot(scene, rec, k)
-                    if ck_path is not None:
-                        _write_atomic(ck_path, key, data)
-                    scene, rec, k = _restore(data, n_out)  # continue from the copy, exactly as a resumed run will
+                if k % e_out == 0 and k < n_out:  # an epoch: continue from the restored copy, as a resumed run will
+                    t_rt = time.perf_counter()
+                    scene_bytes = pickle.dumps(scene, protocol=pickle.HIGHEST_PROTOCOL)
+                    rs = _rec_state(rec, k)
+                    if ck_path is not None and every:
+                        if k % every == 0:
+                            _write_checkpoint(ck_path, key, e_out, scene_bytes, rs)
+                            saved_k = k
+                        else:
+                            last = (scene_bytes, rs)
+                    scene, rec = _rebind(scene_bytes, rs, n_out)
+                    round_trip_s += time.perf_counter() - t_rt
         except KeyboardInterrupt:
             if rec.k == 0:
                 raise  # nothing recorded yet
             partial = True
-            if ck_path is not None and every:
-                _write_atomic(ck_path, key, _snapshot(scene, rec, k))
+            if ck_path is not None and every and last is not None and last[1]["k"] > saved_k:
+                _write_checkpoint(ck_path, key, e_out, *last)  # rows below the epoch are unchanged since
+                saved_k = last[1]["k"]
     wall = time.perf_counter() - t0
     if progress is not None and not partial:
         progress(total, total)
@@ -166,7 +245,12 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
         "segments_generated": sum(t.generated for t in scene.tracks),
         "segments_live": sum(len(t.segments) for t in scene.tracks),
         "partial": partial, "resumed_from_checkpoint": resumed, "scene": describe(sc),
+        "epoch_s": e_out * sc.run.dt_out, "epoch_given": epoch is not None, "round_trips_s": round_trip_s,
+        "checkpoint_every_s": every * sc.run.dt_out if every else None,
     }
+    if partial:
+        meta["interrupted_by"] = signal.Signals(intr.signum).name if intr.signum else "KeyboardInterrupt"
+        meta["checkpoint_at_s"] = saved_k * sc.run.dt_out if (ck_path is not None and saved_k) else None
     if scene.wear is not None:
         w = scene.wear
         meta["wear"] = {"count": w.count, "recycled": w.recycled, "left_interface": w.lost,

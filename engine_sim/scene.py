@@ -270,7 +270,10 @@ class Scene:
             for _ in range(n):
                 rd.clear()
                 B.get_space_bodies(space, B.BodyFields.VELOCITY, rd)
-                _log_forces(np.frombuffer(rd.float_buf()), is_pad, bN, vc, f)
+                vel = np.frombuffer(rd.float_buf())
+                if vel.shape[0] != f.shape[0]:  # the kernel reads vel and writes f by body index, unchecked (numba)
+                    raise RuntimeError(f"log law: {vel.shape[0] // 2} bodies in the space, {is_pad.size} expected")
+                _log_forces(vel, is_pad, bN, vc, f)
                 wr.clear()
                 wr.set_float_buf(f.tobytes())
                 B.set_space_bodies(space, B.BodyFields.FORCE, wr)

@@ -6,12 +6,14 @@ without importing one another (DESIGN.md's dependency direction).
 """
 from __future__ import annotations
 
+import itertools
 import os
-import tempfile
 from importlib import metadata as _metadata
 from pathlib import Path
 
 __all__ = ["G", "package_version", "atomic_write"]
+
+_counter = itertools.count()
 
 G = 9.81  # m/s^2: the paper's g (standard gravity rounded as in Xu, Zhou & Persson 2025)
 
@@ -29,7 +31,9 @@ def atomic_write(path, data: bytes | str | None = None, *, write=None) -> Path:
     reader sees the old file or the whole new one, never a part. Give ``data`` (bytes or text) or ``write``, a
     function that writes the temporary file given its path. On any error the temporary file is removed."""
     path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{next(_counter)}.tmp")
+    # created 0666 less the umask, as open() does (mkstemp's 0600 made run's files unreadable to a group)
+    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
     try:
         with os.fdopen(fd, "wb") as fh:
             if data is not None:

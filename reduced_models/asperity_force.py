@@ -167,6 +167,8 @@ def simulate(params: AsperityForceParams, duration: float, dt_out: float | None 
     F = np.empty(n)
     x = np.empty(n)
     kernel_seed = int(rng.integers(0, 2**31 - 1))  # numba's own generator, seeded from the caller's
+    if not (x.shape[0] >= n and F.shape[0] >= n):  # the kernel writes rows 0..n-1 unchecked (numba)
+        raise RuntimeError(f"asperity_force._run: buffers of {x.shape[0]}, {F.shape[0]} rows for {n} steps")
     n_hits = _run(kernel_seed, n, Nw, params.p, params.f0, params.F_f, params.M, dt, params.v, x, F)
     n_cells = n + Nw
     t = np.arange(n) * dt

@@ -301,6 +301,13 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float = 1e-3, s
                 ev_index = np.concatenate([ev_index, np.empty(grow, dtype=np.int64)])
         start = ptr
         k_stop = min(n, next_ckpt)
+        # the kernel writes x, f (and xc when per-contact rows are asked) rows k..k_stop-1 and one event per renewal
+        # passed, unchecked (numba): refuse buffers too small for that
+        if not (x.shape[0] >= k_stop and f.shape[0] >= k_stop and (n_rows == 0 or xc.shape[0] >= k_stop)
+                and ev_time.shape[0] >= ev_count + len(pos) - ptr
+                and qr.shape == gr.shape == md.lam_r.shape and qc.shape == gc.shape == md.lam_c.shape):
+            raise RuntimeError(f"spring_block.simulate: buffers too small (x {x.shape[0]}, f {f.shape[0]} rows for "
+                               f"{k_stop}; events {ev_time.shape[0]} for {ev_count + len(pos) - ptr})")
         k_new, ptr, new_count = run_renewals(md.lam_r, md.c0_r, md.B_r, md.lam_c, md.c0_c, md.B_c, md.C_r, md.C_c,
                                              qr, gr, qc, gc, forces, params.v, dt_out, k, k_stop, pos, idx, val, ptr,
                                              boundary, x, f, xc, ev_time, ev_count, *scratch)

@@ -288,6 +288,10 @@ def simulate(params: WearParticleParams, duration: float, dt_out: float = 1e-3, 
     J = np.zeros(n)
     counts = np.zeros(2, dtype=np.int64)
     kernel_seed = int(rng.integers(0, 2**31 - 1))  # numba's own generator, seeded from the caller's
+    # the kernel writes I, J, counts unchecked (numba): sizes checked here
+    if not (I.shape == J.shape == (n,) and counts.shape == (2,) and kinds.shape == shapes.shape == (2,)
+            and tauA.shape == tauB.shape == cA.shape == cB.shape == (P.n_particles,)):
+        raise RuntimeError("wear_particle._run: buffer sizes do not match n and n_particles")
     _run(kernel_seed, n, dt_out, kinds, shapes, tauA, tauB, cA, cB, P.mode == "telegraph", I, J, counts)
     mean_F = float(np.sum((cA * tauA + cB * tauB) / (tauA + tauB))) if P.mode == "telegraph" else 0.0
     # M zeta'' = -(F - mean_F): over [t_k, t_k+1], zeta' gains -(I_k - mean_F dt)/M and zeta gains

@@ -104,7 +104,6 @@ def test_render_png_and_gif_headless(tmp_path):
     assert gif.n_frames == 3
     arr = np.asarray(Image.open(pngs[0]).convert("L"), dtype=float)
     assert arr.std() > 10  # not blank
-    # a frame of 30 pads and ~300 visible segments renders in <= 0.1 s (measured 0.05 s)
     r = SceneRenderer(Scene(load_scenario(PATCHES)))
     r.frame()
     from tests.frame_budget import frame_cost_ratio
@@ -113,3 +112,150 @@ def test_render_png_and_gif_headless(tmp_path):
     print(f"frame cost / pymunk.matplotlib_util: {ratio:.2f}")
     assert ratio < 0.2  # measured 0.03-0.04
     r.close()
+
+
+# ----------------------------------------------------------------------------- the input layer (compare/inputs.py)
+def _binary(tmp_path, name="b.toml"):
+    p = tmp_path / name
+    p.write_bytes(bytes(range(256)) * 4)
+    return p
+
+
+def _npz(tmp_path, name="t.npz"):
+    p = tmp_path / name
+    with open(p, "wb") as fh:  # np.savez would append .npz to the name
+        np.savez(fh, t=np.arange(3.0))
+    return p
+
+
+def _text(name, text):
+    def make(tmp_path):
+        p = tmp_path / name
+        p.write_text(text)
+        return p
+    return make
+
+
+def _folder(tmp_path):
+    (tmp_path / "adir").mkdir()
+    return tmp_path / "adir"
+
+
+_SOURCES = {  # (make the input, what the one line must say)
+    "folder": (_folder, "is a folder, not a file"),
+    "missing": (lambda tp: tp / "nope€.toml", "no such file"),
+    "empty": (_text("e.toml", ""), "empty file"),
+    "comments only": (_text("c.toml", "# nothing\n\n  # here\n"), "holds no settings"),
+    "binary": (_binary, "binary data"),
+}
+
+
+@pytest.mark.parametrize("cmd", ["run", "render", "compare", "sweep", "analyze"])
+@pytest.mark.parametrize("case", list(_SOURCES))
+def test_bad_input_paths_one_line_exit_2(cmd, case, tmp_path, out, capsys):
+    """A folder, a missing, empty, comment-only or binary file, for every subcommand that reads one: one line
+    naming the path and the problem, exit 2, nothing written (an empty TOML once ran a default scene)."""
+    make, needle = _SOURCES[case]
+    src = make(tmp_path)
+    if cmd == "analyze" and case in ("comments only", "binary"):
+        needle = ""  # the CSV's content is compare.measured's to judge (another branch); kind and emptiness are ours
+    extra = ["--mass", "1"] if cmd == "analyze" else []
+    status = main([cmd, str(src), *extra, "-o", str(out)])
+    if cmd == "analyze" and not needle:
+        assert status in (0, 2)
+        capsys.readouterr()
+        return
+    assert status == 2
+    _assert_user_error(capsys, out, src.name, needle)
+
+
+def test_format_by_content_not_name(tmp_path, out, capsys):
+    z = _npz(tmp_path, "looks_like.toml")  # a zip archive named .toml
+    assert main(["run", str(z), "-o", str(out)]) == 2
+    _assert_user_error(capsys, out, "looks_like.toml", "is an NPZ archive, not a scenario TOML file")
+    assert main(["compare", str(z), "-o", str(out)]) == 2  # compare reads it as the trace it is
+    _assert_user_error(capsys, out, "looks_like.toml", "not a frictionnoise trace")
+    csv = tmp_path / "data.npz"
+    csv.write_text("t,x\n0,0\n1,1\n")  # text named .npz
+    assert main(["compare", str(csv), "-o", str(out)]) == 2
+    _assert_user_error(capsys, out, "data.npz", "not a .npz trace file (text, not a zip archive)")
+    csv2 = tmp_path / "data.toml"
+    csv2.write_text("t,x\n0,0\n1,1\n")  # CSV named .toml
+    assert main(["run", str(csv2), "-o", str(out)]) == 2
+    _assert_user_error(capsys, out, "data.toml", "not valid TOML")
+
+
+@pytest.mark.parametrize("cmd", ["run", "render", "compare", "report"])
+def test_output_where_a_folder_cannot_be(cmd, tmp_path, capsys):
+    f = tmp_path / "a_file"
+    f.write_text("x")
+    src = [] if cmd == "report" else [str(PATCHES)]
+    for o, needle in ((f, "exists and is not a folder"), (f / "sub", "is a file, not a folder")):
+        assert main([cmd, *src, "-o", str(o)]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and needle in err and "Traceback" not in err, err
+    assert f.read_text() == "x"
+
+
+@pytest.mark.parametrize("flag, value, needle", [("--duration", "nan", "--duration must be"),
+                                                 ("--duration", "-1", "--duration must be"),
+                                                 ("--duration", "inf", "--duration must be"),
+                                                 ("--epoch", "0", "--epoch must be"),
+                                                 ("--checkpoint-every", "nan", "--checkpoint-every must be")])
+def test_run_number_flags(flag, value, needle, tmp_path, capsys):
+    o = tmp_path / "o"
+    assert main(["run", str(PATCHES), flag, value, "-o", str(o)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and needle in err, err
+    assert not o.exists()
+
+
+def test_unicode_paths_and_permissions(tmp_path, capsys):
+    """A scenario and an output folder with non-ASCII names; run and report write 0666 less the umask (0644
+    under umask 022), not mkstemp's 0600."""
+    import os
+    import shutil
+
+    d = tmp_path / "données µm"
+    d.mkdir()
+    src = d / "scène ü.toml"
+    shutil.copy(PATCHES, src)
+    o = d / "sortie ✓"
+    old = os.umask(0o022)
+    try:
+        assert main(["run", str(src), "--duration", "0.05", "-o", str(o)]) == 0
+    finally:
+        os.umask(old)
+    for f in ("trace.npz", "trace.json"):
+        assert (o / f).stat().st_mode & 0o777 == 0o644, f
+    assert sorted(p.name for p in o.iterdir()) == ["trace.json", "trace.npz"]
+
+
+def test_compare_says_a_trace_is_partial(tmp_path, capsys):
+    import engine_sim
+    from compare.traceio import save_trace
+    from engine_sim import load_scenario
+
+    tr = engine_sim.run(load_scenario(PATCHES).with_run(duration=0.5), seed=0)
+    tr.metadata["partial"] = True
+    save_trace(tr, tmp_path / "p.npz")
+    # 0.5 s is too short for the report's band: one error line that also says the trace is partial (this was a
+    # ValueError traceback)
+    assert main(["compare", str(tmp_path / "p.npz"), "-o", str(tmp_path / "c")]) == 2
+    err = capsys.readouterr().err
+    assert "is a partial trace (interrupted at t = 0.500 s)" in err and "Traceback" not in err, err
+    assert err.count("\n") == 1 and "lies outside the resolved range" in err and not (tmp_path / "c").exists()
+    long = engine_sim.run(load_scenario(PATCHES).with_run(duration=4.0), seed=0)  # long enough for the fit
+    long.metadata["partial"] = True
+    save_trace(long, tmp_path / "q.npz")
+    import os
+
+    old = os.umask(0o022)
+    try:
+        assert main(["compare", str(tmp_path / "q.npz"), "-o", str(tmp_path / "d")]) == 0
+    finally:
+        os.umask(old)
+    assert (tmp_path / "d" / "summary.json").stat().st_mode & 0o777 == 0o644  # as run's files (report's writer)
+    err = capsys.readouterr().err
+    assert "note: " in err and "is a partial trace (interrupted at t = 4.000 s)" in err, err
+    assert "partial trace" in json.loads((tmp_path / "d" / "summary.json").read_text())["partial_trace"]

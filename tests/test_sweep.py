@@ -97,3 +97,114 @@ def test_sweep_file_errors(tmp_path):
     p.write_text('target = "model_I"\n[grid]\nvelocity = [1e-3]\n')
     with pytest.raises(SweepError, match="velocity"):
         load_sweep(p)
+
+
+@pytest.mark.parametrize("body, needle", [
+    ('[grid]\nvel = [1e-3]\n', "unknown key 'vel' in [grid]; valid names: F_drive, F_kin, M, N, a, alpha"),
+    ('[fixed]\nduration = "long"\n[grid]\nv = [1e-3]\n',
+     "fixed.duration must be a number of seconds in (0, 100000] (got 'long')"),
+    ('[fixed]\nduration = nan\n[grid]\nv = [1e-3]\n', "fixed.duration must be a number of seconds"),
+    ('[fixed]\nduration = -5.0\n[grid]\nv = [1e-3]\n', "fixed.duration must be a number of seconds"),
+    ('[grid]\nv = ["fast"]\n', "grid.v must be a finite number (got 'fast')"),
+    ('[grid]\nv = [inf]\n', "grid.v must be a finite number (got inf)"),
+    ('[grid]\nN = [2.5]\n', "grid.N must be a whole number (got 2.5)"),
+    ('[grid]\nv = [1e-3]\nseed = [-1]\n', "grid.seed must be a list of whole numbers >= 0"),
+    ('[grid]\nv = [1e-3]\n[analysis]\nomega = 3\n', "unknown key 'omega' in [analysis]"),
+    ('[grid]\nv = [1e-3]\n[analysis]\nomega_ref = [140.0, 70.0]\n', "analysis.omega_ref must be two numbers"),
+    ('name = 3\n[grid]\nv = [1e-3]\n', "name must be a string"),
+    ('scenario = "x.toml"\n[grid]\nv = [1e-3]\n', "scenario = ... applies only to target = 'scenario'"),
+    ('[fixed]\ndt_out = 1.0\nduration = 1.5\n[grid]\nv = [1e-3]\n', "duration = 1.5 s holds fewer than two steps"),
+])
+def test_sweep_file_validated_at_load(tmp_path, body, needle):
+    """Every key's name, type and range is checked when the file is read, before any task runs (a misspelled
+    grid key once reached the user as a TypeError from SpringBlockParams, `duration = "long"` failed every task)."""
+    from compare.sweep import SweepError
+
+    p = tmp_path / "s.toml"
+    p.write_text('target = "model_I"\n' + body)
+    with pytest.raises(SweepError) as e:
+        load_sweep(p)
+    assert needle in str(e.value) and "s.toml" in str(e.value)
+
+
+def test_unreachable_scheduler_one_line_after_the_timeout_nothing_left(tmp_path):
+    import socket
+
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))  # a port nobody listens on
+    port = s.getsockname()[1]
+    s.close()
+    out = tmp_path / "o"
+    t0 = time.perf_counter()
+    r = subprocess.run([sys.executable, "-m", "compare.cli", "sweep", str(_small(tmp_path)), "--scheduler",
+                        f"tcp://127.0.0.1:{port}", "--connect-timeout", "2", "-o", str(out)],
+                       capture_output=True, text=True, timeout=60)
+    wall = time.perf_counter() - t0
+    assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+    assert f"no dask scheduler reachable at tcp://127.0.0.1:{port} within 2 s" in r.stderr
+    assert not out.exists()
+    assert wall < 15  # the 2 s timeout plus the interpreter and dask imports (was a 30 s hang and 59 lines)
+
+
+def test_results_sorted_by_parameters(tmp_path):
+    from compare.sweep import _write_json
+
+    (tmp_path / "tasks").mkdir()
+    for i, (v, seed) in enumerate([(3e-3, 0), (1e-4, 1), (1e-3, 0), (1e-4, 0)]):
+        _write_json(tmp_path / "tasks" / f"{9 - i}.json", {"params": {"v": v, "duration": 5.0}, "seed": seed})
+    got = [(r["params"]["v"], r["seed"]) for r in load_results(tmp_path)]
+    assert got == [(1e-4, 0), (1e-4, 1), (1e-3, 0), (3e-3, 0)]
+
+
+@pytest.mark.slow
+def test_real_cluster_survives_a_killed_worker(tmp_path):
+    """A `dask scheduler` and two `dask worker` processes on 127.0.0.1; one worker is killed (SIGKILL) while the
+    sweep runs: the sweep completes on the other, with results identical to a serial run (wall times aside)."""
+    import socket
+
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+    s.close()
+    addr = f"tcp://127.0.0.1:{port}"
+    dask = [os.path.join(os.path.dirname(sys.executable), "dask")]  # the venv's console script
+    quiet = dict(stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    procs = [subprocess.Popen([*dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
+                              **quiet)]
+    try:
+        workers = [subprocess.Popen([*dask, "worker", addr, "--host", "127.0.0.1", "--nthreads", "1", "--no-nanny",
+                                     "--no-dashboard"], **quiet) for _ in range(2)]
+        procs += workers
+        from distributed import Client
+
+        with Client(addr, timeout="60s") as c:  # both workers up before the sweep starts
+            c.wait_for_workers(2, timeout=120)
+        spec_path = _small(tmp_path, n_v=6, duration=120.0, seeds=(0,))
+        out = tmp_path / "cluster"
+        sweep = subprocess.Popen([sys.executable, "-m", "compare.cli", "sweep", str(spec_path), "--scheduler", addr,
+                                  "-o", str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        deadline = time.time() + 300
+        while time.time() < deadline and len(list((out / "tasks").glob("*.json"))) < 1:
+            assert sweep.poll() is None, sweep.communicate()
+            time.sleep(0.05)
+        done_at_kill = len(list((out / "tasks").glob("*.json")))
+        workers[0].kill()  # mid-sweep: tasks remain
+        workers[0].wait()
+        so, se = sweep.communicate(timeout=600)
+        assert sweep.returncode == 0, se[-3000:]
+        assert 1 <= done_at_kill < 6 and "6/6 tasks done" in so, (done_at_kill, so)
+        print(f"\ncluster: worker killed after {done_at_kill}/6 tasks; sweep completed on the other worker")
+    finally:
+        for p in procs:
+            if p.poll() is None:
+                p.kill()
+            p.wait()
+    spec = load_sweep(spec_path)
+    run_sweep(spec, tmp_path / "serial", serial=True)
+    ra = {task_id(spec, r["params"], r["seed"]): r for r in load_results(tmp_path / "serial")}
+    rb = {task_id(spec, r["params"], r["seed"]): r for r in load_results(out)}
+    assert set(ra) == set(rb) and len(ra) == 6
+    for k in ra:
+        a, b = dict(ra[k]), dict(rb[k])
+        a.pop("wall_s"), b.pop("wall_s")
+        assert a == b

@@ -45,9 +45,15 @@ def timed(fn, *a, **k):
     return out, time.perf_counter() - t0
 
 
-def timing(model: str, run: str, wall: str, err: str) -> dict:
-    """A row of the report's speed table (as shown, so strings)."""
-    return {"model": model, "run": run, "wall_s": wall, "mean_abs_log_ratio": err}
+def timing(model: str, run: str, wall, err) -> dict:
+    """A row of the report's speed table: wall time (s) and error as numbers (None for n/a), so summary.json holds
+    numbers; the table shows them as given."""
+    def num(v):
+        try:
+            return float(v)
+        except (TypeError, ValueError):
+            return None
+    return {"model": model, "run": run, "wall_s": num(wall), "mean_abs_log_ratio": num(err)}
 
 
 def balances(tr) -> dict:

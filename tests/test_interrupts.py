@@ -1,0 +1,128 @@
+"""Ctrl-C anywhere in the CLI: one line, exit 130, within about 2 s also for `report` and `sweep` (their worker
+processes ended), no half-written output, completed sweep tasks kept. Real signals to child processes."""
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from engine_sim import shipped_scenarios
+
+PATCHES = shipped_scenarios()["pads_friction_patches"]
+
+
+def _descendants(pid: int) -> set:
+    """Pids of every live descendant of ``pid`` (from /proc)."""
+    children: dict = {}
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                fields = (d / "stat").read_text().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            children.setdefault(int(fields[1]), []).append(int(d.name))
+    out, todo = set(), [pid]
+    while todo:
+        for c in children.get(todo.pop(), []):
+            out.add(c)
+            todo.append(c)
+    return out
+
+
+def _alive(pids) -> set:
+    alive = set()
+    for p in pids:
+        try:
+            st = Path(f"/proc/{p}/stat").read_text().rsplit(")", 1)[1].split()[0]
+        except OSError:
+            continue
+        if st != "Z":
+            alive.add(p)
+    return alive
+
+
+def _start(args):
+    # restore SIGINT's default in the child: a shell that starts pytest in the background sets it to 'ignore',
+    # the child would inherit that and Python would install no KeyboardInterrupt handler
+    return subprocess.Popen([sys.executable, "-m", "compare.cli", *map(str, args)], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+
+
+def _interrupt(proc):
+    """SIGINT; (seconds until exit, stderr, pids of descendants at the signal)."""
+    kids = _descendants(proc.pid)
+    t0 = time.perf_counter()
+    proc.send_signal(signal.SIGINT)
+    proc.wait(timeout=60)
+    wall = time.perf_counter() - t0
+    _, err = proc.communicate(timeout=60)  # (the stderr pipe closes when every descendant holding it has ended)
+    return wall, err, kids
+
+
+def _wait_for(cond, proc, timeout=120):
+    t_end = time.time() + timeout
+    while time.time() < t_end and not cond():
+        assert proc.poll() is None, proc.stderr.read()[-2000:]
+        time.sleep(0.05)
+    assert cond()
+
+
+def _one_line_130(proc, err, wall, limit):
+    assert proc.returncode == 130, err
+    assert err.count("\n") == 1 and "Traceback" not in err and "interrupted" in err, err
+    assert wall < limit, wall
+
+
+def test_ctrl_c_during_report_ends_its_workers(tmp_path):
+    out = tmp_path / "rep"
+    proc = _start(["report", "--quick", "--workers", "2", "-o", out])
+    _wait_for(lambda: len(_descendants(proc.pid)) >= 2, proc)  # the stage processes are up
+    time.sleep(3.0)  # and busy with their stages
+    wall, err, kids = _interrupt(proc)
+    print(f"\nreport: exit {wall:.2f} s after SIGINT, {len(kids)} worker processes")
+    _one_line_130(proc, err, wall, 2.5)  # measured ~0.3-1 s (was 15 s and a traceback)
+    time.sleep(0.5)
+    assert not _alive(kids), "worker processes left running"
+    assert not out.exists() and not list(tmp_path.glob(".rep*"))  # nothing half-written
+
+
+def test_ctrl_c_during_sweep_keeps_completed_tasks(tmp_path):
+    spec = tmp_path / "s.toml"
+    spec.write_text('name = "s"\ntarget = "model_I"\n[fixed]\nduration = 150.0\n[grid]\n'
+                    'v = [1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 3e-3, 4e-3, 5e-3]\nseed = [0]\n')
+    out = tmp_path / "sw"
+    proc = _start(["sweep", spec, "--workers", "2", "-o", out])
+    _wait_for(lambda: len(list((out / "tasks").glob("*.json"))) >= 1, proc, timeout=240)
+    kept = {p.name: p.read_text() for p in (out / "tasks").glob("*.json")}
+    wall, err, kids = _interrupt(proc)
+    print(f"\nsweep: exit {wall:.2f} s after SIGINT, {len(kids)} descendant processes, {len(kept)} tasks kept")
+    _one_line_130(proc, err, wall, 3.0)
+    time.sleep(0.5)
+    assert not _alive(kids), "dask worker processes left running"
+    for name, text in kept.items():
+        assert (out / "tasks" / name).read_text() == text
+    assert not (out / "index.html").exists() and not list((out / "tasks").glob(".*"))  # no partial files
+    assert 1 <= len(list((out / "tasks").glob("*.json"))) < 8
+
+
+@pytest.mark.parametrize("cmd, delay", [(["run", PATCHES, "--duration", "30"], 1.5),  # warm-up or first samples
+                                        (["render", PATCHES, "--frames", "400"], 2.5),
+                                        (["compare", PATCHES, "--duration", "30"], 3.0)])
+def test_ctrl_c_in_other_subcommands(tmp_path, cmd, delay):
+    out = tmp_path / "o"
+    proc = _start([*cmd, "-o", out])
+    time.sleep(delay)
+    assert proc.poll() is None
+    wall, err, _ = _interrupt(proc)
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and wall < 2.0, (wall, err)
+    if cmd[0] == "run" and out.exists():  # interrupted while recording: the partial trace the README promises
+        assert sorted(p.name for p in out.iterdir()) == ["trace.json", "trace.npz"]
+        assert err.count("\n") == 1 and "partial trace" in err, err
+    else:
+        assert err.count("\n") == 1, err
+        assert not out.exists() and not [p for p in tmp_path.iterdir() if p.name.startswith(".o")]
