@@ -50,7 +50,7 @@ from scipy import special, stats
 
 from .spectra import Spectrum, check_band, log_bin
 
-__all__ = ["PowerLawFit", "fit_power_law", "METHODS", "DEFAULT_METHOD"]
+__all__ = ["PowerLawFit", "fit_power_law", "flag_mark", "METHODS", "DEFAULT_METHOD"]
 
 # Adjacent raw Hann ordinates are correlated: the power correlation of neighbours is (2/3)^2 = 0.444 and
 # of next neighbours (1/6)^2 = 0.028, so the variance of a mean of m neighbours is inflated by
@@ -357,3 +357,10 @@ def fit_power_law(spectrum: Spectrum, band=None, *, bins_per_decade: int = 10,
         n_points=n_used, chi2_red=chi2, band_auto=auto, quantity=spectrum.quantity, notes=notes,
         method=method, flags=tuple(flags), curvature=curv, curvature_z=curv_z,
     )
+
+
+def flag_mark(fit) -> str:
+    """A short mark for tables and legends: "" for a power law, " (not a power law)" when the fit carries flags
+    (a :class:`PowerLawFit` or its ``to_dict()``; the flags themselves are in the JSON and the fit's text)."""
+    flags = fit.get("flags") if isinstance(fit, dict) else getattr(fit, "flags", ())
+    return " (not a power law)" if flags else ""

@@ -12,6 +12,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from .fits import flag_mark
 from .spectra import Spectrum, log_bin
 
 __all__ = ["spectrum_figure", "save_figure", "figure_png_bytes", "episode_histogram_figure", "level_figure",
@@ -35,7 +36,7 @@ def _fit_line(ax, fit, label, ls):
     name = _SLOPE_NAMES.get(q, "slope")
     value = f"{fit.gamma:.2f}" if q == "x" else f"{-fit.gamma:.2f}"  # C_F ~ omega^(-gamma): its slope is -gamma
     (line,) = ax.loglog(w, fit.level(w) * 3.0, color="k", ls=ls, lw=0.9, zorder=4,
-                        label=f"{label}{name} = {value} ± {fit.gamma_err:.2f}")
+                        label=f"{label}{name} = {value} ± {fit.gamma_err:.2f}{flag_mark(fit)}")
     return line
 
 

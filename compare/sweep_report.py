@@ -9,6 +9,7 @@ import numpy as np
 
 from reduced_models._version import package_version
 
+from .fits import flag_mark
 from .html import esc, json_text, page, paragraphs, table
 from .study import Figure, StudyResult
 
@@ -25,13 +26,14 @@ def build_sweep_report(spec, results: list, failures: list):
     summary = {"version": package_version(), "sweep": spec.name, "target": spec.target, "grid": spec.grid,
                "fixed": spec.fixed, "n_results": len(results), "n_failures": len(failures),
                "results": [{**{k: r["params"].get(k) for k in keys}, "seed": r["seed"], **({"gamma": r["fit"].get("gamma"),
-                            "gamma_err": r["fit"].get("gamma_err"), "band": r["fit"].get("band")} if "gamma" in r["fit"] else
+                            "gamma_err": r["fit"].get("gamma_err"), "band": r["fit"].get("band"),
+                            "power_law": r["fit"].get("power_law", True), "flags": r["fit"].get("flags", [])} if "gamma" in r["fit"] else
                             {"fit_error": r["fit"].get("error")}), "mean_velocity": r.get("mean_velocity"),
                             "wall_s": r["wall_s"]} for r in results],
                "failures": [{"params": f["params"], "seed": f["seed"], "error": f["error"]} for f in failures]}
     text = paragraphs([esc(spec.description)]) if spec.description else ""
     rows = [[*(f"{r['params'].get(k):.4g}" if isinstance(r["params"].get(k), float) else str(r["params"].get(k)) for k in keys),
-             str(r["seed"]), (f"{r['fit']['gamma']:.3f} &plusmn; {r['fit']['gamma_err']:.3f}" if "gamma" in r["fit"] else "-"),
+             str(r["seed"]), (f"{r['fit']['gamma']:.3f} &plusmn; {r['fit']['gamma_err']:.3f}{flag_mark(r['fit'])}" if "gamma" in r["fit"] else "-"),
              (f"{r['fit']['band'][0]:.3g}-{r['fit']['band'][1]:.3g}" if "band" in r["fit"] else esc(r["fit"].get("error", ""))),
              f"{r['wall_s']:.2f}"] for r in results]
     text += table("Runs", [*keys, "seed", "gamma (95 %)", "band (rad/s)", "wall (s)"], rows)

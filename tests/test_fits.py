@@ -109,3 +109,31 @@ def test_bent_spectrum_and_narrow_band_are_flagged():
         assert d["power_law"] is False and d["flags"] and "NOT A POWER LAW" in str(f)
     g = fit_power_law(displacement_spectrum(np.arange(n) * DT, power_law_series(4, n, 1)), band=(20.0, 63.0))
     assert any("0.50 decades" in fl for fl in g.flags)
+
+
+def test_flag_reaches_legends_and_the_sweep_table():
+    """Issue 15: a fit that is not a power law is marked in figures, tables and JSON, not only in its text."""
+    from compare import plots
+    from compare.fits import flag_mark
+    from compare.sweep_report import build_sweep_report
+    from compare.sweep import load_sweep
+    from scenarios import __path__ as _scen
+
+    n = 2**16
+    t = np.arange(n) * DT
+    spec = displacement_spectrum(t, power_law_series(4, n, 3))
+    narrow = fit_power_law(spec, band=(20.0, 60.0))  # half a decade: flagged for width
+    straight = fit_power_law(spec, band=(3.0, 150.0))
+    assert narrow.flags and flag_mark(narrow) == " (not a power law)"
+    assert flag_mark(straight.to_dict()) == ""
+    fig = plots.spectrum_figure([(spec, "C_x")], fits=[(narrow, "")], band=narrow.band)
+    labels = [t.get_text() for ax in fig.axes for leg in filter(None, [ax.get_legend()]) for t in leg.get_texts()]
+    labels += [h.get_label() for ax in fig.axes for h in ax.get_lines()]
+    assert any("not a power law" in lb for lb in labels), labels
+    spec_file = next(p for p in __import__("pathlib").Path(_scen[0]).rglob("velocity_model1.toml"))
+    sweep = load_sweep(spec_file)
+    res = [{"params": {k: v[0] for k, v in sweep.grid.items() if k != "seed"}, "seed": 0, "fit": narrow.to_dict(),
+            "mean_velocity": 1e-3, "wall_s": 0.1}]
+    results, summary = build_sweep_report(sweep, res, [])
+    assert summary["results"][0]["power_law"] is False and summary["results"][0]["flags"] == list(narrow.flags)
+    assert "not a power law" in "".join(r.html for r in results)

@@ -8,7 +8,7 @@ import numpy as np
 
 from reduced_models import spring_block
 
-from ..fits import fit_power_law
+from ..fits import fit_power_law, flag_mark
 from ..html import paragraphs, table
 from ..spectra import band_average, displacement_spectrum
 from ..study import Figure, Study, StudyResult
@@ -81,7 +81,7 @@ def _variations(p, quick, seed):
         theo.append((w, spring_block.theory_spectrum(q, w), f"(A10), {label}"))
         var_summary[label] = {**fq.to_dict(), "C_x_10_50": lvl,
                               "C_x_10_50_eq6": float(band_average(sq, [10.0, 50.0], spring_block.asymptotic_spectrum(q, sq.omega))[0])}
-        rows.append([label, f"{fq.gamma:.3f} &plusmn; {fq.gamma_err:.3f}", f"{bq[0]:.3g}-{bq[1]:.3g}",
+        rows.append([label, f"{fq.gamma:.3f} &plusmn; {fq.gamma_err:.3f}{flag_mark(fq)}", f"{bq[0]:.3g}-{bq[1]:.3g}",
                      f"{lvl / var_summary['reference']['C_x_10_50']:.3f}",
                      f"{var_summary[label]['C_x_10_50_eq6'] / var_summary['reference']['C_x_10_50_eq6']:.3f}"])
     fig = plots.spectrum_figure(specs, theo, title="Model I variations (paper Fig. 2)", theory_on_top=True)

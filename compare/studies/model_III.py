@@ -8,7 +8,7 @@ import numpy as np
 
 from reduced_models import asperity_force
 
-from ..fits import fit_power_law
+from ..fits import fit_power_law, flag_mark
 from ..html import paragraphs, table
 from ..spectra import displacement_spectrum, force_series_spectrum
 from ..study import Figure, Study, StudyResult
@@ -39,7 +39,7 @@ def run(quick: bool, seed: int) -> list:
         specs.append((sx, f"simulation, N = {N}"))
         theo.append((w, asperity_force.theory_spectrum_sampled(p, w), f"exact, N = {N}"))
         fits.append((N, fit, ratios))
-        rows.append([str(N), f"{fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f}", f"{band[0]:.3g}-{band[1]:.3g}",
+        rows.append([str(N), f"{fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f}{flag_mark(fit)}", f"{band[0]:.3g}-{band[1]:.3g}",
                      f"{tr.force.mean() / p.F_f:.4f}", ratio_range(ratios, ".3f")])
     fig = plots.spectrum_figure(specs, theo, title="Model III (paper Fig. 6)", theory_on_top=True)
     text = paragraphs([
