@@ -33,8 +33,14 @@ def process_pool(workers: int):
     a progress bar's monitor, whose locks a fork would copy held). On any exception, KeyboardInterrupt included,
     queued tasks are cancelled and the worker processes ended before the exception goes on."""
     import multiprocessing
+    import sys
     from concurrent.futures import ProcessPoolExecutor
 
+    # the pool's semaphores, left to multiprocessing's resource tracker when Ctrl-C ends the workers and the CLI
+    # exits at once, are cleaned up by it with a warning printed under our one line: the tracker (started with this
+    # process's -W options) stays quiet (as the sweep's LocalCluster does)
+    if "ignore:resource_tracker:UserWarning" not in sys.warnoptions:
+        sys.warnoptions.append("ignore:resource_tracker:UserWarning")
     pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"),
                                initializer=_leave_sigint_to_parent)
     try:
