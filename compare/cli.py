@@ -372,7 +372,7 @@ def _cmd_run(args) -> int:
 def _run_into(args, sc, out, ck) -> int:
     import engine_sim
 
-    from engine_sim.run import CheckpointError
+    from engine_sim.run import CheckpointError, TraceSizeError
 
     from .traceio import save_trace
 
@@ -387,7 +387,7 @@ def _run_into(args, sc, out, ck) -> int:
         try:
             tr = engine_sim.run(sc, duration=args.duration, seed=args.seed, progress=update, checkpoint=ck,
                                 checkpoint_every=args.checkpoint_every, epoch=args.epoch, on_plan=on_plan)
-        except CheckpointError as e:  # a checkpoint of another run, or a corrupt one
+        except (CheckpointError, TraceSizeError) as e:  # a checkpoint of another run or a corrupt one; a run too big
             raise UserError(str(e)) from None
     out.mkdir(parents=True, exist_ok=True)
     path = save_trace(tr, out / "trace.npz")

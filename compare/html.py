@@ -9,6 +9,7 @@ from __future__ import annotations
 import base64
 import html
 import json
+import math
 import re
 from pathlib import Path
 
@@ -94,9 +95,20 @@ def _json_default(o):
     raise TypeError(f"not JSON serialisable: {type(o).__name__}")
 
 
+def _finite(o):
+    """``o`` with NaN and infinities as None: strict JSON has no NaN (a browser's JSON.parse refused the file)."""
+    if isinstance(o, float):
+        return o if math.isfinite(o) else None
+    if isinstance(o, dict):
+        return {k: _finite(v) for k, v in o.items()}
+    if isinstance(o, (list, tuple)):
+        return [_finite(v) for v in o]
+    return o
+
+
 def json_text(obj, indent=2) -> str:
-    """JSON with numpy scalars, arrays and dataclasses converted."""
-    return json.dumps(obj, indent=indent, default=_json_default)
+    """Strict JSON (NaN and infinities as null) with numpy scalars, arrays and dataclasses converted."""
+    return json.dumps(_finite(json.loads(json.dumps(obj, default=_json_default))), indent=indent, allow_nan=False)
 
 
 def write_report(out_dir, results, summary: dict, title: str = "frictionnoise report") -> Path:

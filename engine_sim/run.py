@@ -1,6 +1,7 @@
 """engine_sim.run: simulate a scenario and record it (SI trace)."""
 from __future__ import annotations
 
+import os
 import pickle
 import signal
 import threading
@@ -16,7 +17,7 @@ from .scenario import Scenario, load_scenario
 from .epoch import default_epoch
 from .scene import Scene, describe
 
-__all__ = ["run", "CheckpointError"]
+__all__ = ["run", "CheckpointError", "TraceSizeError"]
 
 _MAINTAIN_EVERY = 64  # output steps between substrate maintenance (the margin ahead covers 200 outputs)
 
@@ -65,6 +66,26 @@ class _Interrupts:
     def check(self):
         if self.signum is not None:
             raise KeyboardInterrupt
+
+
+class TraceSizeError(ValueError):
+    """The trace of the asked run would not fit in this machine's memory; nothing was started."""
+
+
+def _check_trace_size(sc, n_out: int):
+    """Refuse a run whose recorder buffers (per sample: 12 scalar channels, time, recycling work, one force per pad
+    and two entries per wear particle) exceed half the memory available now: numpy's allocation error was a
+    20-line traceback for `--duration 1e7`."""
+    n_p = sc.wear.count if getattr(sc, "wear", None) is not None else 0
+    need = n_out * 8.0 * (14 + sc.pads.N + 1.125 * n_p)
+    try:
+        avail = os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):  # no such figure on this platform: do not guess
+        return
+    if need > 0.5 * avail:
+        raise TraceSizeError(f"a run of {sc.run.duration:g} s at dt_out = {sc.run.dt_out:g} s needs "
+                             f"{need / 2**30:.3g} GiB of trace buffers; {avail / 2**30:.3g} GiB are free (use a shorter "
+                             "--duration or split the run)")
 
 
 _REC_ARRAYS = ("t", "out", "pad_force", "n_contact", "p_state", "p_force", "recycle")
@@ -168,6 +189,7 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
         raise ValueError(f"epoch must be positive (got {epoch!r})")
     n_warm = int(round(sc.run.warmup / sc.run.dt_out))
     n_out = int(round(sc.run.duration / sc.run.dt_out)) + 1
+    _check_trace_size(sc, n_out)
     total = (n_warm + n_out) * sc.run.dt_out
     ck_path = Path(checkpoint) if checkpoint else None
     if ck_path is not None:  # a write cut short by SIGKILL leaves its temporary file: never read, removed here

@@ -56,5 +56,17 @@ def test_non_editable_install_runs_shipped_scenarios_by_name(tmp_path):
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr[-2000:]
     assert (elsewhere / "out" / "trace.npz").exists() and (elsewhere / "out" / "trace.json").exists()
+    t2 = time.perf_counter()
+    # the report's machinery (compare.studies once went uninstalled: report and compare failed after pip install .)
+    r = subprocess.run([exe, "compare", "pads_friction_patches", "--duration", "2", "-o", "cmp"], cwd=elsewhere,
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert (elsewhere / "cmp" / "index.html").exists() and (elsewhere / "cmp" / "summary.json").exists()
+    # every package folder of the tree is installed
+    tree = sorted(".".join(d.relative_to(ROOT).parts) for d in ROOT.rglob("__init__.py") for d in [d.parent]
+                  if d.parts[len(ROOT.parts)] in {"frictionnoise", "engine_sim", "reduced_models", "compare", "scenarios"})
+    r = subprocess.run([py, "-c", "import importlib, sys\nfor m in sys.argv[1:]: importlib.import_module(m)", *tree],
+                       cwd=elsewhere, capture_output=True, text=True)
+    assert r.returncode == 0 and len(tree) >= 6, (tree, r.stderr[-2000:])
     print(f"install {t_install:.1f} s (build isolation: {'off' if isolation else 'on'}), "
-          f"run by name {time.perf_counter() - t1:.1f} s")
+          f"run by name {t2 - t1:.1f} s, compare {time.perf_counter() - t2:.1f} s, packages {tree}")

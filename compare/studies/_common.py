@@ -38,6 +38,17 @@ def param_rows(ex: dict) -> list:
     return [[k, f"{v['value']:.4g}", esc(v["unit"]), esc(v["provenance"])] for k, v in ex.items()]
 
 
+def whole_run(sc, seed=None, progress=None):
+    """``engine_sim.run`` for a study: a run that Ctrl-C cut short is not analysed (its partial trace once went on
+    into the spectra and ended as a misleading error); the interrupt goes on to the caller."""
+    import engine_sim
+
+    tr = engine_sim.run(sc, seed=seed, progress=progress)
+    if tr.metadata.get("partial"):
+        raise KeyboardInterrupt
+    return tr
+
+
 def timed(fn, *a, **k):
     """(fn(*a, **k), wall seconds)."""
     t0 = time.perf_counter()

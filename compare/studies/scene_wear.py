@@ -10,11 +10,10 @@ from ..fits import fit_power_law
 from ..html import esc, paragraphs, table
 from ..spectra import band_average, displacement_spectrum, force_series_spectrum
 from ..study import Figure, StudyResult
-from ._common import balances, timed, timing
+from ._common import balances, timed, timing, whole_run
 
 
 def wear_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult:
-    import engine_sim
     from engine_sim.timing import step_costs
 
     from .. import plots
@@ -25,8 +24,8 @@ def wear_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult
         tw, wall_w = trace, float(trace.metadata.get("wall_s", float("nan")))
         T = float(tw.t[-1])
     else:
-        tw, wall_w = timed(engine_sim.run, sc.with_run(duration=T), seed=seed, progress=progress)
-    t0, wall_0 = timed(engine_sim.run, sc.with_run(duration=T).with_wear(count=0), seed=seed)
+        tw, wall_w = timed(whole_run, sc.with_run(duration=T), seed=seed, progress=progress)
+    t0, wall_0 = timed(whole_run, sc.with_run(duration=T).with_wear(count=0), seed=seed)
     nper = min(2**12 if quick else 2**13, 1 << int(math.floor(math.log2(len(tw.t) / 3))))
     runs = {"with": tw, "without": t0}
     specs = {k: displacement_spectrum(tr.t, tr.x, nperseg=nper) for k, tr in runs.items()}

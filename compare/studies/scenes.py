@@ -15,7 +15,7 @@ from ..fits import fit_power_law
 from ..html import esc, paragraphs, table
 from ..spectra import displacement_spectrum, force_series_spectrum
 from ..study import Figure, Study, StudyResult
-from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, timed, timing
+from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, timed, timing, whole_run
 
 # relative wall cost, to hand the longest studies to workers first (measured in the quick report: the wear pair
 # 18 s, the rough profile 9 s, the asperity field 7 s, every other stage 0.5-3 s)
@@ -24,11 +24,9 @@ _COST_HINT = {"pads_with_wear": 18.0, "pads_rough_profile": 9.0, "asperity_field
 
 def run_scene(sc, quick, seed, trace, duration, progress):
     """The scene's trace (run now unless given), its wall time and duration."""
-    import engine_sim
-
     if trace is None:
         T = duration or (12.0 if quick else sc.run.duration)
-        tr, wall = timed(engine_sim.run, sc.with_run(duration=T), seed=seed, progress=progress)
+        tr, wall = timed(whole_run, sc.with_run(duration=T), seed=seed, progress=progress)
     else:
         tr, wall = trace, float(trace.metadata.get("wall_s", float("nan")))
         T = float(tr.t[-1])
