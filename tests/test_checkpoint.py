@@ -2,6 +2,7 @@
 engine); SIGINT stops cleanly with a checkpoint and a partial trace."""
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -184,21 +185,30 @@ def test_real_signals_at_random_moments_then_resume_is_bitwise_identical(tmp_pat
             out = tmp_path / f"{name}-{trial}"
             cmd = _cli("run", path, "--duration", T, "--seed", 5, "--epoch", epoch, "--checkpoint-every", epoch,
                        "-o", out)
-            for sig, frac in ((first, rng.uniform(0.4, 1.0)), (second, rng.uniform(0.2, 0.8))):
-                proc = _popen(cmd)
-                try:
-                    proc.wait(timeout=frac * wall)
-                except subprocess.TimeoutExpired:
-                    proc.send_signal(sig)
-                _, err = proc.communicate(timeout=120)
-                if proc.returncode == 0:
-                    counts["finished before the signal"] += 1
+            # a run that finishes before its first signal delivers none: start again from nothing with the seeded
+            # moments halved (a child's speed varies with the machine's load; CI once delivered 6 of 10)
+            for attempt in range(5):
+                shutil.rmtree(out, ignore_errors=True)
+                scale = 0.5 ** attempt
+                delivered = 0
+                for sig, frac in ((first, scale * rng.uniform(0.4, 1.0)), (second, scale * rng.uniform(0.2, 0.8))):
+                    proc = _popen(cmd)
+                    try:
+                        proc.wait(timeout=frac * wall)
+                    except subprocess.TimeoutExpired:
+                        proc.send_signal(sig)
+                    _, err = proc.communicate(timeout=120)
+                    if proc.returncode == 0:
+                        counts["finished before the signal"] += 1
+                        break
+                    delivered += 1
+                    counts[sig.name] += 1
+                    counts["during resume"] += sig is second
+                    ok = proc.returncode == (130 if sig == signal.SIGINT else -signal.SIGKILL)
+                    counts["crashes"] += not ok or "Traceback" in err
+                    assert ok and "Traceback" not in err, (name, sig, proc.returncode, err[-2000:])
+                if delivered:
                     break
-                counts[sig.name] += 1
-                counts["during resume"] += sig is second
-                ok = proc.returncode == (130 if sig == signal.SIGINT else -signal.SIGKILL)
-                counts["crashes"] += not ok or "Traceback" in err
-                assert ok and "Traceback" not in err, (name, sig, proc.returncode, err[-2000:])
             done = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
             counts["crashes"] += done.returncode != 0
             assert done.returncode == 0 and "Traceback" not in done.stderr, (name, done.stderr[-2000:])
