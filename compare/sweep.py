@@ -1,7 +1,7 @@
 """Parameter sweeps: a grid over model or scenario parameters and seeds, run serially or on
 dask.distributed, with per-task results cached on disk (a rerun completes only what is missing).
 
-Sweep file (TOML)::
+Sweep file (TOML; read and checked by :mod:`compare.sweep_spec`)::
 
     name = "velocity_model1"
     target = "model_I"            # model_I | model_II | model_III | scenario
@@ -19,239 +19,20 @@ Each task returns its log-binned spectrum and fit, never the raw trace. Pure num
 """
 from __future__ import annotations
 
-import hashlib
-import itertools
 import json
 import math
 import sys
 import time
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from frictionnoise import atomic_write
 
-__all__ = ["SweepSpec", "SweepError", "SchedulerError", "load_sweep", "expand", "run_task", "run_sweep", "load_results",
-           "velocity_analysis"]
+from .sweep_spec import SweepError, SweepSpec, build_point, expand, load_sweep, task_id
 
-_TARGETS = ("model_I", "model_II", "model_III", "scenario")
-_RUN_KEYS = {"duration", "dt_out"}
-
-
-class SweepError(ValueError):
-    """An invalid sweep file: the message names the file and the field."""
-
-
-@dataclass(frozen=True)
-class SweepSpec:
-    name: str
-    target: str
-    fixed: dict
-    grid: dict
-    analysis: dict = field(default_factory=dict)
-    scenario: str | None = None
-    description: str = ""
-
-
-# a task's simulated duration when the sweep sets none (as in run_task)
-_DEFAULT_DURATION = {"model_I": lambda p: 300.0, "model_II": lambda p: 500.0, "model_III": lambda p: 2**18 * p.dt}
-_TOP = {"name": str, "description": str, "target": str, "scenario": str, "fixed": dict, "grid": dict,
-        "analysis": dict}
-_MAX_DURATION = 1e5  # s of simulated time per task
-
-
-def _params_class(target):
-    if target == "model_I":
-        from reduced_models.spring_block import SpringBlockParams
-        return SpringBlockParams
-    if target == "model_III":
-        from reduced_models.asperity_force import AsperityForceParams
-        return AsperityForceParams
-    from reduced_models.wear_particle import WearParticleParams
-    return WearParticleParams
-
-
-def _is_number(v) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-
-
-def _model_fields(target) -> dict:
-    """Settable fields of a model's parameters: name -> default value (its type is the expected one)."""
-    import dataclasses
-
-    out = {}
-    for f in dataclasses.fields(_params_class(target)):
-        if not f.init or not f.repr:
-            continue  # derived flags, not parameters
-        # a field built by a factory (e.g. a distribution spec) is left to the model's own validation
-        out[f.name] = f.default if f.default is not dataclasses.MISSING else (_ANY if f.default_factory
-                                                                             is not dataclasses.MISSING else None)
-    return out
-
-
-_ANY = object()
-
-
-def _check_value(where: str, key: str, v, expected):
-    """Type per key: numbers where the default is a number (finite; ints where an int is expected), strings and
-    booleans where those are."""
-    if expected is _ANY:
-        return
-    if isinstance(expected, bool):
-        ok = isinstance(v, bool)
-        kind = "true or false"
-    elif isinstance(expected, int):
-        ok = isinstance(v, int) and not isinstance(v, bool)
-        kind = "a whole number"
-    elif isinstance(expected, float) or expected is None:
-        ok = _is_number(v)
-        kind = "a finite number"
-    elif isinstance(expected, str):
-        ok = isinstance(v, str)
-        kind = "a string"
-    else:
-        ok = True
-        kind = ""
-    if not ok:
-        raise SweepError(f"{where}: {key} must be {kind} (got {v!r})")
-
-
-def _check_run(where: str, key: str, v):
-    if not _is_number(v) or not 0 < v <= _MAX_DURATION:
-        raise SweepError(f"{where}: {key} must be a number of seconds in (0, {_MAX_DURATION:g}] (got {v!r})")
-
-
-def load_sweep(path) -> SweepSpec:
-    """Read and validate a sweep file, every key and every grid point, before anything runs: unknown keys are
-    named with the list of valid ones; types and ranges are checked per key (the models' own validation names
-    the field for ranges)."""
-    from .inputs import InputError, read_toml
-
-    path = Path(path)
-    try:
-        d = read_toml(path, "sweep TOML file")
-    except InputError as e:
-        raise SweepError(str(e)) from None
-    bad = sorted(set(d) - set(_TOP))
-    if bad:
-        raise SweepError(f"{path}: unknown key {bad[0]!r}; valid keys: {', '.join(sorted(_TOP))}")
-    for k, typ in _TOP.items():
-        if k in d and not isinstance(d[k], typ):
-            raise SweepError(f"{path}: {k} must be a {'table' if typ is dict else 'string'} (got {d[k]!r})")
-    target = d.get("target")
-    if target not in _TARGETS:
-        raise SweepError(f"{path}: target must be one of {', '.join(_TARGETS)} (got {target!r})")
-    grid, fixed, analysis = d.get("grid", {}), d.get("fixed", {}), d.get("analysis", {})
-    if not grid or not all(isinstance(v, list) and v for v in grid.values()):
-        raise SweepError(f"{path}: [grid] must hold non-empty lists of values")
-    scen = d.get("scenario")
-    if target == "scenario":
-        if not scen:
-            raise SweepError(f"{path}: target = 'scenario' needs scenario = <path>")
-        scen = str((path.parent / scen).resolve())
-        if not Path(scen).exists():
-            raise SweepError(f"{path}: scenario {scen}: no such file")
-    elif scen is not None:
-        raise SweepError(f"{path}: scenario = ... applies only to target = 'scenario' (target is {target!r})")
-    if target != "scenario":
-        model = _model_fields(target)
-        valid = sorted(model) + sorted(_RUN_KEYS)
-        for sec, table in (("fixed", fixed), ("grid", grid)):
-            for key in table:
-                if key == "seed" and sec == "grid":
-                    continue
-                if key not in model and key not in _RUN_KEYS:
-                    extra = ", seed" if sec == "grid" else ""
-                    raise SweepError(f"{path}: unknown key {key!r} in [{sec}]; valid names: {', '.join(valid)}{extra}")
-                values = table[key] if sec == "grid" else [table[key]]
-                for v in values:
-                    if key in _RUN_KEYS:
-                        _check_run(path, f"{sec}.{key}", v)
-                    else:
-                        _check_value(path, f"{sec}.{key}", v, model[key])
-    else:
-        for sec, table in (("fixed", fixed), ("grid", grid)):
-            for key in table:
-                if key == "duration":
-                    for v in (table[key] if sec == "grid" else [table[key]]):
-                        _check_run(path, f"{sec}.{key}", v)
-                elif key == "seed" and sec == "grid":
-                    pass
-                elif "." not in key:
-                    raise SweepError(f"{path}: unknown key {key!r} in [{sec}]; scenario parameters are written "
-                                     "section.key (e.g. drive.v), besides duration and seed")
-    seeds = grid.get("seed", [0])
-    if not all(isinstance(x, int) and not isinstance(x, bool) and 0 <= x < 2**63 for x in seeds):
-        raise SweepError(f"{path}: grid.seed must be a list of whole numbers >= 0 (got {seeds!r})")
-    bad = sorted(set(analysis) - {"omega_ref", "omega_max"})
-    if bad:
-        raise SweepError(f"{path}: unknown key {bad[0]!r} in [analysis]; valid names: omega_max, omega_ref")
-    ref = analysis.get("omega_ref")
-    if ref is not None and not (isinstance(ref, list) and len(ref) == 2 and all(_is_number(x) for x in ref)
-                                and 0 < ref[0] < ref[1]):
-        raise SweepError(f"{path}: analysis.omega_ref must be two numbers 0 < lo < hi in rad/s (got {ref!r})")
-    om = analysis.get("omega_max")
-    if om is not None and not (_is_number(om) and om > 0):
-        raise SweepError(f"{path}: analysis.omega_max must be a positive number in rad/s (got {om!r})")
-    spec = SweepSpec(name=d.get("name", path.stem), target=target, fixed=fixed, grid=grid, analysis=analysis,
-                     scenario=scen, description=d.get("description", ""))
-    try:  # every grid point's parameters once (the models' and the scenario's own range checks)
-        for params, _ in expand(spec):
-            obj, run = _build(spec, params)
-            if target in ("model_I", "model_II", "model_III"):
-                step = obj.dt if target == "model_III" else run.get("dt_out", 1e-3)
-                dur = run.get("duration", _DEFAULT_DURATION[target](obj))
-                if not dur >= 2 * step:
-                    raise SweepError(f"{path}: duration = {dur:g} s holds fewer than two steps of {step:.3g} s "
-                                     f"(at {', '.join(f'{k} = {v}' for k, v in params.items())})")
-    except (TypeError, ValueError) as e:
-        if isinstance(e, SweepError):
-            raise
-        raise SweepError(f"{path}: {e}") from None
-    return spec
-
-
-def expand(spec: SweepSpec):
-    """[(params, seed)] over the grid's Cartesian product (seed from grid["seed"], default [0])."""
-    keys = [k for k in spec.grid if k != "seed"]
-    seeds = spec.grid.get("seed", [0])
-    out = []
-    for combo in itertools.product(*(spec.grid[k] for k in keys)):
-        params = {**spec.fixed, **dict(zip(keys, combo))}
-        for s in seeds:
-            out.append((params, int(s)))
-    return out
-
-
-def task_id(spec: SweepSpec, params: dict, seed: int) -> str:
-    key = json.dumps({"target": spec.target, "scenario": spec.scenario, "params": params, "seed": seed}, sort_keys=True)
-    return hashlib.sha1(key.encode()).hexdigest()[:16]
-
-
-def _build(spec: SweepSpec, params: dict):
-    """The model parameters (or scenario) and run settings of one grid point; raises on bad values."""
-    model = {k: v for k, v in params.items() if k not in _RUN_KEYS}
-    run = {k: v for k, v in params.items() if k in _RUN_KEYS}
-    if spec.target == "model_I":
-        from reduced_models.spring_block import SpringBlockParams
-        return SpringBlockParams(**model), run
-    if spec.target == "model_III":
-        from reduced_models.asperity_force import AsperityForceParams
-        return AsperityForceParams(**model), run
-    if spec.target == "model_II":
-        from reduced_models.wear_particle import WearParticleParams
-        return WearParticleParams(**model), run
-    from engine_sim.scenario import load_scenario, scenario_from_dict
-    base = load_scenario(spec.scenario).to_dict()
-    for k, v in model.items():
-        sec, _, key = k.partition(".")
-        if not key or sec not in base or not isinstance(base[sec], dict):
-            raise ValueError(f"scenario parameter {k!r} must be written section.key, e.g. drive.v")
-        base[sec][key] = v
-    if "duration" in run:
-        base["run"]["duration"] = run["duration"]
-    return scenario_from_dict(base, where=spec.scenario), run
+__all__ = ["SweepSpec", "SweepError", "SchedulerError", "load_sweep", "expand", "task_id", "run_task", "run_sweep",
+           "load_results", "velocity_analysis"]
 
 
 def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
@@ -262,7 +43,7 @@ def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
 
     t0 = time.perf_counter()
     try:
-        obj, run = _build(spec, params)
+        obj, run = build_point(spec, params)
         if spec.target == "model_I":
             from reduced_models import spring_block
             tr = spring_block.simulate(obj, run.get("duration", 300.0), run.get("dt_out", 1e-3), seed=seed)

@@ -141,7 +141,7 @@ def test_every_subcommand_has_a_one_line_help_and_seed_is_documented():
 
 
 def test_run_progress_without_a_terminal_prints_tenths():
-    from compare.cli import _progress_bar
+    from compare.commands import progress_bar as _progress_bar
 
     buf = io.StringIO()
     bar, update = _progress_bar("scene", stream=buf)
