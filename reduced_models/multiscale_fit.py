@@ -8,7 +8,9 @@ Two procedures, each stated where it is used:
 
    - f_kin = <G> / K (G the summed force);
    - the autocorrelation of G in sliding distance is one contact's (independent, identical contacts), whose
-     integral up to its first zero is <tau^2> / (2 <tau>) = 7 a / 12 (as in ``compare.extract``): a = (12/7) L_c;
+     integral is <tau^2> / (2 <tau>) = 7 a / 12 (as in ``compare.extract``): a = (12/7) L_c, with L_c integrated
+     over [0, 2a] (rho vanishes beyond the longest interval 2 a), a found as the fixed point from model I's
+     first-zero estimate;
    - Var G = K (alpha f_kin)^2 / 12 (eq. A7): alpha f_kin = sqrt(12 Var G / K).
 
    Forces averaged over output intervals dt (model Ib's trace) lose variance: the mean over dt of a process
@@ -56,11 +58,9 @@ class RenewalLevel:
         return self.amplitude / self.f_kin if self.f_kin else math.inf
 
 
-def correlation_length(x: np.ndarray, f: np.ndarray, max_lag_distance: float) -> float:
-    """Int_0^{s0} rho(s) ds (Units: m) of the force columns ``f`` (samples x columns, or one series) against the
-    sliding distance ``x`` (uniform steps assumed, their mean used), rho averaged over columns, up to its first
-    zero or ``max_lag_distance``; the unbiased autocovariance via an FFT. The same estimator as model I's in
-    ``compare.extract``."""
+def _rho(x: np.ndarray, f: np.ndarray):
+    """(rho, dx): the unbiased autocorrelation of the force columns ``f`` (samples x columns, or one series) in
+    sliding distance, averaged over columns (FFT), and the mean distance step (uniform steps assumed)."""
     f = np.asarray(f, dtype=float)
     f = f[:, None] if f.ndim == 1 else f
     dx = float(np.mean(np.diff(x)))
@@ -70,7 +70,18 @@ def correlation_length(x: np.ndarray, f: np.ndarray, max_lag_distance: float) ->
     F = np.fft.rfft(fz, nfft, axis=0)
     ac = np.fft.irfft(np.abs(F) ** 2, nfft, axis=0)[:n].mean(axis=1)
     ac /= (n - np.arange(n))
-    rho = ac / ac[0]
+    return ac / ac[0], dx
+
+
+def correlation_length(x: np.ndarray, f: np.ndarray, max_lag_distance: float, window: float | None = None) -> float:
+    """Int_0^{s0} rho(s) ds (Units: m) of the force columns ``f`` against the sliding distance ``x``: up to the
+    first zero of rho or ``max_lag_distance`` (model I's estimator in ``compare.extract``), or, given ``window``,
+    up to exactly that distance."""
+    rho, dx = _rho(x, f)
+    n = len(rho)
+    if window is not None:
+        end = min(n - 1, int(round(window / dx)))
+        return float(np.trapezoid(rho[: end + 1], dx=dx))
     m = min(n - 1, int(max_lag_distance / dx))
     seg = rho[: m + 1]
     stop = np.flatnonzero(seg <= 0)
@@ -94,18 +105,20 @@ def renewal_statistics(x, G, n_contacts: int, *, offset: float = 0.0, averaged_d
     if K < 1 or len(x) != len(G) or len(x) < 16:
         raise ValueError("renewal_statistics needs n_contacts >= 1 and x, G of the same length (>= 16 samples)")
     dist = float(x[-1] - x[0])
-    Lc = correlation_length(x, G, max_lag_distance or dist / 10)
-    var = float(np.var(G))
-    if averaged_dt:
-        v = dist / (averaged_dt * (len(x) - 1))
-        # a = (12/7) Lc (1 - dt/(3 tau0)) with tau0 = a / v: solve the fixed point (two steps suffice to 1e-6)
-        a = 12.0 / 7.0 * Lc
-        for _ in range(3):
-            s = 1.0 - averaged_dt * v / (3.0 * a)
-            a = 12.0 / 7.0 * Lc * s
-        var /= s
-    else:
-        a = 12.0 / 7.0 * Lc
+    v = dist / (averaged_dt * (len(x) - 1)) if averaged_dt else None
+    # a from the first zero of rho, then integrated over the fixed window [0, 2a] (no renewal interval exceeds
+    # 2 tau0, eq. 5, so rho vanishes beyond; a fixed window keeps the estimate's variance bounded, where the noisy
+    # first zero of a long record can land far out), iterated to its fixed point
+    rho, dx = _rho(x, G)
+    m = min(len(rho) - 1, int((max_lag_distance or dist / 10) / dx))
+    stop = np.flatnonzero(rho[: m + 1] <= 0)
+    a = 12.0 / 7.0 * float(np.trapezoid(rho[: (int(stop[0]) if stop.size else m) + 1], dx=dx))
+    s = 1.0
+    for _ in range(6):
+        s = 1.0 - averaged_dt * v / (3.0 * a) if averaged_dt else 1.0
+        end = min(len(rho) - 1, int(round(2.0 * a / dx)))
+        a = 12.0 / 7.0 * float(np.trapezoid(rho[: end + 1], dx=dx)) * s
+    var = float(np.var(G)) / s
     return RenewalLevel(f_kin=(float(np.mean(G)) + offset) / K, a=a, amplitude=math.sqrt(12.0 * var / K),
                         n_renewals=K * dist / a)
 

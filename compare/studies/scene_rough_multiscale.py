@@ -38,7 +38,7 @@ __all__ = ["STUDY", "run", "two_scale_comparison"]
 
 NAME = "pads_rough_profile"
 SEEDS = 3
-DURATION = 20.0  # s per seed: ~50 s wall each (the scene streams ~1200 segments per mm)
+DURATION = 30.0  # s per seed: ~75 s wall each (the scene streams ~1200 segments per mm)
 T975 = {2: 4.303, 3: 3.182, 4: 2.776}  # Student t, 95 % two-sided, by degrees of freedom
 MODELS = ("model I (report)", "model I (spectral fit)", "model Ib (two-scale fit)", "measured force through model I's Z")
 
