@@ -8,7 +8,7 @@ from .scenes import scene_studies
 __all__ = ["STUDIES", "selected"]
 
 STUDIES = [model_I.STUDY, multiscale.STUDY, model_III.STUDY, model_II.STUDY, *scene_studies(), scene_rough_multiscale.STUDY,
-           scene_multiscale.STUDY,            work_precision.STUDY]
+           scene_multiscale.STUDY, work_precision.STUDY]
 
 
 def selected(quick: bool) -> list:
