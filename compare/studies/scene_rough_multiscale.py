@@ -190,10 +190,10 @@ def run(quick: bool, seed: int) -> StudyResult:
             f"fit of the pad-force spectrum, and model Ib from a two-level fit. {verdict}")
     cap2 = ("Pad-force spectrum (mean over the pads) and the renewal spectra (A8) fitted to it, one and two levels: "
             "the parameters of the models in the previous figure.")
-    return StudyResult("model_Ib_rough", f"Model Ib measured from {NAME} at two scales", numbers,
+    return StudyResult("scenarios/pads_rough_profile_model_Ib", f"Model Ib measured from {NAME} at two scales", numbers,
                        (Figure("model_Ib_rough_cx", png_c, cap1), Figure("model_Ib_rough_force", png_f, cap2)), text,
                        (timing(f"scene {NAME} x {len(seeds)} (model Ib fit)", f"{T:g} s each", f"{wall:.2f}",
                                f"{float(np.mean(mIb)):.3f}"),))
 
 
-STUDY = Study(key="model_Ib_rough", label="model Ib on the rough scene", run=run, quick=False, cost=60.0)
+STUDY = Study(key="scenarios/pads_rough_profile_model_Ib", label="model Ib on the rough scene", run=run, quick=False, cost=60.0)
