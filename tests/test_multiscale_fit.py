@@ -157,3 +157,18 @@ def test_study_skips_with_a_reason_when_the_scene_is_not_shipped():
         pytest.skip("pads_multiscale is shipped: the study runs it (full report)")
     res = scene_multiscale.run(True, 0)
     assert "not shipped" in res.numbers["skipped"] and "Skipped" in res.html and res.figures == ()
+
+
+def test_averaged_record_block_means():
+    # every k-th time and position; pad forces, contact counts and drag averaged over each k steps (exact means)
+    from compare.studies.scene_rough_multiscale import averaged_record
+
+    n, k = 103, 10
+    t = np.arange(n) * 1e-4
+    f = np.stack([np.arange(n, dtype=float), 2.0 * np.arange(n)], axis=1)
+    tr = SimpleNamespace(t=t, x=5e-3 * t, pad_force=f, n_contact=np.full(n, 2.0), F_n=np.ones(n), F_drag=t.copy(),
+                         metadata={})
+    a = averaged_record(tr, k)
+    assert len(a.t) == 10 and np.array_equal(a.t, t[:100:10]) and np.array_equal(a.x, tr.x[:100:10])
+    np.testing.assert_allclose(a.pad_force[:, 0], np.arange(10) * 10 + 4.5, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(a.pad_force[:, 1], 2 * (np.arange(10) * 10 + 4.5), rtol=0, atol=1e-12)
