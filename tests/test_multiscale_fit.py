@@ -93,9 +93,10 @@ def test_rigid_micro_contact_passes_the_fast_force_unfiltered():
 
 
 def _fake_scene_trace(p, T=300.0, dt=1e-3, seed=7, columns="pads"):
-    """An engine-like trace from a model Ib run: the block's x, pad forces (each the macro mean plus F1 / N, enough
-    for model I's extraction to run; its macro alpha is not what is tested), micro-pad forces summed per pad
-    (F2 / N each, plus the mean), and the metadata a pads_multiscale scene carries."""
+    """An engine-like trace from a model Ib run: the block's x; pad forces f_kin + F1 / sqrt(N) in every column (one
+    contact's mean, variance and correlation, which is all model I's extraction reads; the columns are not
+    independent, which it does not see); micro-pad forces summed per pad (F2 / N each, plus the mean: their sum is
+    the micro force sum) or as one column; and the metadata a pads_multiscale scene carries."""
     tr = ms.simulate(p, T, dt, seed=seed)
     n = len(tr.t)
     F1, F2 = tr.force - tr.events["force_micro"], tr.events["force_micro"]
@@ -106,7 +107,7 @@ def _fake_scene_trace(p, T=300.0, dt=1e-3, seed=7, columns="pads"):
              "length_scale": p.a, "effective_mass": p.M, "block_mass": p.M, "substrate": {"alpha": p.alpha},
              "micro": {"n": p.n_micro, "mass": p.m2, "k": p.k2, "c": p.m2 * p.eta2, "length_scale": p.a2,
                        "friction_law": law2, "patch_contrast": p.alpha2}}
-    return SimpleNamespace(t=tr.t, x=tr.x, pad_force=np.repeat(((F1 + p.F_kin) / p.N)[:, None], p.N, axis=1),
+    return SimpleNamespace(t=tr.t, x=tr.x, pad_force=np.repeat((p.f_kin + F1 / np.sqrt(p.N))[:, None], p.N, axis=1),
                            micro_force=micro, n_contact=np.full(n, p.N), F_n=np.full(n, p.N * 1.0),
                            F_drag=np.full(n, p.N * p.m * p.eta1 * p.v), metadata={"scene": scene})
 
@@ -172,3 +173,26 @@ def test_averaged_record_block_means():
     assert len(a.t) == 10 and np.array_equal(a.t, t[:100:10]) and np.array_equal(a.x, tr.x[:100:10])
     np.testing.assert_allclose(a.pad_force[:, 0], np.arange(10) * 10 + 4.5, rtol=0, atol=1e-12)
     np.testing.assert_allclose(a.pad_force[:, 1], 2 * (np.arange(10) * 10 + 4.5), rtol=0, atol=1e-12)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("case", ["reference", "strong"])
+def test_study_part_reads_model_Ib_built_from_its_own_run(case):
+    # End to end: a "scene" that is model Ib itself (600 s), measured by the builder, compared by the study part.
+    # Per band the closed form with the measured parameters must read the run within a factor 1.7: the macro
+    # estimates rest on n1 = v T / a = 300 renewals per contact, so sd(a)/a <= sqrt(8/300) = 16 % and
+    # sd(alpha^2)/alpha^2 <= 2 x 0.76 / sqrt(300) = 9 % (bounds above); C_x ~ (alpha f_kin)^2 / a in the omega^-4
+    # band gives ~19 % sd, 3 sigma ~ exp(0.55) = 1.7. Measured (seeds 7, 8): 0.92-1.30. Gamma per regime against
+    # the model's closed-form slope over the same band within 1.5 x the fit's 95 % half-width (measured within 1x).
+    from compare.studies.multiscale import strong_cases
+    from compare.studies.scene_multiscale import scene_against_model_Ib
+
+    p = REF if case == "reference" else strong_cases()["R = 1000, v/a2 = 500 rad/s"]
+    res = scene_against_model_Ib("model Ib run", None, False, 0, trace=_fake_scene_trace(p, T=600.0, seed=0))
+    r = np.array([b["ratio"] for b in res.numbers["band_ratios_vs_model_Ib"]])
+    assert np.all((r > 1 / 1.7) & (r < 1.7)), r
+    fits = res.numbers["fits"]
+    assert len(fits) == (1 if case == "reference" else 3)  # the strong case has a crossover: both regimes fitted
+    for name, f in fits.items():
+        assert f["gamma"] == pytest.approx(f["gamma_model_Ib"], abs=1.5 * f["gamma_err"]), (name, f)
+    assert len(res.figures) == 1 and res.figures[0].png[:4] == b"\x89PNG"

@@ -115,13 +115,14 @@ def scene_against_model_Ib(name, sc, quick, seed, trace=None) -> StudyResult:
     rIb = band_ratios(spec, ms.theory_spectrum(pb, spec.omega), edges)
     reg = ms.regime_frequencies(pb)
     w0, w2, wx = reg["v_over_a"], reg["v_over_a2"], reg["omega_x"]
-    bands = {"model I band 3-30 v/a": (3 * w0, min(30 * w0, top))}
+    lo = 4 * spec.omega_min  # the lowest resolved frequency the fits use
+    bands = {"model I band 3-30 v/a": (max(3 * w0, lo), min(30 * w0, top))}
     if math.isfinite(wx):
-        bands["below omega_x (macro, gamma 4)"] = (max(3 * w0, 4 * spec.omega_min), wx / 2)
-        bands["omega_x to v/a2 (micro, gamma 2)"] = (2 * wx, min(w2 / 2, top))
+        bands["below omega_x (macro, gamma 4)"] = (max(3 * w0, lo), wx / 2)
+        bands["omega_x to v/a2 (micro, gamma 2)"] = (max(2 * wx, lo), min(w2 / 2, top))
     fits = {}
     for k, b in bands.items():
-        if b[1] > 2.5 * b[0]:
+        if b[1] > 2.5 * b[0]:  # a regime narrower than a factor 2.5 in this record is not fitted
             f = fit_power_law(spec, band=b).to_dict()
             wb = np.geomspace(*b, 50)
             f["gamma_model_Ib"] = float(-np.polyfit(np.log(wb), np.log(ms.theory_spectrum(pb, wb)), 1)[0])
