@@ -191,3 +191,41 @@ def test_study_answers_with_numbers():
 def test_invalid_parameters_name_the_field(kw, field):
     with pytest.raises(ValueError, match=field):
         ms.MultiscaleParams(**kw)
+
+
+def _band_slope(p, band):
+    """The closed form's own log-log slope over a band (what a power-law fit of a perfect spectrum reads)."""
+    wb = np.geomspace(*band, 50)
+    return float(-np.polyfit(np.log(wb), np.log(ms.theory_spectrum(p, wb)), 1)[0])
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_reference_slope_in_the_macro_regime(seed):
+    # The reference case simulated 300 s: gamma over fit_band (10 v/a to omega_c / 10 = 5-55 rad/s) against the
+    # closed form's slope there (3.99), and that slope against the regime's 4. Tolerance 1.5 x the fit's 95 %
+    # half-width (~3 sigma: 0.10 here; the Whittle interval assumes a pure power law, the band bends by 0.01).
+    # Measured (seeds 0, 1, 2): 3.980, 3.923, 3.969 +- 0.066.
+    tr = ms.simulate(REF, 300.0, 1e-3, seed=seed)
+    band = ms.fit_band(REF)
+    fit = fit_power_law(displacement_spectrum(tr.t, tr.x), band=band)
+    assert _band_slope(REF, band) == pytest.approx(4.0, abs=0.05)
+    assert fit.gamma == pytest.approx(_band_slope(REF, band), abs=1.5 * fit.gamma_err), fit
+
+
+@pytest.mark.parametrize("label", ["R = 1000, v/a2 = 500 rad/s", "R = 250, v/a2 = 500 rad/s", "R = 1000, v/a2 = 250 rad/s"])
+def test_strong_micro_slopes_on_both_sides_of_the_crossover(label):
+    # The report's strong-micro cases (compare/studies/multiscale.py), 120 s each: gamma over 3 v/a .. omega_x / 2
+    # (macro, 4) and 2 omega_x .. v/a2 / 2 (micro, 2), each against the closed form's slope over the same band
+    # with 1.5 x the fit's 95 % half-width, and that slope against the regime's exponent: within 0.15 of 4 and 0.25
+    # of 2 (the upper band ends at v/a2 / 2, where the micro force starts to fall: closed form 2.12-2.20).
+    # Measured over seeds 0-2: below 3.78-4.14 (+- 0.15-0.73), above 2.07-2.20 (+- 0.06-0.11).
+    from compare.studies.multiscale import strong_cases
+
+    p = strong_cases()[label]
+    tr = ms.simulate(p, 120.0, 1e-3, seed=0)
+    spec = displacement_spectrum(tr.t, tr.x, nperseg=2**14)
+    wx = ms.crossover_frequency(p)
+    for band, gamma, tol in (((3 * p.v / p.a, wx / 2), 4.0, 0.15), ((2 * wx, p.v / p.a2 / 2), 2.0, 0.25)):
+        fit = fit_power_law(spec, band=band)
+        assert _band_slope(p, band) == pytest.approx(gamma, abs=tol), (label, band)
+        assert fit.gamma == pytest.approx(_band_slope(p, band), abs=1.5 * fit.gamma_err), (label, fit)
