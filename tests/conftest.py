@@ -50,6 +50,32 @@ def pytest_configure(config):
         threading.settrace(_trace)
 
 
+def _all_slow(path: Path) -> bool:
+    """Is every test of this file marked slow (a module-level ``pytestmark = pytest.mark.slow`` or the marker on
+    each test function)? Read from the source, before the file is imported."""
+    import ast
+
+    tree = ast.parse(path.read_text())
+
+    def slow(node):  # pytest.mark.slow itself (a parametrize with a slow case among others is not)
+        return ast.unparse(node).endswith("mark.slow")
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(getattr(tg, "id", "") == "pytestmark" for tg in node.targets):
+            if slow(node.value):
+                return True
+    tests = [n for n in ast.walk(tree) if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef))
+             and n.name.startswith("test")]
+    return bool(tests) and all(any(slow(d) for d in n.decorator_list) for n in tests)
+
+
+def pytest_ignore_collect(collection_path, config):
+    # the fast tier does not import files it would deselect whole (the fuzz tests' hypothesis alone costs 1 s)
+    if config.option.markexpr == "not slow" and collection_path.suffix == ".py" \
+            and collection_path.name.startswith("test_") and _all_slow(collection_path):
+        return True
+    return None
+
+
 def pytest_collectreport(report):
     now = _loaded()
     if report.fspath and report.fspath.endswith(".py"):
