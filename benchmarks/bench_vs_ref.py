@@ -200,6 +200,8 @@ def main(argv=None) -> int:
         print(f"\n{label} wall s: ref {_spread(walls['ref'])}, head {_spread(walls['head'])}, "
               f"head / ref {statistics.median(walls['head']) / statistics.median(walls['ref']):.3f}, ranges "
               f"{'overlap' if _overlap(walls['ref'], walls['head']) else 'DO NOT overlap'}")
+        print("  each run (the first of each commit includes numba's compilation into its fresh worktree's cache): "
+              + "; ".join(f"{k} " + ", ".join(f"{w:.1f}" for w in walls[k]) for k in commits))
         results["report_wall_s"] = {**walls, "overlap": _overlap(walls["ref"], walls["head"])}
 
         d = diff_summaries(summaries["ref"], summaries["head"], a.rtol)
