@@ -93,9 +93,6 @@ def test_run_then_compare_round_trip(tmp_path):
 def test_render_png_and_gif_headless(tmp_path):
     from PIL import Image
 
-    from engine_sim import Scene, load_scenario
-    from engine_sim.render import SceneRenderer
-
     out = tmp_path / "ren"
     assert main(["render", str(PATCHES), "--frames", "3", "--gif", "-o", str(out)]) == 0
     pngs = sorted(out.glob("frame_*.png"))
@@ -104,6 +101,13 @@ def test_render_png_and_gif_headless(tmp_path):
     assert gif.n_frames == 3
     arr = np.asarray(Image.open(pngs[0]).convert("L"), dtype=float)
     assert arr.std() > 10  # not blank
+
+
+@pytest.mark.slow  # pymunk's matplotlib drawing takes 0.3-0.4 s a frame, twice
+def test_render_frame_costs_a_fraction_of_pymunks_drawing():
+    from engine_sim import Scene, load_scenario
+    from engine_sim.render import SceneRenderer
+
     r = SceneRenderer(Scene(load_scenario(PATCHES)))
     r.frame()
     from tests.frame_budget import frame_cost_ratio
@@ -236,7 +240,8 @@ def test_compare_says_a_trace_is_partial(tmp_path, capsys):
     from compare.traceio import save_trace
     from engine_sim import load_scenario
 
-    tr = engine_sim.run(load_scenario(PATCHES).with_run(duration=0.5), seed=0)
+    sc = load_scenario(PATCHES).with_run(warmup=0.25)  # (the warmup's length does not bear on what is checked)
+    tr = engine_sim.run(sc.with_run(duration=0.5), seed=0)
     tr.metadata["partial"] = True
     save_trace(tr, tmp_path / "p.npz")
     # 0.5 s is too short for the report's band: one error line that also says the trace is partial (this was a
@@ -245,7 +250,7 @@ def test_compare_says_a_trace_is_partial(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "is a partial trace (interrupted at t = 0.500 s)" in err and "Traceback" not in err, err
     assert err.count("\n") == 1 and "lies outside the resolved range" in err and not (tmp_path / "c").exists()
-    long = engine_sim.run(load_scenario(PATCHES).with_run(duration=4.0), seed=0)  # long enough for the fit
+    long = engine_sim.run(sc.with_run(duration=2.0), seed=0)  # long enough for the fit band (15-150 rad/s)
     long.metadata["partial"] = True
     save_trace(long, tmp_path / "q.npz")
     import os
@@ -257,5 +262,5 @@ def test_compare_says_a_trace_is_partial(tmp_path, capsys):
         os.umask(old)
     assert (tmp_path / "d" / "summary.json").stat().st_mode & 0o777 == 0o644  # as run's files (report's writer)
     err = capsys.readouterr().err
-    assert "note: " in err and "is a partial trace (interrupted at t = 4.000 s)" in err, err
+    assert "note: " in err and "is a partial trace (interrupted at t = 2.000 s)" in err, err
     assert "partial trace" in json.loads((tmp_path / "d" / "summary.json").read_text())["partial_trace"]

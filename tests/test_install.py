@@ -16,12 +16,13 @@ def _ignore(folder, names):
     return [n for n in names if n in {".venv", ".git", "build", "__pycache__"} or n.endswith(".egg-info")]
 
 
-@pytest.mark.slow
-def test_non_editable_install_runs_shipped_scenarios_by_name(tmp_path):
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory):
+    """(python, frictionnoise executable, a folder outside the source tree, install seconds, build isolation) of a
+    non-editable install into a fresh venv."""
     import setuptools
 
-    from engine_sim import shipped_scenarios
-
+    tmp_path = tmp_path_factory.mktemp("install")
     t0 = time.perf_counter()
     src = tmp_path / "src"
     shutil.copytree(ROOT, src, ignore=_ignore)  # build from a copy: setuptools writes build/ into the source
@@ -39,7 +40,6 @@ def test_non_editable_install_runs_shipped_scenarios_by_name(tmp_path):
     r = subprocess.run([py, "-m", "pip", "install", "-q", "--no-deps", *isolation, str(src)], capture_output=True,
                        text=True)
     assert r.returncode == 0, r.stderr[-2000:]
-    t_install = time.perf_counter() - t0
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
     r = subprocess.run([py, "-c", "import engine_sim, scenarios; print(engine_sim.__file__); print(scenarios.__file__)"],
@@ -47,10 +47,21 @@ def test_non_editable_install_runs_shipped_scenarios_by_name(tmp_path):
     assert r.returncode == 0, r.stderr[-2000:]
     where = r.stdout.split()
     assert all(Path(w).is_relative_to(venv) for w in where), where  # the installed copy, not this checkout
-    exe = venv / "bin" / "frictionnoise"
-    listed = subprocess.run([exe, "scenarios"], cwd=elsewhere, check=True, capture_output=True, text=True).stdout
-    names = [line.split()[0] for line in listed.splitlines() if line.strip()]
-    assert names == sorted(shipped_scenarios()), listed  # every shipped scene, none lost
+    return py, venv / "bin" / "frictionnoise", elsewhere, time.perf_counter() - t0, bool(isolation)
+
+
+def _listed(exe, cwd) -> list:
+    listed = subprocess.run([exe, "scenarios"], cwd=cwd, check=True, capture_output=True, text=True).stdout
+    return [line.split()[0] for line in listed.splitlines() if line.strip()]
+
+
+@pytest.mark.slow
+def test_non_editable_install_runs_shipped_scenarios_by_name(installed):
+    from engine_sim import shipped_scenarios
+
+    py, exe, elsewhere, t_install, isolation = installed
+    names = _listed(exe, elsewhere)
+    assert names == sorted(shipped_scenarios()), names  # every shipped scene, none lost
     t1 = time.perf_counter()
     r = subprocess.run([exe, "run", "pads_friction_patches", "--duration", "0.5", "-o", "out"], cwd=elsewhere,
                        capture_output=True, text=True)
@@ -70,3 +81,38 @@ def test_non_editable_install_runs_shipped_scenarios_by_name(tmp_path):
     assert r.returncode == 0 and len(tree) >= 6, (tree, r.stderr[-2000:])
     print(f"install {t_install:.1f} s (build isolation: {'off' if isolation else 'on'}), "
           f"run by name {t2 - t1:.1f} s, compare {time.perf_counter() - t2:.1f} s, packages {tree}")
+
+
+@pytest.mark.slow  # the quick report: about 2-3 min on 2 cores
+def test_non_editable_install_quick_report_holds_every_shipped_scene(installed):
+    """Issue 14's must-show: `frictionnoise report --quick` from another folder holds every shipped scene (it used
+    to hold the model sections only, silently). The design, asked of the installed package: the quick report's
+    studies are one per shipped scene (`compare.studies.scenes.scene_studies`) plus the models; what the full
+    report adds (today the work-precision study) is no scene. Each scene is in summary.json and is a section of index.html
+    with at least one figure."""
+    import json
+    import re
+
+    py, exe, elsewhere, _, _ = installed
+    names = _listed(exe, elsewhere)
+    design = subprocess.run([py, "-c", "import json; from compare import studies; print(json.dumps("
+                                       "[[s.key, s.quick] for s in studies.STUDIES]))"],
+                            cwd=elsewhere, check=True, capture_output=True, text=True).stdout
+    design = dict(json.loads(design))
+    scenes_quick = sorted(k.split("/", 1)[1] for k, quick in design.items() if k.startswith("scenarios/") and quick)
+    assert scenes_quick == names, (scenes_quick, names)  # the design: every shipped scene in the quick report
+    assert not [k for k, quick in design.items() if not quick and k.startswith("scenarios/")]  # no scene left out
+    t0 = time.perf_counter()
+    r = subprocess.run([exe, "report", "--quick", "-o", "rep"], cwd=elsewhere, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr[-3000:]
+    summary = json.loads((elsewhere / "rep" / "summary.json").read_text())
+    assert sorted(summary["scenarios"]) == names, sorted(summary["scenarios"])
+    html = (elsewhere / "rep" / "index.html").read_text()
+    for name in names:
+        assert summary["scenarios"][name], name  # numbers, not an empty entry
+        anchor = "s-" + re.sub(r"[^A-Za-z0-9_-]+", "-", f"scenarios/{name}")
+        section = html.split(f"<section id='{anchor}'>", 1)
+        assert len(section) == 2, f"no section for {name}"
+        assert "<figure" in section[1].split("</section>", 1)[0], f"no figure in the section of {name}"
+        assert f"href='#{anchor}'" in html, f"{name} not in the contents"
+    print(f"quick report from the installed package: {time.perf_counter() - t0:.1f} s, scenes {names}")

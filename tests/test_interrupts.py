@@ -83,6 +83,7 @@ def _one_line_130(proc, err, wall, limit):
     assert wall < limit, wall
 
 
+@pytest.mark.slow  # a real report's worker pool, signalled once busy (about 7 s)
 def test_ctrl_c_during_report_ends_its_workers(tmp_path):
     out = tmp_path / "rep"
     proc = _start(["report", "--quick", "--workers", "2", "-o", out])
@@ -96,6 +97,7 @@ def test_ctrl_c_during_report_ends_its_workers(tmp_path):
     assert not out.exists() and not list(tmp_path.glob(".rep*"))  # nothing half-written
 
 
+@pytest.mark.slow  # a dask LocalCluster started, a task completed, then signalled (about 11 s)
 def test_ctrl_c_during_sweep_keeps_completed_tasks(tmp_path):
     spec = tmp_path / "s.toml"
     spec.write_text('name = "s"\ntarget = "model_I"\n[fixed]\nduration = 150.0\n[grid]\n'
@@ -115,9 +117,11 @@ def test_ctrl_c_during_sweep_keeps_completed_tasks(tmp_path):
     assert 1 <= len(list((out / "tasks").glob("*.json"))) < 8
 
 
+# the fast tier keeps `run` (the same handler in main() serves every subcommand); render and compare wait longer
 @pytest.mark.parametrize("cmd, delay", [(["run", PATCHES, "--duration", "30"], 1.5),  # warm-up or first samples
-                                        (["render", PATCHES, "--frames", "400"], 2.5),
-                                        (["compare", PATCHES, "--duration", "30"], 3.0)])
+                                        pytest.param(["render", PATCHES, "--frames", "400"], 2.5, marks=pytest.mark.slow),
+                                        pytest.param(["compare", PATCHES, "--duration", "30"], 3.0,
+                                                     marks=pytest.mark.slow)])
 def test_ctrl_c_in_other_subcommands(tmp_path, cmd, delay):
     out = tmp_path / "o"
     proc = _start([*cmd, "-o", out])

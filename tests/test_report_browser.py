@@ -13,6 +13,8 @@ import pytest
 from compare.html import write_report
 from compare.report import build_report
 
+pytestmark = pytest.mark.slow  # a report built (about 7 s) and a browser started (about 4 s)
+
 
 def _browser():
     """(chromium, chromedriver) paths, or skip saying what is missing."""

@@ -1,8 +1,5 @@
 """The report's figures: what the reader is told is what is drawn (exponent names, the reference point, axis
-ranges), and importing the plots leaves matplotlib's backend alone."""
-import subprocess
-import sys
-
+ranges). That importing them leaves matplotlib's backend alone is in test_backend.py (every project module)."""
 import numpy as np
 import pytest
 
@@ -67,9 +64,3 @@ def test_work_precision_draws_every_setting_and_the_reference():
         bb = txt.get_window_extent()
         assert bb.x0 >= 0 and bb.x1 <= W and bb.y0 >= 0 and bb.y1 <= H, (txt.get_text(), bb, W, H)
 
-
-def test_importing_the_report_leaves_the_backend_alone():
-    code = ("import matplotlib; matplotlib.use('pdf'); import compare.plots, compare.report, compare.studies; "
-            "print(matplotlib.get_backend())")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()
-    assert out == "pdf"

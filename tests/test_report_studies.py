@@ -152,3 +152,46 @@ def test_run_progress_without_a_terminal_prints_tenths():
     assert len(lines) == 10, lines
     assert lines[0].startswith("scene: 0.6/6.0 s simulated (10 %), ") and lines[-1].startswith("scene: 6.0/6.0 s simulated (100 %)")
     assert all(re.search(r"\d+\.\d s elapsed$", ln) for ln in lines)
+
+
+def test_process_pool_returns_results_and_ends_its_workers_on_an_interrupt():
+    # compare.pool: the report's worker processes (spawned). Results come back; a KeyboardInterrupt in the parent
+    # while a worker is busy ends that worker at once (terminate, then kill) instead of waiting for its task.
+    import math
+    import time
+
+    from compare.pool import process_pool
+
+    with process_pool(1) as pool:
+        assert pool.submit(math.factorial, 10).result(timeout=60) == 3628800
+    t0 = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        with process_pool(1) as pool:
+            busy = pool.submit(time.sleep, 60)
+            procs = list(pool._processes.values())
+            while not busy.running():
+                time.sleep(0.01)
+            raise KeyboardInterrupt
+    assert time.perf_counter() - t0 < 30 and procs and not any(p.is_alive() for p in procs)
+
+
+def test_each_shipped_scene_goes_to_the_study_of_its_layout(monkeypatch):
+    # compare.studies.scenes: wear particles -> the paired runs and model II (scene_wear), sparse asperities -> model
+    # III (scene_asperity, 16 s quick runs), every other substrate -> model I. The studies' bodies run in the slow
+    # tier (quick report, install test): a wear or asperity scene costs 4-7 s of CPU even when too short to fit.
+    from compare.studies import scene_asperity, scene_wear, scenes
+    from engine_sim import load_scenario, shipped_scenarios
+
+    calls = []
+
+    def stub(kind):
+        return lambda name, sc, quick, seed, trace, duration, progress: calls.append((name, kind, duration))
+    monkeypatch.setattr(scene_wear, "wear_result", stub("model II"))
+    monkeypatch.setattr(scene_asperity, "asperity_result", stub("model III"))
+    monkeypatch.setattr(scenes, "_model_I_result", stub("model I"))
+    for name, path in shipped_scenarios().items():
+        scenes.scene_result(name, load_scenario(path), True, 0)
+    kinds = {name: kind for name, kind, _ in calls}
+    assert kinds["pads_with_wear"] == "model II" and kinds["asperity_field"] == "model III"
+    assert kinds["pads_friction_patches"] == kinds["pads_rough_profile"] == kinds["line_scan_example"] == "model I"
+    assert dict((n, d) for n, _, d in calls)["asperity_field"] == 16.0

@@ -39,3 +39,14 @@ def test_scenarios_command_lists_every_scene_with_one_line(capsys):
 
 def test_summary_keeps_abbreviations_whole():
     assert scenario_summary("A slider (paper Fig. 7) on pads. More text.") == "A slider (paper Fig. 7) on pads."
+
+
+def test_shipped_names_are_the_scenarios_packages_scene_files():
+    # the scenarios package (package data of every install) holds exactly the scenes `frictionnoise scenarios` lists
+    from pathlib import Path
+
+    import scenarios
+
+    folder = Path(scenarios.__file__).parent
+    assert sorted(p.stem for p in folder.glob("*.toml")) == sorted(shipped_scenarios())
+    assert all(Path(p).parent == folder for p in shipped_scenarios().values())

@@ -1,0 +1,174 @@
+"""The fast tier touches every module (issue 14). After a run of the whole test folder (`python -m pytest -m
+"not slow"`, no file or -k selection) the project's modules that no selected test imported are listed and the
+run fails. A module counts when a file with a selected test imports it (an import statement anywhere in the file,
+or a module first loaded while the file was collected), or when it was loaded while the tests ran, and so does
+every module these import at their top, transitively (read from their source). A module that only files whose
+tests were all deselected import does not count. Subprocesses are not seen: a module only reached through
+`python -m ...` counts as untouched (the strict side).
+
+With FRICTIONNOISE_CALLED=1 the check is stricter: a function of the module must have run in this process (a
+global trace function that returns None, so no line is traced; it costs about 40 % more CPU time, measured on
+four test files, so it is not the default)."""
+from __future__ import annotations
+
+import os
+import sys
+import threading
+from pathlib import Path
+
+import pytest
+
+from tests.modules import PACKAGES, ROOT, project_modules
+_PREFIXES = tuple(str(ROOT / p) + "/" for p in PACKAGES)
+_CALLED = bool(os.environ.get("FRICTIONNOISE_CALLED"))
+_called: set = set()
+_seen_code: set = set()
+_by_file: dict = {}  # test file -> project modules first imported while it was collected
+_state = {"loaded": set(), "after_collection": None, "selected_files": set()}
+
+
+def _trace(frame, event, arg):
+    code = frame.f_code
+    if code not in _seen_code:  # each code object once: the common case is one set lookup
+        _seen_code.add(code)
+        if code.co_name != "<module>" and code.co_filename.startswith(_PREFIXES):
+            _called.add(code.co_filename)
+
+
+def _loaded() -> set:
+    return {m for m in list(sys.modules) if m.split(".")[0] in PACKAGES}
+
+
+def _defines_functions(path: Path) -> bool:
+    return any(hasattr(c, "co_code") for c in compile(path.read_text(), str(path), "exec").co_consts)
+
+
+def pytest_configure(config):
+    _state["loaded"] = _loaded()
+    if _CALLED:
+        sys.settrace(_trace)
+        threading.settrace(_trace)
+
+
+def _all_slow(path: Path) -> bool:
+    """Is every test of this file marked slow (a module-level ``pytestmark = pytest.mark.slow`` or the marker on
+    each test function)? Read from the source, before the file is imported."""
+    import ast
+
+    tree = ast.parse(path.read_text())
+
+    def slow(node):  # pytest.mark.slow itself (a parametrize with a slow case among others is not)
+        return ast.unparse(node).endswith("mark.slow")
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(getattr(tg, "id", "") == "pytestmark" for tg in node.targets):
+            if slow(node.value):
+                return True
+    tests = [n for n in ast.walk(tree) if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef))
+             and n.name.startswith("test")]
+    return bool(tests) and all(any(slow(d) for d in n.decorator_list) for n in tests)
+
+
+def pytest_ignore_collect(collection_path, config):
+    # the fast tier does not import files it would deselect whole (the fuzz tests' hypothesis alone costs 1 s)
+    if config.option.markexpr == "not slow" and collection_path.suffix == ".py" \
+            and collection_path.name.startswith("test_") and _all_slow(collection_path):
+        return True
+    return None
+
+
+def pytest_collectreport(report):
+    now = _loaded()
+    if report.fspath and report.fspath.endswith(".py"):
+        _by_file.setdefault(str(Path(report.fspath).resolve()), set()).update(now - _state["loaded"])
+    _state["loaded"] = now
+
+
+def pytest_collection_finish(session):
+    _state["after_collection"] = _loaded()
+    _state["selected_files"] = {str(Path(item.path).resolve()) for item in session.items}
+
+
+def _imports(path: Path, package: str = "", everywhere: bool = False) -> set:
+    """The module names a file imports: in its top-level statements (guarded ones too), or ``everywhere`` (a test
+    file's test functions import what they exercise)."""
+    import ast
+
+    tree = ast.parse(path.read_text())
+    if everywhere:
+        nodes = list(ast.walk(tree))
+    else:
+        nodes, todo = [], list(tree.body)
+        while todo:
+            node = todo.pop()
+            nodes.append(node)
+            if isinstance(node, (ast.If, ast.Try)):
+                todo.extend(node.body + node.orelse + getattr(node, "finalbody", [])
+                            + [s for h in getattr(node, "handlers", []) for s in h.body])
+    out = set()
+    for node in nodes:
+        if isinstance(node, ast.Import):
+            out.update(a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                parent = package.rsplit(".", node.level - 1)[0] if node.level > 1 else package
+                base = f"{parent}.{base}" if base else parent
+            out.add(base)
+            out.update(f"{base}.{a.name}" for a in node.names)  # kept by the caller only if it is a module
+    return out
+
+
+def _with_imports(names: set) -> set:
+    """``names`` and what they import at their top, transitively, with their parent packages: a module first
+    imported by a deselected file is still imported by the selected file that imports its importer."""
+    modules = project_modules()
+    out, todo = set(), list(names)
+    while todo:
+        name = todo.pop()
+        if name in out or name not in modules:
+            continue
+        out.add(name)
+        todo.extend(name.rsplit(".", k)[0] for k in range(1, name.count(".") + 1))
+        path = modules[name]
+        todo.extend(_imports(path, name if path.name == "__init__.py" else name.rpartition(".")[0]))
+    return out
+
+
+def untouched_modules() -> list:
+    """The project's modules no selected test imported (or, with FRICTIONNOISE_CALLED=1, called)."""
+    if _CALLED:
+        return [n for n, p in project_modules().items()
+                if (str(p) not in _called if _defines_functions(p) else n not in sys.modules)]
+    credited = _loaded() - (_state["after_collection"] or set())
+    for f in _state["selected_files"]:
+        credited |= _by_file.get(f, set()) | _imports(Path(f), everywhere=True)
+    credited = _with_imports(credited)
+    return [n for n in project_modules() if n not in credited]
+
+
+def _whole_tier(session) -> bool:
+    cfg = session.config
+    return (cfg.args_source == pytest.Config.ArgsSource.TESTPATHS and not cfg.option.keyword
+            and cfg.option.markexpr in ("", "not slow") and not cfg.option.collectonly)
+
+
+def pytest_sessionfinish(session, exitstatus):
+    if _CALLED:
+        sys.settrace(None)
+        threading.settrace(None)
+    if _whole_tier(session) and exitstatus == 0:
+        missed = untouched_modules()
+        session.config._untouched = missed
+        if missed:
+            session.exitstatus = pytest.ExitCode.TESTS_FAILED
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    missed = getattr(config, "_untouched", None)
+    if missed is None:
+        return
+    how = "called" if _CALLED else "imported"
+    if missed:
+        terminalreporter.write_line(f"modules no selected test {how} ({len(missed)}): {', '.join(missed)}", red=True)
+    else:
+        terminalreporter.write_line(f"every project module ({len(project_modules())}) {how} by a selected test")
