@@ -23,7 +23,7 @@ import pymunk.batch as B
 from . import units as U
 from .scenario import G, Scenario
 from .substrates import substrate_kind
-from .wear import Wear, pad_friction_split
+from .wear import Wear, grain_step, pad_friction_split
 
 __all__ = ["Scene", "corrected_drag", "describe"]
 
@@ -60,7 +60,7 @@ def describe(sc: Scenario) -> dict:
         "response": "viscous" if omega_star > 30 * v / a else "inertial", "length_scale": a,
         "pads": {"N": p.N, "mass": p.mass, "k0": p.k0, "c0": p.c0, "foot_length": p.foot_length},
         "contact_width": p.N * p.foot_length if part.shared else 0.0,
-        "substrate": sc.to_dict()["substrate"],
+        "substrate": sc.to_dict()["substrate"], "grain_step": grain_step(sc),
     }
 
 
@@ -71,8 +71,9 @@ class Scene:
         self.sc = sc
         self.seed = sc.run.seed if seed is None else int(seed)
         p, fr, sub = sc.pads, sc.friction, sc.substrate
-        self.dt = sc.run.dt * U.TIME
-        self.n_sub = int(round(sc.run.dt_out / sc.run.dt))
+        k_g = grain_step(sc)["substeps"]  # grains: run.dt cut so omega_g dt <= 0.6 (engine_sim.wear.grain_step)
+        self.dt = sc.run.dt * U.TIME / k_g
+        self.n_sub = int(round(sc.run.dt_out / sc.run.dt)) * k_g
         space = pymunk.Space()
         space.gravity = (0.0, -G * U.ACCEL)
         space.iterations = sc.run.iterations
