@@ -184,9 +184,9 @@ def load_sweep(path) -> SweepSpec:
     seeds = grid.get("seed", [0])
     if not all(isinstance(x, int) and not isinstance(x, bool) and 0 <= x < 2**63 for x in seeds):
         raise SweepError(f"{path}: grid.seed must be a list of whole numbers >= 0 (got {seeds!r})")
-    bad = sorted(set(analysis) - {"omega_ref", "omega_max"})
+    bad = sorted(set(analysis) - {"omega_ref", "omega_max", "wear"})  # wear = true: compare/wear_study.py's statistics
     if bad:
-        raise SweepError(f"{path}: unknown key {bad[0]!r} in [analysis]; valid names: omega_max, omega_ref")
+        raise SweepError(f"{path}: unknown key {bad[0]!r} in [analysis]; valid names: omega_max, omega_ref, wear")
     ref = analysis.get("omega_ref")
     if ref is not None and not (isinstance(ref, list) and len(ref) == 2 and all(_is_number(x) for x in ref)
                                 and 0 < ref[0] < ref[1]):
@@ -244,7 +244,8 @@ def _build(spec: SweepSpec, params: dict):
         return WearParticleParams(**model), run
     from engine_sim.scenario import load_scenario, scenario_from_dict
     base = load_scenario(spec.scenario).to_dict()
-    for k, v in model.items():
+    from .wear_study import expand_factors  # the wear study's named factors (study.size, study.track)
+    for k, v in expand_factors(model).items():
         sec, _, key = k.partition(".")
         if not key or sec not in base or not isinstance(base[sec], dict):
             raise ValueError(f"scenario parameter {k!r} must be written section.key, e.g. drive.v")
@@ -261,6 +262,7 @@ def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
     from .spectra import displacement_spectrum, log_bin
 
     t0 = time.perf_counter()
+    extra = {}
     try:
         obj, run = _build(spec, params)
         if spec.target == "model_I":
@@ -283,6 +285,9 @@ def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
             tr = engine_sim.run(obj, seed=seed)
             v = obj.steady_velocity
             band = (3 * v / obj.substrate.a, 30 * v / obj.substrate.a)
+            if spec.analysis.get("wear"):  # the wear study's per-task statistics (issue 17)
+                from .wear_study import task_stats
+                extra["wear"] = task_stats(tr, obj, band)
         spec_x = displacement_spectrum(tr.t, tr.x)
         if band is not None and band[1] < 2 * band[0]:
             band = None  # the model's own band has closed (e.g. v/a near omega_c): use the automatic one
@@ -293,7 +298,7 @@ def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
         lb = log_bin(spec_x, 20)
         return {"params": params, "seed": seed, "v": v, "omega": lb.omega.tolist(), "C": lb.C.tolist(),
                 "n_avg": lb.n_avg.tolist(), "fit": fit, "wall_s": time.perf_counter() - t0,
-                "mean_velocity": float((tr.x[-1] - tr.x[0]) / (tr.t[-1] - tr.t[0]))}
+                "mean_velocity": float((tr.x[-1] - tr.x[0]) / (tr.t[-1] - tr.t[0])), **extra}
     except Exception as e:  # reported with its parameters; the sweep goes on
         return {"params": params, "seed": seed, "error": f"{type(e).__name__}: {e}", "wall_s": time.perf_counter() - t0}
 

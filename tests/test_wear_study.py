@@ -1,0 +1,73 @@
+"""The wear study (issue 17, item 3): its factors, its per-cell statistics on cases with exact answers, and its
+sweep files; the slow check that a cell with particles reads the slope measured against its twin."""
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from compare.sweep import SweepError, expand, load_sweep
+from compare.wear_study import _mean_interval, cells, expand_factors
+
+SWEEPS = Path(__file__).resolve().parents[1] / "scenarios" / "sweeps"
+
+
+def test_factors_stand_for_the_issues_distributions_and_name_bad_values():
+    f = expand_factors({"study.size": "broad", "study.track": "cavities", "wear.count": 5})
+    assert f["wear.sigma"] == 0.8 and f["wear.r_median"] == 50e-6 and f["substrate.pit_p"] == 0.5 and f["wear.count"] == 5
+    p = expand_factors({"study.size": "power"})
+    assert p["wear.distribution"] == "power" and p["wear.exponent"] == 3.0 and (p["wear.r_min"], p["wear.r_max"]) == (20e-6, 200e-6)
+    with pytest.raises(ValueError, match="study.size = 'wide'"):
+        expand_factors({"study.size": "wide"})
+    with pytest.raises(ValueError, match="unknown study factor 'study.colour'"):
+        expand_factors({"study.colour": "red"})
+
+
+def test_interval_is_the_larger_of_seed_scatter_and_fit_intervals():
+    # two seeds 1 and 3: sd sqrt(2), t(0.975, 1 dof) = 12.706: half-width 12.706 sqrt(2) / sqrt(2) = 12.706
+    m, half, seeds, fits = _mean_interval([1.0, 3.0], [0.1, 0.1])
+    assert m == 2.0 and seeds == pytest.approx(12.7062, rel=1e-4) and half == seeds
+    # identical seeds: the fits' intervals combined over the mean, sqrt(0.3^2 + 0.4^2) / 2 = 0.25
+    m, half, seeds, fits = _mean_interval([4.0, 4.0], [0.3, 0.4])
+    assert seeds == 0.0 and half == pytest.approx(0.25)
+
+
+def _task(count, size, track, seed, gamma, err, cx, cfg=None, b2=None):
+    w = {"count": count, "fit_x": {"gamma": gamma, "gamma_err": err, "power_law": True}, "Cx_bands": cx,
+         "energy_balance_rel": 0.001, "energy_flag": False, "wall_per_sim_s": 1.0, "grain_step": {"substeps": 4},
+         "fit_CF_friction": {"gamma": 2.0, "gamma_err": 0.1}}
+    if count:
+        w.update({"CFg_bands": cfg, "B2_bands": b2, "trapped_frac": 0.1, "moving_frac": 0.2, "covered_fraction": 0.01,
+                  "F_g_mean": 0.2, "left_interface": 0, "grain_overlap_max_m": 1e-6,
+                  "fit_CF_grains": {"gamma": 1.5, "gamma_err": 0.2}})
+    return {"params": {"wear.count": count, "study.size": size, "study.track": track}, "seed": seed,
+            "fit": {"gamma": 0.0, "gamma_err": 1.0}, "wear": w}
+
+
+def test_cells_pair_each_seed_with_its_twin_on_the_same_track():
+    rs = [_task(0, s, "smooth", k, 4.0 + 0.1 * k, 0.1, [1.0, 1.0, 1.0]) for s in ("narrow", "broad") for k in (0, 1)]
+    rs += [_task(0, "narrow", "cavities", k, 3.0, 0.1, [2.0, 2.0, 2.0]) for k in (0, 1)]
+    rs += [_task(50, "narrow", "smooth", k, 4.5 + 0.1 * k, 0.1, [4.0, 2.0, 1.0], [2.0, 2.0, 2.0], [1.0, 4.0, 2.0]) for k in (0, 1)]
+    rows = {(r["count"], r["size"], r["track"]): r for r in cells(rs)}
+    assert set(rows) == {(0, "-", "smooth"), (0, "-", "cavities"), (50, "narrow", "smooth")}  # twins once per track
+    twin, c = rows[(0, "-", "smooth")], rows[(50, "narrow", "smooth")]
+    assert twin["n"] == 2 and twin["gamma"] == pytest.approx(4.05)
+    assert c["delta_gamma"] == pytest.approx(0.5) and c["delta_gamma_per_seed"] == pytest.approx([0.5, 0.5])
+    assert c["delta_gamma_err"] == pytest.approx(math.hypot(0.1, 0.1) * math.sqrt(2) / 2)  # seeds agree: fits' part
+    assert c["Cx_ratio_bands"] == pytest.approx([4.0, 2.0, 1.0]) and c["B2_ratio_bands"] == pytest.approx([2.0, 0.5, 1.0])
+
+
+def test_study_sweeps_load_with_the_issues_factors():
+    full, quick = load_sweep(SWEEPS / "wear_study.toml"), load_sweep(SWEEPS / "wear_study_quick.toml")
+    assert len(expand(full)) == 7 * 3 * 2 * 4 and full.grid["wear.count"] == [0, 5, 10, 25, 50, 100, 200]
+    assert full.fixed["duration"] >= 30 and full.analysis["wear"] and quick.analysis["wear"]
+
+
+def test_bad_study_factor_in_a_sweep_is_one_line_naming_it(tmp_path):
+    text = (SWEEPS / "wear_study_quick.toml").read_text().replace('"narrow", "broad"', '"narrow", "wide"')
+    text = text.replace('scenario = "../', f'scenario = "{SWEEPS.parent}/')
+    p = tmp_path / "bad.toml"
+    p.write_text(text)
+    with pytest.raises(SweepError, match="study.size = 'wide'") as e:
+        load_sweep(p)
+    assert "\n" not in str(e.value)
