@@ -270,10 +270,14 @@ def answer(rows: list) -> str:
             continue
         up = sum(r["delta_gamma"] - r["delta_gamma_err"] > 0 for r in rs)
         down = sum(r["delta_gamma"] + r["delta_gamma_err"] < 0 for r in rs)
+        pooled = [d for r in rs for d in r["delta_gamma_per_seed"]]
+        pm, pi, _, _ = _mean_interval(pooled, [0.0] * len(pooled))
         big = max(rs, key=lambda r: r["count"])
         parts.append(f"On the {track} track (no particles: gamma {z[0]['gamma']:.2f} &plusmn; {z[0]['gamma_err']:.2f}) the "
                      f"particles change gamma by {min(r['delta_gamma'] for r in rs):+.2f} to {max(r['delta_gamma'] for r in rs):+.2f} "
-                     f"over {len(rs)} cells; {up} cells steeper and {down} flatter beyond their 95 % interval; at "
+                     f"over {len(rs)} cells ({sum(r['delta_gamma'] > 0 for r in rs)} of them up), {pm:+.2f} &plusmn; {pi:.2f} "
+                     f"pooled over the cells' {len(pooled)} paired runs (95 %, seed scatter; sizes and counts mixed); "
+                     f"{up} cells steeper and {down} flatter beyond their own 95 % interval; at "
                      f"{big['count']} particles ({big['size']}) {big['delta_gamma']:+.2f} &plusmn; {big['delta_gamma_err']:.2f}, "
                      f"C_x {', '.join(f'{v:.2f}' for v in big['Cx_ratio_bands'])}x the twin's per band.")
     return " ".join(parts) or "No paired cells."
