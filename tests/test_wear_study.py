@@ -87,3 +87,33 @@ def test_substepped_grains_resume_bit_for_bit(tmp_path):
     assert b.metadata["checkpoint_every_s"] == pytest.approx(0.1) and b.metadata["round_trips_s"] is not None
     for name in ("x", "F_t", "p_force", "p_state", "particle_penetration", "work_drive"):
         assert np.array_equal(getattr(a, name), getattr(b, name)), name
+
+
+# The slow check (issue 17, "must show"): one cell with particles against its particle-free twin (same track,
+# substrate and seed), through the sweep's own task (compare.sweep.run_task with the wear hook), 12 s each.
+_CELL = {"wear.count": 25, "study.size": "narrow", "study.track": "smooth"}
+_CELL_T = 12.0
+
+
+def _paired_rise(seed=0):
+    from compare.sweep import SweepSpec, run_task
+
+    spec = SweepSpec(name="wear_cell", target="scenario", fixed={"duration": _CELL_T, "run.warmup": 0.5}, grid={},
+                     analysis={"wear": True}, scenario=str(SWEEPS.parent / "pads_with_wear_study.toml"))
+    cell = run_task(spec, {**spec.fixed, **_CELL}, seed)
+    twin = run_task(spec, {**spec.fixed, **_CELL, "wear.count": 0}, seed)
+    assert "error" not in cell and "error" not in twin, (cell.get("error"), twin.get("error"))
+    g, g0 = cell["wear"]["fit_x"], twin["wear"]["fit_x"]
+    return g["gamma"] - g0["gamma"], math.hypot(g["gamma_err"], g0["gamma_err"]), cell, twin
+
+
+@pytest.mark.slow
+def test_cell_with_particles_against_its_twin():
+    d, err, cell, twin = _paired_rise()
+    print(f"\n25 narrow grains, smooth track, seed 0, {_CELL_T:g} s: gamma {cell['wear']['fit_x']['gamma']:.3f} +- "
+          f"{cell['wear']['fit_x']['gamma_err']:.3f}, twin {twin['wear']['fit_x']['gamma']:.3f} +- "
+          f"{twin['wear']['fit_x']['gamma_err']:.3f}: rise {d:+.3f} +- {err:.3f} (95 %); "
+          f"energy {100 * cell['wear']['energy_balance_rel']:+.3f} %")
+    assert abs(cell["wear"]["energy_balance_rel"]) < 0.01 and cell["wear"]["left_interface"] == 0
+    assert 3.6 < twin["wear"]["fit_x"]["gamma"] < 4.4  # the base scene at omega^-4 (60 s x 3 seeds: 4.00 +- 0.05)
+    assert d - err > 0, f"measured steeper; now {d:+.3f} +- {err:.3f}"  # MEASURED: filled in below
