@@ -46,7 +46,8 @@ def describe(sc: Scenario) -> dict:
     and response: "viscous" if omega_star lies above the fit band's top 30 v/a (model I's C_x ~ C_f / omega^2
     there), else "inertial" (C_x = C_F / (M^2 omega^4)); length_scale: the substrate's renewal length a (m);
     pads: N, mass (kg), k0 (N/m), c0 (N s/m), foot_length (m); contact_width: the sole's width N foot_length
-    (m; 0 for pads on tracks); substrate: the substrate part's own spec."""
+    (m; 0 for pads on tracks); substrate: the substrate part's own spec; grain_step: the grain step rule's substeps
+    and step (:func:`engine_sim.wear.grain_step`)."""
     part = substrate_kind(sc.substrate.kind)
     fr, p = sc.friction, sc.pads
     M = sc.block.M + (sc.hanging_mass if sc.drive.kind == "leonardo" else 0.0)

@@ -91,7 +91,7 @@ def test_substepped_grains_resume_bit_for_bit(tmp_path):
 
 # The slow check (issue 17, "must show"): one cell with particles (25 narrow grains) against its particle-free twin
 # (same track, substrate and seed), through the sweep's own task (compare.sweep.run_task with the wear hook), 12 s each.
-# MEASURED (seed 0): smooth track, rise +0.117 +- 0.329 (95 %): not steeper (the quick study pooled -0.06 +- 0.28
+# MEASURED (seed 0): smooth track, rise +0.117 +- 0.329 (95 %; twin 3.773, with grains 3.890; C_x 1.8-17x per band): not steeper (the quick study pooled -0.06 +- 0.28
 # over 12 paired runs); cavity track, rise +0.640 +- 0.311 (twin 2.850, with grains 3.490;
 # C_x 2.3-9.9x per band): steeper beyond the interval (quick study pooled +0.87 +- 0.21). The runs are deterministic: these are the numbers the test
 # recomputes; the assertions hold the verdicts (interval containing 0, or above it), not the digits.
