@@ -42,6 +42,7 @@ def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
     from .spectra import displacement_spectrum, log_bin
 
     t0 = time.perf_counter()
+    extra = {}
     try:
         obj, run = build_point(spec, params)
         if spec.target == "model_I":
@@ -64,6 +65,9 @@ def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
             tr = engine_sim.run(obj, seed=seed)
             v = obj.steady_velocity
             band = (3 * v / obj.substrate.a, 30 * v / obj.substrate.a)
+            if spec.analysis.get("wear"):  # the wear study's per-task statistics (issue 17)
+                from .wear_study import task_stats
+                extra["wear"] = task_stats(tr, obj, band)
         spec_x = displacement_spectrum(tr.t, tr.x)
         if band is not None and band[1] < 2 * band[0]:
             band = None  # the model's own band has closed (e.g. v/a near omega_c): use the automatic one
@@ -74,7 +78,7 @@ def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
         lb = log_bin(spec_x, 20)
         return {"params": params, "seed": seed, "v": v, "omega": lb.omega.tolist(), "C": lb.C.tolist(),
                 "n_avg": lb.n_avg.tolist(), "fit": fit, "wall_s": time.perf_counter() - t0,
-                "mean_velocity": float((tr.x[-1] - tr.x[0]) / (tr.t[-1] - tr.t[0]))}
+                "mean_velocity": float((tr.x[-1] - tr.x[0]) / (tr.t[-1] - tr.t[0])), **extra}
     except Exception as e:  # reported with its parameters; the sweep goes on
         return {"params": params, "seed": seed, "error": f"{type(e).__name__}: {e}", "wall_s": time.perf_counter() - t0}
 

@@ -41,6 +41,10 @@ def build_sweep_report(spec, results: list, failures: list):
         text += table("Failed tasks (rerun the sweep to retry them)", ["parameters", "seed", "error"],
                       [[esc(json.dumps(f["params"])), str(f["seed"]), esc(f["error"])] for f in failures])
     out = [StudyResult("results", f"Sweep {spec.name} ({spec.target})", {}, html=text)]
+    if spec.analysis.get("wear"):  # issue 17: the wear study's cells, figure and answer (compare/wear_study.py)
+        from .wear_study import study_sections
+        sections, summary["wear_study"] = study_sections(spec, results)
+        out += sections
     vs = sorted({float(r["v"]) for r in results}) if results and all("v" in r for r in results) else []
     if "v" in keys and len(vs) >= 2:
         a = spec.analysis

@@ -176,9 +176,9 @@ def load_sweep(path) -> SweepSpec:
     seeds = grid.get("seed", [0])
     if not all(isinstance(x, int) and not isinstance(x, bool) and 0 <= x < 2**63 for x in seeds):
         raise SweepError(f"{path}: grid.seed must be a list of whole numbers >= 0 (got {seeds!r})")
-    bad = sorted(set(analysis) - {"omega_ref", "omega_max"})
+    bad = sorted(set(analysis) - {"omega_ref", "omega_max", "wear"})  # wear = true: compare/wear_study.py's statistics
     if bad:
-        raise SweepError(f"{path}: unknown key {bad[0]!r} in [analysis]; valid names: omega_max, omega_ref")
+        raise SweepError(f"{path}: unknown key {bad[0]!r} in [analysis]; valid names: omega_max, omega_ref, wear")
     ref = analysis.get("omega_ref")
     if ref is not None and not (isinstance(ref, list) and len(ref) == 2 and all(_is_number(x) for x in ref)
                                 and 0 < ref[0] < ref[1]):
@@ -236,7 +236,8 @@ def build_point(spec: SweepSpec, params: dict):
         return WearParticleParams(**model), run
     from engine_sim.scenario import load_scenario, scenario_from_dict
     base = load_scenario(spec.scenario).to_dict()
-    for k, v in model.items():
+    from .wear_study import expand_factors  # the wear study's named factors (study.size, study.track)
+    for k, v in expand_factors(model).items():
         sec, _, key = k.partition(".")
         if not key or sec not in base or not isinstance(base[sec], dict):
             raise ValueError(f"scenario parameter {k!r} must be written section.key, e.g. drive.v")

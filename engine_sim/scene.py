@@ -23,7 +23,7 @@ import pymunk.batch as B
 from . import units as U
 from .scenario import G, Scenario
 from .substrates import substrate_kind
-from .wear import Wear, pad_friction_split
+from .wear import Wear, grain_step, pad_friction_split
 
 __all__ = ["Scene", "corrected_drag", "describe"]
 
@@ -46,7 +46,8 @@ def describe(sc: Scenario) -> dict:
     and response: "viscous" if omega_star lies above the fit band's top 30 v/a (model I's C_x ~ C_f / omega^2
     there), else "inertial" (C_x = C_F / (M^2 omega^4)); length_scale: the substrate's renewal length a (m);
     pads: N, mass (kg), k0 (N/m), c0 (N s/m), foot_length (m); contact_width: the sole's width N foot_length
-    (m; 0 for pads on tracks); substrate: the substrate part's own spec."""
+    (m; 0 for pads on tracks); substrate: the substrate part's own spec; grain_step: the grain step rule's substeps
+    and step (:func:`engine_sim.wear.grain_step`)."""
     part = substrate_kind(sc.substrate.kind)
     fr, p = sc.friction, sc.pads
     M = sc.block.M + (sc.hanging_mass if sc.drive.kind == "leonardo" else 0.0)
@@ -60,7 +61,7 @@ def describe(sc: Scenario) -> dict:
         "response": "viscous" if omega_star > 30 * v / a else "inertial", "length_scale": a,
         "pads": {"N": p.N, "mass": p.mass, "k0": p.k0, "c0": p.c0, "foot_length": p.foot_length},
         "contact_width": p.N * p.foot_length if part.shared else 0.0,
-        "substrate": sc.to_dict()["substrate"],
+        "substrate": sc.to_dict()["substrate"], "grain_step": grain_step(sc),
     }
 
 
@@ -71,8 +72,9 @@ class Scene:
         self.sc = sc
         self.seed = sc.run.seed if seed is None else int(seed)
         p, fr, sub = sc.pads, sc.friction, sc.substrate
-        self.dt = sc.run.dt * U.TIME
-        self.n_sub = int(round(sc.run.dt_out / sc.run.dt))
+        k_g = grain_step(sc)["substeps"]  # grains: run.dt cut so omega_g dt <= 0.6 (engine_sim.wear.grain_step)
+        self.dt = sc.run.dt * U.TIME / k_g
+        self.n_sub = int(round(sc.run.dt_out / sc.run.dt)) * k_g
         space = pymunk.Space()
         space.gravity = (0.0, -G * U.ACCEL)
         space.iterations = sc.run.iterations

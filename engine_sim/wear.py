@@ -25,13 +25,19 @@ import pymunk
 
 from . import units as U
 
-__all__ = ["WearSpec", "check_wear", "draw_radii", "pad_friction_split", "Wear"]
+__all__ = ["WearSpec", "check_wear", "draw_radii", "grain_step", "pad_friction_split", "Wear"]
 
 # No continuous collision detection in pymunk: a particle crosses a surface once v dt exceeds about 1.2 radii
 # (DESIGN.md). Particles are held to WEAR_SPEED_FACTOR x the sliding speed x dt < WEAR_TUNNEL_FRACTION r_min;
 # the tracks' segment radius (50 um by default) adds to the margin.
 WEAR_SPEED_FACTOR = 10.0
 WEAR_TUNNEL_FRACTION = 0.25
+# The grain step rule (issue 17; benchmarks/results/wear_convergence.md): a grain of mass m_g squeezed by a pad feels
+# the pad's springs, omega_g = sqrt((k0 + k_normal) / m_g). Every grain run measured with omega_g dt <= 0.65 closed
+# the energy balance within 0.5 % (the clean branch); every one with omega_g dt >= 0.81 chattered (residual 2.4-8 %,
+# grains sunk into the track at 1e-6 kg), whatever the solver iterations. The step is cut into substeps so that
+# omega_g dt <= GRAIN_OMEGA_DT for the lightest grain.
+GRAIN_OMEGA_DT = 0.6
 
 
 @dataclass(frozen=True)
@@ -112,6 +118,31 @@ def draw_radii(spec, n: int, rng: np.random.Generator) -> np.ndarray:
     if abs(a) < 1e-12:
         return lo * (hi / lo) ** u
     return (lo**a + u * (hi**a - lo**a)) ** (1.0 / a)
+
+
+def lightest_grain_mass(spec) -> float:
+    """The lightest grain's mass (kg): the smallest disc (r_min, 1 mm deep) or ``min_mass`` if larger."""
+    return max(spec.density * math.pi * spec.r_min**2 * _DEPTH, spec.min_mass)
+
+
+def grain_step(sc) -> dict:
+    """The pymunk step of a scene with grains, derived here and only here (the scene and the trace metadata read it).
+
+    With omega_g = sqrt((k0 + k_normal) / m_g) for the lightest grain (the pad's tangential and normal springs acting
+    on a grain squeezed under it), the scenario's ``run.dt`` is cut into ``substeps`` equal steps, the fewest with
+    omega_g dt / substeps <= GRAIN_OMEGA_DT (0.6). Without grains: one substep. The substeps are fixed for the whole
+    run (not switched on contact), so a run stays one deterministic sequence of equal steps and continues exactly
+    across epochs and checkpoints. Returns {"substeps", "dt_step" [s], "omega_g" [rad/s], "omega_g_dt" (per
+    substep), "m_grain" [kg], "omega_dt_max"}."""
+    dt = sc.run.dt
+    if not sc.wear.count:
+        return {"substeps": 1, "dt_step": dt, "omega_g": None, "omega_g_dt": None, "m_grain": None,
+                "omega_dt_max": GRAIN_OMEGA_DT}
+    m = lightest_grain_mass(sc.wear)
+    omega = math.sqrt((sc.pads.k0 + sc.pads.k_normal) / m)
+    n = max(1, math.ceil(omega * dt / GRAIN_OMEGA_DT * (1 - 1e-12)))
+    return {"substeps": n, "dt_step": dt / n, "omega_g": omega, "omega_g_dt": omega * dt / n, "m_grain": m,
+            "omega_dt_max": GRAIN_OMEGA_DT}
 
 
 def pad_friction_split(mu0: float, mu_pad: float, mu_track: float) -> tuple[float, float]:

@@ -1,0 +1,283 @@
+"""The wear study (issue 17, item 3): do wear particles steepen an omega^-4 spectrum, as section 10 of Xu, Zhou &
+Persson (Soft Matter 21, 7594, 2025) proposes, and do cavities reduce their effect (section 11)?
+
+Three parts, used by :mod:`compare.sweep` through a few-line hook (a sweep with ``[analysis] wear = true``):
+
+- :func:`expand_factors`: the study's named factors in a sweep grid, ``study.size`` (narrow, broad, power) and
+  ``study.track`` (smooth, cavities), written as the scenario fields they stand for;
+- :func:`task_stats`: what one scenario task returns beside its C_x fit: C_x band levels (3 log bands over the fit
+  band, 3-30 v/a), the exponents of C_F for the grains' summed force on the pads and for the pads' whole friction
+  force, the time fractions trapped and moving, the covered length fraction, model II (eq. B2) built from the
+  task's own episodes against the grains' measured C_F per band, the energy residual (flagged above 1 %), the grain
+  step rule, the cost;
+- :func:`cells` and :func:`study_sections`: per cell (count, size, track) over seeds, gamma with its 95 % interval,
+  the rise of gamma against the particle-free twin (same track and seed) with its interval, the C_x level against
+  the twin, model II per cell; the figure gamma against concentration, one curve per size, one panel per track.
+
+Pure numerics except the figure (drawn through :mod:`compare.plots`' canvas).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["SIZES", "TRACKS", "expand_factors", "task_stats", "cells", "study_sections"]
+
+# Issue 17's size distributions: radii (m) in [20, 200] um; r_min = 20 um is the tunnelling limit at dt = 1e-4 s.
+SIZES = {
+    "narrow": {"wear.distribution": "lognormal", "wear.r_median": 50e-6, "wear.sigma": 0.2, "wear.r_min": 20e-6,
+               "wear.r_max": 200e-6},
+    "broad": {"wear.distribution": "lognormal", "wear.r_median": 50e-6, "wear.sigma": 0.8, "wear.r_min": 20e-6,
+              "wear.r_max": 200e-6},
+    "power": {"wear.distribution": "power", "wear.exponent": 3.0, "wear.r_min": 20e-6, "wear.r_max": 200e-6},
+}
+# Track types: smooth patches (the base scene, gamma 4.00 +- 0.05 without particles) or a flat-bottomed cavity in
+# every other patch (the scenario's pit widths and depth; 2.89 +- 0.05 without particles), measured in
+# benchmarks/results/wear_base_scene.md.
+TRACKS = {"smooth": {"substrate.pit_p": 0.0}, "cavities": {"substrate.pit_p": 0.5}}
+_FACTORS = {"study.size": SIZES, "study.track": TRACKS}
+N_BANDS = 3  # log bands of C_x and C_F over the fit band
+
+
+def expand_factors(model: dict) -> dict:
+    """Scenario parameters with ``study.size`` and ``study.track`` replaced by the fields they stand for.
+    Raises ValueError naming the factor for an unknown value or key."""
+    out = {}
+    for k, v in model.items():
+        if k.startswith("study."):
+            table = _FACTORS.get(k)
+            if table is None:
+                raise ValueError(f"unknown study factor {k!r}; valid: {', '.join(sorted(_FACTORS))}")
+            if v not in table:
+                raise ValueError(f"{k} = {v!r}: valid values are {', '.join(table)}")
+            out.update(table[v])
+        else:
+            out[k] = v
+    return out
+
+
+def _fit(spec, band):
+    from .fits import fit_power_law
+    try:
+        f = fit_power_law(spec, band=band)
+        return {"gamma": f.gamma, "gamma_err": f.gamma_err, "power_law": f.power_law}
+    except ValueError as e:
+        return {"error": str(e)}
+
+
+def _nperseg(n: int) -> int:
+    """Welch segment length: the pipeline's default, raised to 2^floor(log2(n / 2)) up to 2048 samples, so a short
+    run (3 s at 1 ms) resolves the band's bottom (3 v/a = 15 rad/s needs segments of 0.42 s or more). The gamma fit
+    itself is Whittle's, on the raw periodogram, whatever the segment length."""
+    from ._estimators import _default_nperseg
+    return max(_default_nperseg(n), min(2048, 2 ** int(math.floor(math.log2(max(n, 2) / 2)))))
+
+
+def task_stats(tr, sc, band) -> dict:
+    """One scenario task's wear statistics (JSON-ready, SI): see the module docstring. ``band`` (rad/s) is the
+    task's C_x fit band; the C_F exponents are fitted over it too (C_F ~ omega^-exponent)."""
+    from .spectra import band_average, displacement_spectrum, force_series_spectrum
+    from .studies._common import balances
+    from .wear import episodes, model_II_from_episodes
+
+    edges = np.logspace(np.log10(band[0]), np.log10(band[1]), N_BANDS + 1)
+    nper = _nperseg(tr.t.size)
+    sx = displacement_spectrum(tr.t, tr.x, nperseg=nper)
+    sf = force_series_spectrum(tr.t, tr.F_t, nperseg=nper)
+    bal = balances(tr)
+    gs = tr.metadata["scene"].get("grain_step", {})
+    w = sc.wear
+    out = {"edges": edges.tolist(), "Cx_bands": band_average(sx, edges).tolist(), "fit_x": _fit(sx, band),
+           "nperseg": nper, "fit_CF_friction": _fit(sf, band),
+           "energy_balance_rel": bal["energy_balance_rel"], "energy_flag": bool(abs(bal["energy_balance_rel"]) > 0.01),
+           "force_balance_rel": bal["force_balance_rel"], "count": int(w.count), "grain_step": gs,
+           "wall_per_sim_s": float(tr.metadata["wall_s"]) / (sc.run.duration + sc.run.warmup)}
+    if tr.p_force.shape[1] == 0:
+        return out
+    Fg = tr.p_force.sum(axis=1)
+    sg = force_series_spectrum(tr.t, Fg, nperseg=nper)
+    dt_out = float(tr.t[1] - tr.t[0])
+    ep = episodes(tr.p_state, tr.p_force, dt_out)
+    pred = model_II_from_episodes(ep, float(tr.t[-1] - tr.t[0]), sg.omega)
+    radii = np.asarray(tr.metadata["wear"]["radii_m"])
+    out.update({
+        "fit_CF_grains": _fit(sg, band), "CFg_bands": band_average(sg, edges).tolist(),
+        "B2_bands": band_average(sg, edges, pred).tolist(), "F_g_mean": float(Fg.mean()),
+        "trapped_frac": float(np.mean(tr.p_state == 1)), "moving_frac": float(np.mean(tr.p_state == 2)),
+        # grains' summed diameters over the length of the tracks' windows they live in (behind + ahead of each pad)
+        "covered_fraction": float(2 * radii.sum() / (sc.pads.N * (w.ahead + w.behind))),
+        "grain_overlap_max_m": float(tr.particle_penetration.max()),
+        "left_interface": int(tr.metadata["wear"]["left_interface"]), "episodes": int(ep["tau"].size),
+    })
+    return out
+
+
+def _t95(n: int) -> float:
+    from scipy.stats import t
+    return float(t.ppf(0.975, n - 1)) if n > 1 else float("inf")
+
+
+def _mean_interval(x, errs):
+    """Mean of per-seed values and its 95 % half-width: the larger of the seed scatter's (t quantile) and the
+    per-seed intervals' (errs, 95 % each, combined in quadrature over the mean)."""
+    x, errs = np.asarray(x, float), np.asarray(errs, float)
+    n = x.size
+    fit_part = float(np.sqrt(np.sum(errs**2)) / n)
+    seed_part = _t95(n) * float(x.std(ddof=1)) / math.sqrt(n) if n > 1 else float("nan")
+    return float(x.mean()), max(fit_part, seed_part) if n > 1 else fit_part, seed_part, fit_part
+
+
+def _key(r):
+    p = r["params"]
+    return (int(p.get("wear.count", r["wear"]["count"])), p.get("study.size", "-"), p.get("study.track", "-"))
+
+
+def cells(results: list) -> list:
+    """Per cell (count, size, track): seeds, gamma and its interval, the rise against the particle-free twin (same
+    track and seed, paired), the C_x level against the twin per band (paired ratio, geometric mean over seeds),
+    C_F exponents, fractions, model II (grains' C_F / B2 per band, geometric mean over seeds), energy flags, cost."""
+    ok = [dict(r, fit=r["wear"]["fit_x"]) for r in results if "gamma" in r.get("wear", {}).get("fit_x", {})]
+    twins = {}
+    for r in ok:
+        c, _, track = _key(r)
+        if c == 0:
+            twins.setdefault((track, r["seed"]), r)
+    by = {}
+    for r in ok:
+        c, size, track = _key(r)
+        key = (0, "-", track) if c == 0 else (c, size, track)  # the twin is one run per track and seed, whatever the size
+        if c == 0 and any(x["seed"] == r["seed"] for x in by.get(key, [])):
+            continue
+        by.setdefault(key, []).append(r)
+    out = []
+    for (count, size, track), rs in sorted(by.items(), key=lambda kv: (kv[0][2], kv[0][1], kv[0][0])):
+        rs = sorted(rs, key=lambda r: r["seed"])
+        g, ge = [r["fit"]["gamma"] for r in rs], [r["fit"]["gamma_err"] for r in rs]
+        gm, gi, g_seed, g_fit = _mean_interval(g, ge)
+        row = {"count": count, "size": size, "track": track, "seeds": [r["seed"] for r in rs], "n": len(rs),
+               "gamma": gm, "gamma_err": gi, "gamma_err_seeds": g_seed, "gamma_err_fits": g_fit,
+               "gamma_per_seed": g, "flagged_fits": sum(not r["fit"].get("power_law", True) for r in rs),
+               "energy_resid_max": max(abs(r["wear"]["energy_balance_rel"]) for r in rs),
+               "energy_flagged": sum(r["wear"]["energy_flag"] for r in rs),
+               "wall_per_sim_s": float(np.mean([r["wear"]["wall_per_sim_s"] for r in rs])),
+               "substeps": rs[0]["wear"]["grain_step"].get("substeps")}
+        for name in ("fit_CF_friction", "fit_CF_grains"):
+            fs = [r["wear"].get(name, {}) for r in rs]
+            if all("gamma" in f for f in fs):
+                m, i, _, _ = _mean_interval([f["gamma"] for f in fs], [f["gamma_err"] for f in fs])
+                row[name] = {"exponent": m, "err": i}
+        paired = [(r, twins.get((track, r["seed"]))) for r in rs]
+        paired = [(r, t) for r, t in paired if t is not None]
+        if count > 0 and paired:
+            d = [r["fit"]["gamma"] - t["fit"]["gamma"] for r, t in paired]
+            de = [math.hypot(r["fit"]["gamma_err"], t["fit"]["gamma_err"]) for r, t in paired]
+            dm, di, d_seed, d_fit = _mean_interval(d, de)
+            ratio = np.exp(np.mean([np.log(np.asarray(r["wear"]["Cx_bands"]) / np.asarray(t["wear"]["Cx_bands"]))
+                                    for r, t in paired], axis=0))
+            row.update({"delta_gamma": dm, "delta_gamma_err": di, "delta_gamma_err_seeds": d_seed,
+                        "delta_gamma_err_fits": d_fit, "delta_gamma_per_seed": d, "Cx_ratio_bands": ratio.tolist()})
+        if count > 0:
+            row["B2_ratio_bands"] = np.exp(np.mean([np.log(np.asarray(r["wear"]["CFg_bands"]) / np.asarray(r["wear"]["B2_bands"]))
+                                                    for r in rs], axis=0)).tolist()
+            for q in ("trapped_frac", "moving_frac", "covered_fraction", "F_g_mean"):
+                row[q] = float(np.mean([r["wear"][q] for r in rs]))
+            row["left_interface"] = sum(r["wear"]["left_interface"] for r in rs)
+            row["grain_overlap_max_m"] = max(r["wear"]["grain_overlap_max_m"] for r in rs)
+        out.append(row)
+    return out
+
+
+def gamma_figure(rows: list):
+    """gamma against particle count per 30 pads: one panel per track, one curve per size distribution; the
+    particle-free twin as a shaded band (its mean and 95 % interval)."""
+    from . import plots
+
+    tracks = [t for t in TRACKS if any(r["track"] == t for r in rows)] or sorted({r["track"] for r in rows})
+    fig = plots._figure(4.2 * len(tracks), 3.8)
+    axes = fig.subplots(1, len(tracks), sharey=True, squeeze=False)[0]
+    for ax, track in zip(axes, tracks):
+        zero = [r for r in rows if r["track"] == track and r["count"] == 0]
+        if zero:
+            z = zero[0]
+            ax.axhspan(z["gamma"] - z["gamma_err"], z["gamma"] + z["gamma_err"], color="0.85", zorder=0)
+            ax.axhline(z["gamma"], color="0.4", lw=1, label=f"no particles: {z['gamma']:.2f} ± {z['gamma_err']:.2f}")
+        for i, size in enumerate(s for s in SIZES if any(r["size"] == s and r["count"] > 0 for r in rows)):
+            rs = sorted((r for r in rows if r["track"] == track and r["size"] == size and r["count"] > 0), key=lambda r: r["count"])
+            if not rs:
+                continue
+            x = np.array([r["count"] for r in rs]) * (1 + 0.04 * (i - 1))  # offsets keep the error bars apart
+            ax.errorbar(x, [r["gamma"] for r in rs], yerr=[r["gamma_err"] for r in rs], marker="o", capsize=3, label=size)
+        ax.set_xscale("log")
+        counts = sorted({r["count"] for r in rows if r["count"] > 0})
+        ax.set_xticks(counts, labels=[str(c) for c in counts])
+        ax.minorticks_off()
+        ax.set_xlabel("particles per 30 pads")
+        ax.set_title(f"track: {track}")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+    axes[0].set_ylabel(r"$\gamma$ (C$_x \sim \omega^{-\gamma}$, 3-30 v/a)")
+    fig.tight_layout()
+    return fig
+
+
+def _fmt(x, e, nd=2):
+    return f"{x:.{nd}f} &plusmn; {e:.{nd}f}" if x is not None and e is not None and np.isfinite(e) else "-"
+
+
+def study_sections(spec, results: list):
+    """(StudyResult list, summary dict) for a wear-study sweep: the cell table, the figure, one paragraph of numbers."""
+    from . import plots
+    from .html import paragraphs, table
+    from .study import Figure, StudyResult
+
+    rows = cells(results)
+    if not rows:
+        return [], {"cells": []}
+    hdr = ["track", "size", "count", "seeds", "gamma (95 %)", "rise vs twin (95 %)", "C_x / twin per band",
+           "C_F grains exp.", "C_F friction exp.", "trapped / moving", "covered", "grains' C_F / B2 per band",
+           "energy resid. max", "wall s / sim s"]
+    body = []
+    for r in rows:
+        cg, cf = r.get("fit_CF_grains"), r.get("fit_CF_friction")
+        body.append([r["track"], r["size"] if r["count"] else "-", str(r["count"]), str(r["n"]),
+                     _fmt(r["gamma"], r["gamma_err"]) + (f" ({r['flagged_fits']} flagged)" if r["flagged_fits"] else ""),
+                     _fmt(r.get("delta_gamma"), r.get("delta_gamma_err")),
+                     ", ".join(f"{v:.2f}" for v in r.get("Cx_ratio_bands", [])) or "-",
+                     _fmt(cg["exponent"], cg["err"]) if cg else "-", _fmt(cf["exponent"], cf["err"]) if cf else "-",
+                     f"{r['trapped_frac']:.3f} / {r['moving_frac']:.3f}" if "trapped_frac" in r else "-",
+                     f"{r['covered_fraction']:.3f}" if "covered_fraction" in r else "-",
+                     ", ".join(f"{v:.2f}" for v in r.get("B2_ratio_bands", [])) or "-",
+                     f"{100 * r['energy_resid_max']:.2f} %" + (" (> 1 %: flagged)" if r["energy_flagged"] else ""),
+                     f"{r['wall_per_sim_s']:.2f}"])
+    rise = [r for r in rows if "delta_gamma" in r]
+    text = paragraphs([answer(rows)]) + table("Wear study cells", hdr, body)
+    fig = gamma_figure(rows)
+    figs = (Figure("wear_study_gamma", plots.figure_png_bytes(fig),
+                   "gamma against the particle count per 30 pads, one curve per size distribution, one panel per track; "
+                   "the grey band is the particle-free twin (mean and 95 % interval)."),)
+    summary = {"cells": rows, "answer": answer(rows), "n_rises": len(rise)}
+    return [StudyResult("wear_study", f"Wear study ({spec.name}): does debris steepen the spectrum?", summary, figs, text)], summary
+
+
+def answer(rows: list) -> str:
+    """The paper's question answered in numbers: the rise of gamma per track, its range and how many cells exclude 0."""
+    parts = []
+    for track in TRACKS:
+        rs = [r for r in rows if r["track"] == track and "delta_gamma" in r]
+        z = [r for r in rows if r["track"] == track and r["count"] == 0]
+        if not rs or not z:
+            continue
+        up = sum(r["delta_gamma"] - r["delta_gamma_err"] > 0 for r in rs)
+        down = sum(r["delta_gamma"] + r["delta_gamma_err"] < 0 for r in rs)
+        pooled = [d for r in rs for d in r["delta_gamma_per_seed"]]
+        pm, pi, _, _ = _mean_interval(pooled, [0.0] * len(pooled))
+        big = max(rs, key=lambda r: r["count"])
+        parts.append(f"On the {track} track (no particles: gamma {z[0]['gamma']:.2f} &plusmn; {z[0]['gamma_err']:.2f}) the "
+                     f"particles change gamma by {min(r['delta_gamma'] for r in rs):+.2f} to {max(r['delta_gamma'] for r in rs):+.2f} "
+                     f"over {len(rs)} cells ({sum(r['delta_gamma'] > 0 for r in rs)} of them up), {pm:+.2f} &plusmn; {pi:.2f} "
+                     f"pooled over the cells' {len(pooled)} paired runs (95 %, seed scatter; sizes and counts mixed); "
+                     f"{up} cells steeper and {down} flatter beyond their own 95 % interval; at "
+                     f"{big['count']} particles ({big['size']}) {big['delta_gamma']:+.2f} &plusmn; {big['delta_gamma_err']:.2f}, "
+                     f"C_x {', '.join(f'{v:.2f}' for v in big['Cx_ratio_bands'])}x the twin's per band.")
+    return " ".join(parts) or "No paired cells."
