@@ -209,4 +209,4 @@ def track_rng(scene, i: int):
     return np.random.default_rng(scene.seeds[i])
 
 
-from . import tracks, sole  # noqa: E402,F401
+from . import tracks, sole, micro  # noqa: E402,F401

@@ -23,7 +23,7 @@ class Tracks(Arrangement):
         rs = sc.substrate.segment_radius * U.LENGTH
         dy = p.track_spacing * U.LENGTH
         kn = p.k_normal * U.STIFFNESS
-        load = sc.normal_load_per_pad - p.mass * G  # carried by the normal spring (N)
+        load = self._pad_preload(scene)  # carried by the normal spring (N)
         # pre-compression (mm); the pads rest one collision slop into their tracks, which the rest length absorbs
         pre = load / kn + scene.slop
         x_start = scene.substrate.x_start(scene)
@@ -43,6 +43,10 @@ class Tracks(Arrangement):
             scene.tracks.append(scene.substrate.build(space, yt, flt, track_rng(scene, i), scene.mu_track, x_start))
             self._add_pad(scene, pad, yp, xp, flt, R)
         self._couple(scene)
+
+    def _pad_preload(self, scene):
+        """The force of the pad's normal spring (N): the block's share of the load."""
+        return self.sc.normal_load_per_pad - self.spec.mass * G
 
     def _couple(self, scene):
         """Lateral springs k1 between neighbours, anchored on pad i+1 at pad i's height so they act along x."""
