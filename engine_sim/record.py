@@ -1,6 +1,7 @@
 """Recording a scene at the output rate, in bulk (pymunk.batch), and the trace it produces (SI units).
 
-Per output sample: the block's position and velocity; per pad, the tangential and normal contact force
+Per output sample: the block's position and velocity; per sliding body (the pads, and the micro-pads they may
+carry; ``Scene.sliders``), the tangential and normal contact force
 (arbiter impulse of the last step / dt) and whether it touches its track; the drive's work and the power
 dissipated by the friction law (Coulomb part -f_t v and viscous part c v^2), integrated by trapezoids, and
 the mechanical energy, for the energy balance W_drive (+ W_recycle) = dissipated + change of mechanical energy.
@@ -29,10 +30,10 @@ _COLS = ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "penetration", "power_in",
 @dataclass(frozen=True)
 class EngineTrace:
     """A recorded scene run (SI units). ``t`` [s], ``x`` [m] (block position from its start), ``v`` [m/s];
-    ``F_t``, ``F_n`` [N]: summed tangential and normal contact force on the pads (tangential positive
-    against the sliding direction, i.e. the Coulomb part of the friction law); ``F_drag`` [N]: the viscous
-    part of the law summed over pads (c v_pad, plus b N_pad ln(1 + v_pad/v_c) for the log law), so F_t + F_drag
-    is the whole friction force; ``F_drive`` [N]: the drive's force (for Leonardo's slider the hanging weight); ``pad_force`` [N] (samples x pads), tangential; ``n_contact``: pads
+    ``F_t``, ``F_n`` [N]: summed tangential and normal contact force on the sliding bodies (pads and any micro-pads;
+    tangential positive against the sliding direction, i.e. the Coulomb part of the friction law); ``F_drag`` [N]:
+    the velocity part of the law summed over them (c v, plus b N_pad ln(1 + v/v_c) for the log law), so F_t + F_drag
+    is the whole friction force; ``F_drive`` [N]: the drive's force (for Leonardo's slider the hanging weight); ``pad_force`` [N] (samples x pads), tangential (the N pads only); ``n_contact``: pads
     touching their track; ``n_pairs``: pad-substrate contact pairs (a foot may stand on several asperities); ``penetration`` [m]: the deepest overlap of any pad with its track (pymunk's
     contact distance; 0 when no contact overlaps); ``work_drive``, ``dissipated``, ``mech_energy`` [J] cumulative from the first
     sample; ``work_recycle`` [J]: energy moved into the scene by recycling wear particles (their change of potential

@@ -205,6 +205,15 @@ class Micro(Tracks):
             tr.maintain(b.position.x, self.micro_ahead, self.micro_behind)
 
     # ------------------------------------------------------------------ drawing
+    def view(self, scene):
+        """The first three pads with their micro-pads and micro-tracks, 40 a2 either side of the block."""
+        v = super().view(scene)
+        p = self.spec
+        k = min(3, p.N) - 1
+        low = scene.track_surface[k] - (p.n_micro + 0.5) * p.micro_spacing * U.LENGTH
+        return {**v, "window": 40 * p.micro_a, "ylim": (low, scene.y_block + 4.0), "track_width": 2,
+                "ylabel": "y (mm): pad tracks, each followed by its micro-tracks"}
+
     def draw(self, scene, lo, hi, view):
         shapes = super().draw(scene, lo, hi, view)
         xy = np.array([(b.position.x, b.position.y) for b in self.micro_pads])

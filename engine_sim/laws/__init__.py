@@ -71,9 +71,6 @@ class Law:
         for _ in range(n):
             step(dt)
 
-    def restore(self, scene) -> None:
-        """Re-read what a law keeps of the scene's bodies after unpickling (pymunk ids are addresses)."""
-
 
 def law_kind(name: str):
     """The Law class registered as ``name`` (KeyError if none)."""

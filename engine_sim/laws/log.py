@@ -61,7 +61,7 @@ class Log(Linear):
     def describe(self, load, c):
         return {"law": self.name, "c": c, "b": self.spec.b, "v_c": self.spec.v_c, "load_per_pad": load}
 
-    def restore(self, scene):
+    def _per_body(self, scene):
         """Per body of the space (in the batch's order, read once): b N_pad of the sliding body (scene units), 0
         for the others."""
         rd = B.Buffer()
@@ -71,7 +71,7 @@ class Log(Linear):
         self._bN = np.array([bN.get(int(i), 0.0) for i in ids])
 
     def advance(self, scene, n):
-        self.restore(scene)  # the batch's body order, read once per call as the stepping loop did before parts
+        self._per_body(scene)  # in the batch's body order, read once per call (ids are addresses; order may change)
         vc = self.spec.v_c * U.VELOCITY
         step, dt, space, rd, wr = scene.space.step, scene.dt, scene.space, B.Buffer(), B.Buffer()
         bN = self._bN
