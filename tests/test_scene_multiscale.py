@@ -102,7 +102,10 @@ def test_micro_level_raises_the_top_bands_as_model_Ib_predicts():
     # Same seed, drive, column friction law and macro pads: the scenes differ by the micro level. Model Ib built
     # from each scene's parameters predicts C_x(multiscale) / C_x(patches) of 2-10 between the fit band's top
     # 30 v/a = 150 rad/s and one third of the output Nyquist (1047 rad/s), and below 1 under v/a. The scene must
-    # move the same way: above 1 in every top band, below 1 in the low bands.
+    # move the same way: above 1 in every top band, below 1 in the low bands. Measured (seed 5): 6.1, 8.6, 6.2, 4.3
+    # against model Ib's 7.9, 9.8, 7.0, 4.6 over 150-1047 rad/s (0.77-0.94 of the prediction); 0.08, 0.10 against
+    # 0.10, 0.10 over 4-12 rad/s. Only the direction is asserted: the magnitude is model Ib's to be tested by the
+    # comparison study with the scene's measured parameters.
     ms_sc, pf_sc = (_short(load_scenario(n), duration=8.0, warmup=0.5) for n in (MS, "pads_friction_patches"))
     spec = {n: displacement_spectrum(tr.t, tr.x, nperseg=2**11) for n, tr in
             ((n, engine_sim.run(sc, seed=5)) for n, sc in (("ms", ms_sc), ("pf", pf_sc)))}
