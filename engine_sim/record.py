@@ -40,6 +40,8 @@ class EngineTrace:
     energy minus the kinetic energy taken away); ``p_state`` (samples x particles, int8: 0 idle, 1 trapped,
     2 moving), ``p_force`` [N] (samples x particles): tangential force of each particle on its pad, positive
     against sliding; ``particle_penetration`` [m]: the deepest overlap of any particle with its track (contact distance);
+    ``micro_force`` [N] (samples x micro-pads): tangential contact force of each sliding body beyond the pads (the
+    micro-pads, pad by pad: columns i n .. (i + 1) n - 1 belong to pad i; no columns in other scenes);
     ``metadata``: scenario, seed, version, timings, particle counts."""
 
     t: np.ndarray
@@ -60,6 +62,7 @@ class EngineTrace:
     p_state: np.ndarray
     p_force: np.ndarray
     particle_penetration: np.ndarray
+    micro_force: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
     metadata: dict = field(default_factory=dict)
 
 
@@ -83,6 +86,7 @@ class Recorder:
         # the number of arguments, and this kernel runs every output step)
         self.out = np.empty((n_samples, len(_COLS)))
         self.pad_force = np.empty((n_samples, N))
+        self.micro_force = np.empty((n_samples, len(scene.sliders) - N))
         self.n_contact = np.empty(n_samples, dtype=np.int32)
         self.p_state = np.zeros((n_samples, n_p), dtype=np.int8)
         self.p_force = np.zeros((n_samples, n_p))
@@ -160,7 +164,8 @@ class Recorder:
                 self._part[j, 3] = b.is_sleeping
             self.recycle[k] = sc.wear.recycle_work
         _reduce(ids, fl, ai, af, self._tab, self._part, self._bs, self._pp, self._prm, sc.slider_terms,
-                self._drive_mass, k, self.out, self.pad_force, self.n_contact, self.p_state, self.p_force)
+                self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact, self.p_state,
+                self.p_force)
         self.t[k] = sc.steps * sc.dt / U.TIME
         self.k += 1
 
@@ -185,12 +190,13 @@ class Recorder:
             dissipated=cum(o["power_out"]), mech_energy=(o["mech"] - o["mech"][0]) / U.ENERGY,
             work_recycle=(self.recycle[:n] - self.recycle[0]) / U.ENERGY,
             p_state=self.p_state[:n], p_force=self.p_force[:n] / U.FORCE,
-            particle_penetration=o["p_pen"] / U.LENGTH, metadata=metadata,
+            particle_penetration=o["p_pen"] / U.LENGTH, micro_force=self.micro_force[:n] / U.FORCE, metadata=metadata,
         )
 
 
 @numba.njit(cache=True)
-def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, sl, dm, k, out, pad_force, n_contact, p_state, p_force):
+def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, sl, dm, k, out, pad_force, micro_force, n_contact, p_state,
+            p_force):
     """One sample from the raw batch buffers (scene units): bodies [px, py, vx, vy, w] by id, arbiters
     [a_id, b_id, count] x [Jx, Jy, nx, ny, pax, pay, d1] with J the impulse on body A; contact forces per sliding
     body and per particle, penetrations, powers, mechanical energy. Bodies absent from the buffer are asleep (at
@@ -308,6 +314,8 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, sl, dm, k, out, pad_force, 
         if i < N:
             pad_force[k, i] = -ft[i]
             nc += touch[i]
+        else:
+            micro_force[k, i - N] = -ft[i]
         sft -= ft[i]
         sfn += fn[i]
         vx = P[i, 2]

@@ -88,8 +88,8 @@ def _check_trace_size(sc, n_out: int):
                              "--duration or split the run)")
 
 
-_REC_ARRAYS = ("t", "out", "pad_force", "n_contact", "p_state", "p_force", "recycle")
-_FORMAT = "frictionnoise-checkpoint-3"
+_REC_ARRAYS = ("t", "out", "pad_force", "n_contact", "p_state", "p_force", "recycle", "micro_force")
+_FORMAT = "frictionnoise-checkpoint-4"  # 4: the recorder holds micro_force
 
 
 def _rec_state(rec, k) -> dict:
