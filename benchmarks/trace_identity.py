@@ -33,15 +33,16 @@ def run_in(tree: Path, name: str, duration: float, seed: int, out: Path):
                    cwd=str(tree))
 
 
-def compare(a: Path, b: Path) -> list[str]:
-    """Names of the arrays that differ (or exist in one trace only)."""
+def compare(a: Path, b: Path) -> tuple[list[str], list[str]]:
+    """(names of the common arrays that differ, names of the arrays in one trace only)."""
     A, Bz = np.load(a), np.load(b)
-    bad = sorted(set(A.files) ^ set(Bz.files))
+    only = sorted(set(A.files) ^ set(Bz.files))
+    bad = []
     for k in sorted(set(A.files) & set(Bz.files)):
         x, y = A[k], Bz[k]
         if x.shape != y.shape or x.dtype != y.dtype or not np.array_equal(x, y, equal_nan=x.dtype.kind == "f"):
             bad.append(k)
-    return bad
+    return bad, only
 
 
 def main(argv=None):
@@ -64,9 +65,10 @@ def main(argv=None):
             fa, fb = tmp / f"{name}_a.npz", tmp / f"{name}_b.npz"
             run_in(a.tree_a.resolve(), name, a.duration, a.seed, fa)
             run_in(a.tree_b.resolve(), name, a.duration, a.seed, fb)
-            bad = compare(fa, fb)
-            n = len(np.load(fa).files)
-            print(f"{name}: {n - len(bad)} of {n} arrays bitwise identical" + (f"; differ: {', '.join(bad)}" if bad else ""))
+            bad, only = compare(fa, fb)
+            n = len(set(np.load(fa).files) & set(np.load(fb).files))
+            print(f"{name}: {n - len(bad)} of {n} common arrays bitwise identical" + (f"; differ: {', '.join(bad)}" if bad else "")
+                  + (f"; in one tree only: {', '.join(only)}" if only else ""))
             failed += bool(bad)
     sys.exit(1 if failed else 0)
 
