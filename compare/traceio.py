@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import json
-from dataclasses import fields
+from dataclasses import MISSING, fields
 from pathlib import Path
 
 import numpy as np
@@ -48,7 +48,9 @@ def load_trace(path):
         raise TraceFileError(f"{path}: not a .npz trace file") from None
     if "format" not in keys or str(data["format"]) != FORMAT:
         raise TraceFileError(f"{path}: not a frictionnoise trace (no '{FORMAT}' format tag)")
-    need = [f.name for f in fields(EngineTrace) if f.name != "metadata"]
+    need = [f.name for f in fields(EngineTrace) if f.name != "metadata" and f.default_factory is MISSING]
+    optional = [f.name for f in fields(EngineTrace) if f.name != "metadata" and f.default_factory is not MISSING
+                and f.name in keys]  # fields added later (micro_force): absent from older traces
     missing = [k for k in need if k not in keys]
     if missing:
         raise TraceFileError(f"{path}: trace is missing field {missing[0]!r}")
@@ -59,4 +61,4 @@ def load_trace(path):
         meta = json.loads(meta_path.read_text())
     except json.JSONDecodeError as e:
         raise TraceFileError(f"{meta_path}: not valid JSON ({e})") from None
-    return EngineTrace(**{k: data[k] for k in need}, metadata=meta)
+    return EngineTrace(**{k: data[k] for k in need + optional}, metadata=meta)

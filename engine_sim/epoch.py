@@ -33,7 +33,7 @@ _ST_BASE_MS, _ST_ITER_MS, _ST_SHAPE_MS, _ST_BODY_MS = 0.35, 0.08, 0.00015, 0.05
 
 
 def _extra_bodies(scene) -> int:
-    return max(0, len(scene.space.bodies) - 1 - len(scene.pads) - (scene.hanging is not None))
+    return max(0, len(scene.space.bodies) - 1 - len(scene.pads) - len(scene.drive.bodies))
 
 
 def estimated_costs(scene) -> tuple[float, float]:

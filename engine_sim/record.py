@@ -1,6 +1,7 @@
 """Recording a scene at the output rate, in bulk (pymunk.batch), and the trace it produces (SI units).
 
-Per output sample: the block's position and velocity; per pad, the tangential and normal contact force
+Per output sample: the block's position and velocity; per sliding body (the pads, and the micro-pads they may
+carry; ``Scene.sliders``), the tangential and normal contact force
 (arbiter impulse of the last step / dt) and whether it touches its track; the drive's work and the power
 dissipated by the friction law (Coulomb part -f_t v and viscous part c v^2), integrated by trapezoids, and
 the mechanical energy, for the energy balance W_drive (+ W_recycle) = dissipated + change of mechanical energy.
@@ -29,16 +30,18 @@ _COLS = ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "penetration", "power_in",
 @dataclass(frozen=True)
 class EngineTrace:
     """A recorded scene run (SI units). ``t`` [s], ``x`` [m] (block position from its start), ``v`` [m/s];
-    ``F_t``, ``F_n`` [N]: summed tangential and normal contact force on the pads (tangential positive
-    against the sliding direction, i.e. the Coulomb part of the friction law); ``F_drag`` [N]: the viscous
-    part of the law summed over pads (c v_pad, plus b N_pad ln(1 + v_pad/v_c) for the log law), so F_t + F_drag
-    is the whole friction force; ``F_drive`` [N]: the drive's force (for Leonardo's slider the hanging weight); ``pad_force`` [N] (samples x pads), tangential; ``n_contact``: pads
+    ``F_t``, ``F_n`` [N]: summed tangential and normal contact force on the sliding bodies (pads and any micro-pads;
+    tangential positive against the sliding direction, i.e. the Coulomb part of the friction law); ``F_drag`` [N]:
+    the velocity part of the law summed over them (c v, plus b N_pad ln(1 + v/v_c) for the log law), so F_t + F_drag
+    is the whole friction force; ``F_drive`` [N]: the drive's force (for Leonardo's slider the hanging weight); ``pad_force`` [N] (samples x pads), tangential (the N pads only); ``n_contact``: pads
     touching their track; ``n_pairs``: pad-substrate contact pairs (a foot may stand on several asperities); ``penetration`` [m]: the deepest overlap of any pad with its track (pymunk's
     contact distance; 0 when no contact overlaps); ``work_drive``, ``dissipated``, ``mech_energy`` [J] cumulative from the first
     sample; ``work_recycle`` [J]: energy moved into the scene by recycling wear particles (their change of potential
     energy minus the kinetic energy taken away); ``p_state`` (samples x particles, int8: 0 idle, 1 trapped,
     2 moving), ``p_force`` [N] (samples x particles): tangential force of each particle on its pad, positive
     against sliding; ``particle_penetration`` [m]: the deepest overlap of any particle with its track (contact distance);
+    ``micro_force`` [N] (samples x micro-pads): tangential contact force of each sliding body beyond the pads (the
+    micro-pads, pad by pad: columns i n .. (i + 1) n - 1 belong to pad i; no columns in other scenes);
     ``metadata``: scenario, seed, version, timings, particle counts."""
 
     t: np.ndarray
@@ -59,6 +62,7 @@ class EngineTrace:
     p_state: np.ndarray
     p_force: np.ndarray
     particle_penetration: np.ndarray
+    micro_force: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
     metadata: dict = field(default_factory=dict)
 
 
@@ -82,6 +86,7 @@ class Recorder:
         # the number of arguments, and this kernel runs every output step)
         self.out = np.empty((n_samples, len(_COLS)))
         self.pad_force = np.empty((n_samples, N))
+        self.micro_force = np.empty((n_samples, len(scene.sliders) - N))
         self.n_contact = np.empty(n_samples, dtype=np.int32)
         self.p_state = np.zeros((n_samples, n_p), dtype=np.int8)
         self.p_force = np.zeros((n_samples, n_p))
@@ -99,39 +104,39 @@ class Recorder:
         self._tables()
 
     def _tables(self):
-        """What the kernel needs of the scene, asked of it (its bodies, springs, scene-unit constants); pymunk ids are
-        addresses, so this is rebuilt after unpickling."""
+        """What the kernel needs of the scene, asked of its parts (bodies, springs, scene-unit constants); pymunk ids
+        are addresses, so this is rebuilt after unpickling."""
         scene = self.scene
-        # body table: sorted ids -> (kind, index); kinds 0 block, 1 pad, 2 particle, 3 hanging mass
-        rows = [(scene.block.id, 0, 0)] + [(pad.id, 1, i) for i, pad in enumerate(scene.pads)]
+        drive = scene.drive
+        # body table: sorted ids -> (kind, index); kinds 0 block, 1 sliding body (pads first), 2 particle, 3 a body of
+        # the drive's (Leonardo's hanging mass)
+        rows = [(scene.block.id, 0, 0)] + [(b.id, 1, i) for i, b in enumerate(scene.sliders)]
         if scene.wear is not None:
             rows += [(b.id, 2, j) for j, b in enumerate(scene.wear.bodies)]
-        if scene.hanging is not None:
-            rows += [(scene.hanging.id, 3, 0)]
+        rows += [(b.id, 3, j) for j, b in enumerate(drive.bodies)]
         rows.sort()
         self._tab = np.array(rows, dtype=np.int64).reshape(-1, 3)
         self._bbuf = B.Buffer()
         self._abuf = B.Buffer()
-        bN, vc = scene.log_law if scene.log_law is not None else (0.0, 1.0)
-        m_h = scene.hanging.mass if scene.hanging is not None else 0.0
-        # scalars for the kernel: drive k, anchor x, rest, anchor v, x0, dt, c, m_p, M, g, b N_pad, v_c, m_h,
-        # trapped-speed threshold, output step
-        self._prm = np.array([0.0, 0.0, 0.0, 0.0, 0.0, scene.dt, scene.c_drag, scene.m_pad, scene.M,
-                              -scene.space.gravity.y, bN, vc, m_h, scene.v_trap, scene.dt * scene.n_sub])
-        self._drive_spring = scene.drive_spring
-        # springs with energy as arrays for vectorised lengths: (pad, anchors, rest length, stiffness, damping);
-        # pad-pad springs use both pad positions; springs without stiffness (pure dampers) store none
-        index = {pad: i for i, pad in enumerate(scene.pads)}
+        # scalars for the kernel: drive k, anchor x, rest, anchor v, x0, dt, M, g, trapped-speed threshold, output
+        # step, index of the pulled body among the drive's (-1: the block)
+        self._prm = np.array([0.0, 0.0, 0.0, 0.0, 0.0, scene.dt, scene.M, -scene.space.gravity.y, scene.v_trap,
+                              scene.dt * scene.n_sub, float(drive.pulled)])
+        self._drive_spring = drive.spring
+        self._drive_mass = np.array([b.mass for b in drive.bodies], dtype=float)
+        # springs with energy as arrays for vectorised lengths: (slider, anchors, rest length, stiffness, damping);
+        # slider-slider springs use both positions; springs without stiffness (pure dampers) store none
+        index = {b: i for i, b in enumerate(scene.sliders)}
         bs = [(index[c.b], *c.anchor_a, *c.anchor_b, c.rest_length, c.stiffness, c.damping)
-              for c in scene.block_pad_springs if c.stiffness > 0]
+              for c in scene.block_springs if c.stiffness > 0]
         pp = [(index[c.a], index[c.b], *c.anchor_a, *c.anchor_b, c.rest_length, c.stiffness, c.damping)
-              for c in scene.pad_pad_springs if c.stiffness > 0]
+              for c in scene.slider_springs if c.stiffness > 0]
         self._bs = np.array(bs).reshape(-1, 8)
         self._pp = np.array(pp).reshape(-1, 9)
 
     def __getstate__(self):
         state = self.__dict__.copy()
-        for k in ("_tab", "_bbuf", "_abuf", "_prm", "_drive_spring", "_bs", "_pp"):
+        for k in ("_tab", "_bbuf", "_abuf", "_prm", "_drive_spring", "_drive_mass", "_bs", "_pp"):
             del state[k]  # derived from the scene (pymunk ids change on unpickling; batch buffers do not pickle)
         return state
 
@@ -158,8 +163,9 @@ class Recorder:
             for j, b in enumerate(sc.wear.bodies):
                 self._part[j, 3] = b.is_sleeping
             self.recycle[k] = sc.wear.recycle_work
-        _reduce(ids, fl, ai, af, self._tab, self._part, self._bs, self._pp, self._prm, k,
-                self.out, self.pad_force, self.n_contact, self.p_state, self.p_force)
+        _reduce(ids, fl, ai, af, self._tab, self._part, self._bs, self._pp, self._prm, sc.slider_terms,
+                self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact, self.p_state,
+                self.p_force)
         self.t[k] = sc.steps * sc.dt / U.TIME
         self.k += 1
 
@@ -184,30 +190,35 @@ class Recorder:
             dissipated=cum(o["power_out"]), mech_energy=(o["mech"] - o["mech"][0]) / U.ENERGY,
             work_recycle=(self.recycle[:n] - self.recycle[0]) / U.ENERGY,
             p_state=self.p_state[:n], p_force=self.p_force[:n] / U.FORCE,
-            particle_penetration=o["p_pen"] / U.LENGTH, metadata=metadata,
+            particle_penetration=o["p_pen"] / U.LENGTH, micro_force=self.micro_force[:n] / U.FORCE, metadata=metadata,
         )
 
 
 @numba.njit(cache=True)
-def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, k, out, pad_force, n_contact, p_state, p_force):
+def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, sl, dm, k, out, pad_force, micro_force, n_contact, p_state,
+            p_force):
     """One sample from the raw batch buffers (scene units): bodies [px, py, vx, vy, w] by id, arbiters
-    [a_id, b_id, count] x [Jx, Jy, nx, ny, pax, pay, d1] with J the impulse on body A; contact forces per pad and per
-    particle, penetrations, powers, mechanical energy. Bodies absent from the buffer are asleep (at rest)."""
+    [a_id, b_id, count] x [Jx, Jy, nx, ny, pax, pay, d1] with J the impulse on body A; contact forces per sliding
+    body and per particle, penetrations, powers, mechanical energy. Bodies absent from the buffer are asleep (at
+    rest). sl: per sliding body (mass, c, b N_pad, v_c), the law's velocity part c v + b N_pad ln(1 + |v|/v_c)
+    sign(v); the first pad_force.shape[1] are the pads whose forces are recorded; dm: masses of the drive's
+    bodies."""
     dk, dx_anchor, drest, dv, x0 = prm[0], prm[1], prm[2], prm[3], prm[4]
-    dt, c, m_p, M, g = prm[5], prm[6], prm[7], prm[8], prm[9]
-    bN, vc, m_h, v_trap, dt_out = prm[10], prm[11], prm[12], prm[13], prm[14]
+    dt, M, g, v_trap, dt_out = prm[5], prm[6], prm[7], prm[8], prm[9]
+    pulled = int(prm[10])
     N = pad_force.shape[1]
+    n_sl = sl.shape[0]
     n_p = part.shape[0]
+    n_d = dm.shape[0]
     n_tab = tab.shape[0]
     tab_ids = tab[:, 0].copy()
-    P = np.zeros((N, 4))
+    P = np.zeros((n_sl, 4))
+    D = np.zeros((n_d, 2))  # the drive's bodies: x, vx
     Q = np.zeros((n_p, 5))  # particles: x, y, vx, vy, w
     for j in range(n_p):
         Q[j, 0], Q[j, 1] = part[j, 4], part[j, 5]
     prev = part[:, 4:6].copy()  # places at the previous sample: a grain's state is judged on its mean speed since
     bx = by = bvx = bvy = 0.0
-    hx = hvx = 0.0
-    has_hanging = False
     for r in range(ids.shape[0]):
         t = np.searchsorted(tab_ids, ids[r])
         if t >= n_tab or tab_ids[t] != ids[r]:
@@ -226,13 +237,11 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, k, out, pad_force, n_contac
                 Q[i, 2] = Q[i, 3] = Q[i, 4] = 0.0
             part[i, 4], part[i, 5] = f[0], f[1]
         else:
-            hx, hvx = f[0], f[2]
-            has_hanging = True
-    if not has_hanging:
-        hx, hvx = bx, bvx
-    ft = np.zeros(N)
-    fn = np.zeros(N)
-    touch = np.zeros(N, dtype=np.bool_)
+            D[i, 0], D[i, 1] = f[0], f[2]
+    hx, hvx = (bx, bvx) if pulled < 0 else (D[pulled, 0], D[pulled, 1])  # the body the drive spring pulls
+    ft = np.zeros(n_sl)
+    fn = np.zeros(n_sl)
+    touch = np.zeros(n_sl, dtype=np.bool_)
     p_touch = np.zeros(n_p, dtype=np.bool_)
     pen = 0.0
     p_pen = 0.0
@@ -298,22 +307,26 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, k, out, pad_force, n_contac
     fv = 0.0
     ke = 0.5 * M * (bvx * bvx + bvy * bvy)
     pe = M * g * by  # constant unless the block is free vertically (asperity field)
-    if has_hanging:
-        ke += 0.5 * m_h * hvx * hvx
+    for j in range(n_d):
+        ke += 0.5 * dm[j] * D[j, 1] * D[j, 1]
     nc = 0
-    for i in range(N):
-        pad_force[k, i] = -ft[i]
+    for i in range(n_sl):
+        if i < N:
+            pad_force[k, i] = -ft[i]
+            nc += touch[i]
+        else:
+            micro_force[k, i - N] = -ft[i]
         sft -= ft[i]
         sfn += fn[i]
         vx = P[i, 2]
-        f_v = c * vx  # the law's velocity part on this pad (drag, along its velocity)
+        m_p, bN = sl[i, 0], sl[i, 2]
+        f_v = sl[i, 1] * vx  # the law's velocity part on this body (drag, along its velocity)
         if bN > 0.0:
-            f_v += np.sign(vx) * bN * np.log1p(abs(vx) / vc)
+            f_v += np.sign(vx) * bN * np.log1p(abs(vx) / sl[i, 3])
         fv += f_v
         pout += f_v * vx
         ke += 0.5 * m_p * (P[i, 2] ** 2 + P[i, 3] ** 2)
         pe += m_p * g * P[i, 1]
-        nc += touch[i]
     for j in range(n_p):
         m, I = part[j, 0], part[j, 1]
         ke += 0.5 * m * (Q[j, 2] ** 2 + Q[j, 3] ** 2) + 0.5 * I * Q[j, 4] ** 2

@@ -1,8 +1,11 @@
 """Headless rendering of a scene (a matplotlib Figure on its own Agg canvas, collections updated in place: ~20-60 ms a frame).
 
 Draws a window around the block: the substrate (friction patches coloured by mu, or the rough profile, or the
-asperity caps), the pads or feet, their tangential springs to the block, the block, wear particles coloured by
-state (trapped: at rest on the substrate; moving), and the time. The only matplotlib importer of engine_sim.
+asperity caps), the pads or feet, their springs, the block, the drive's own bodies, wear particles coloured by
+state (trapped: at rest on the substrate; moving), and the time. The parts say what to draw as named shapes in
+scene units, ``name -> (kind, data, style)`` with kind one of "points" (xy array), "segments" (list of point
+pairs), "polys" (list of vertex lists), "line" ((xs, ys)), "circle" ((centre, radius)), "rect" ((corner, width,
+height)), "text" ((position, string)); style is passed to matplotlib. The only matplotlib importer of engine_sim.
 """
 from __future__ import annotations
 
@@ -32,51 +35,38 @@ class SceneRenderer:
     def __init__(self, scene, window: float | None = None, dpi: int = 90):
         self.scene = scene
         sc = scene.sc
-        self.asperities = scene.asperities
         self.zoom = scene.wear is not None  # grains of tens of um: zoom onto the first pad's track
         # grain states come from a recorder that keeps only its latest sample (the trace's own classifier)
         self._rec = Recorder(scene, 1) if scene.wear is not None else None
-        if window is None:
-            window = (0.65 * sc.pads.N * sc.pads.foot_length if self.asperities
-                      else 0.6 * sc.wear.ahead if self.zoom else 12 * sc.substrate.a)
-        self.window = window * U.LENGTH  # mm either side of the block
+        view = scene.arrangement.view(scene)
+        if self.zoom:
+            surf = scene.track_surface[0]
+            view = {**view, "window": 0.6 * sc.wear.ahead, "ylim": (surf - 0.3, surf + 0.9),
+                    "ylabel": "y (mm): the first pad's track", "block_top": view["block_top"]}
+        self.view = view
+        self.window = (view["window"] if window is None else window) * U.LENGTH  # mm either side of the block
         # a Figure on its own Agg canvas: importing or rendering never changes the program's matplotlib backend
         self.fig = Figure(figsize=(7.0, 5.0), dpi=dpi)
         FigureCanvasAgg(self.fig)
         self.ax = ax = self.fig.subplots()
-        ys = np.array(scene.pad_y)
-        if self.asperities:  # micrometre relief under a centimetre sole: the axes zoom onto the interface
-            h = scene.substrate.top()
-            self.ylim = (-0.5 * h, 3 * h)
-            ax.set_ylabel("y (mm, exaggerated): asperity caps under the feet")
-        elif self.zoom:
-            surf = scene.track_surface[0]
-            self.ylim = (surf - 0.3, surf + 0.9)
-            ax.set_ylabel("y (mm): the first pad's track")
+        self.ylim = view["ylim"]
+        ax.set_ylabel(view["ylabel"])
+        if self.zoom:
             ax.set_aspect("equal", adjustable="box")
-        else:
-            self.ylim = (ys.min() - 3.0, scene.y_block + 4.0)
-            ax.set_ylabel("y (mm): one track per pad")
         ax.set_ylim(*self.ylim)
         ax.set_xlabel("x (mm)")
         mu_lo, mu_hi = scene.substrate.mu_range(sc.friction.mu0)
         self.q_pad = scene.q_pad  # pad-track friction = shape friction x q_pad
         self.norm = matplotlib.colors.Normalize(mu_lo, mu_hi + 1e-12)
-        self.tracks = LineCollection([], cmap="viridis", norm=self.norm, linewidths=3 if not self.asperities else 1.5)
+        self.tracks = LineCollection([], cmap="viridis", norm=self.norm, linewidths=view["track_width"])
         ax.add_collection(self.tracks)
-        self.springs = LineCollection([], colors="0.4", linewidths=0.6)
-        ax.add_collection(self.springs)
-        # feet of the sole: filled from their underside up into the block, which rests on them
-        self.feet = PolyCollection([], facecolors=(0.84, 0.15, 0.16, 0.35), edgecolors="tab:red", linewidths=1.5, zorder=3)
-        ax.add_collection(self.feet)
-        self.pads = ax.scatter([], [], s=18, c="tab:red", zorder=3)
-        top = self.ylim[1] - 0.12 * (self.ylim[1] - self.ylim[0]) if self.asperities else ys.max() + 1.0
+        top = view["block_top"]
         self.block = Rectangle((0, top), 8.0, self.ylim[1] - top, color="tab:blue", alpha=0.35, zorder=4)
         ax.add_patch(self.block)
+        self._artists = {}
         self.particles = None
         self.text = ax.text(0.02, 0.01, "", transform=ax.transAxes, va="bottom", fontsize=9, zorder=6,
                             bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
-        self._leonardo = self._add_pulley() if scene.hanging is not None else None
         if self._rec is not None:
             ax.legend([Line2D([], [], ls="", marker="o", ms=7, mfc=c, mec="none") for c in _STATE_COLORS],
                       [f"grain {n}" for n in _STATE_NAMES], loc="upper right", fontsize=8, framealpha=0.85)
@@ -88,77 +78,36 @@ class SceneRenderer:
         else:
             self.tracks.set_cmap(matplotlib.colors.ListedColormap(["0.25"]))
 
-    def _add_pulley(self):
-        """Leonardo's slider: the rope from the block over a pulley at the window's edge to the hanging mass (the
-        scene carries the hanging mass unfolded on a line ahead; drawn here folded, as in the paper's Fig. 7)."""
-        ax = self.ax
-        rope = Line2D([], [], color="0.15", lw=1.2, zorder=5)
-        ax.add_line(rope)
-        pulley = Circle((0, 0), 1.2, facecolor="0.85", edgecolor="0.2", zorder=5)
-        ax.add_patch(pulley)
-        mass = Rectangle((0, 0), 3.0, 8.0, facecolor="tab:brown", edgecolor="0.2", alpha=0.9, zorder=5)
-        ax.add_patch(mass)
-        label = ax.text(0, 0, f"hanging mass\n{self.scene.hanging.mass / U.MASS:.3g} kg", fontsize=8, ha="right",
-                        va="center", zorder=6, bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
-        return rope, pulley, mass, label
-
     def observe(self):
         """Sample the scene after an output step (the recorder classifies grains on their mean speed over it)."""
         if self._rec is not None:
             self._rec.k = 0  # keep only the latest sample
             self._rec.sample()
 
-    def _substrate(self, lo, hi):
-        """Ask the substrate part to draw each track within [lo, hi]."""
-        segs, mus = [], []
-        for tr in self.scene.tracks:
-            s, m = self.scene.substrate.draw(tr, lo, hi, self.q_pad)
-            segs += s
-            mus += m
-        return segs, mus
-
-    def _draw_leonardo(self, bx, hi):
-        rope, pulley, mass, label = self._leonardo
-        s = self.scene
-        y = s.y_block
-        px, py = hi - 2.0, y
-        pulley.center = (px, py)
-        used = s.hanging.position.x - bx  # the rope's span between block and hanging mass (mm)
-        my = py - 30.0  # the hanging mass drawn a fixed 30 mm below the pulley (it follows the block)
-        rope.set_data([bx + 2.5, px, px + 1.2, px + 1.2], [y, py + 1.2, py, my + 8.0])
-        mass.set_xy((px + 1.2 - 1.5, my))
-        label.set_position((px - 1.0, my + 4.0))
-        slack = s.sc.drive.rope_length * U.LENGTH - used
-        label.set_text(f"hanging mass {s.hanging.mass / U.MASS:.3g} kg\nrope slack {slack / U.LENGTH * 1e6:+.2f} um")
+    def _shapes(self, shapes: dict):
+        """Create (first time) or update the artists of the parts' named shapes."""
+        ax = self.ax
+        for name, (kind, data, style) in shapes.items():
+            art = self._artists.get(name)
+            if art is None:
+                art = self._artists[name] = _new_artist(ax, kind, data, style)
+            _update_artist(art, kind, data)
 
     def frame(self) -> np.ndarray:
         """Update the artists to the scene's state and render; returns the RGBA image."""
         s = self.scene
         bx = s.block.position.x
         lo, hi = bx - self.window, bx + self.window
-        segs, mus = self._substrate(lo, hi)
+        segs, mus = s.arrangement.draw_tracks(s, lo, hi, self.q_pad)
         self.tracks.set_segments(segs)
         self.tracks.set_array(np.asarray(mus))
-        pads = np.array([(p.position.x, p.position.y) for p in s.pads])
-        if self.asperities:
-            feet = []
-            for p in s.pads:
-                for sh in p.shapes:
-                    a, b = p.local_to_world(sh.a), p.local_to_world(sh.b)
-                    bot = 0.5 * (a.y + b.y) - sh.radius  # the foot's underside, filled up into the block
-                    feet.append([(a.x, bot), (b.x, bot), (b.x, self.ylim[1]), (a.x, self.ylim[1])])
-            self.feet.set_verts(feet)
-        elif self.zoom:  # pads at their true size
-            if not hasattr(self, "_pad_disc"):
-                d = 2 * s.R_pad
-                self._pad_disc = EllipseCollection(d, d, 0.0, units="xy", offsets=pads, offset_transform=self.ax.transData,
-                                                   facecolors="tab:orange", alpha=0.6, zorder=3)
-                self.ax.add_collection(self._pad_disc)
-            self._pad_disc.set_offsets(pads)
+        if self.zoom:  # pads at their true size
+            pads = np.array([(p.position.x, p.position.y) for p in s.pads])
+            self._shapes({"pad_discs": ("discs", (pads, 2 * s.R_pad), {"facecolors": "tab:orange", "alpha": 0.6,
+                                                                        "zorder": 3})})
         else:
-            self.pads.set_offsets(pads)
-            anchors = [c.a.local_to_world(c.anchor_a) for c in s.tangential_springs]
-            self.springs.set_segments([((a.x, a.y), (p[0], p[1])) for a, p in zip(anchors, pads)])
+            self._shapes(s.arrangement.draw(s, lo, hi, self.view))
+        self._shapes(s.drive.draw(s, lo, hi))
         if self._rec is not None:
             if self._rec.k == 0:
                 self.observe()
@@ -169,11 +118,9 @@ class SceneRenderer:
                 self.ax.add_collection(self.particles)
             self.particles.set_offsets(xy)
             self.particles.set_facecolor(_STATE_COLORS[self.states])
-        half = (s.width / 2) if self.asperities else 2.5
+        half = self.view["block_half"]
         self.block.set_x(bx - half)
         self.block.set_width(2 * half)
-        if self._leonardo is not None:
-            self._draw_leonardo(bx, hi)
         self.ax.set_xlim(lo, hi)
         v = s.block.velocity.x / U.VELOCITY * U.LENGTH  # mm/s
         self.text.set_text(f"t = {s.time:.3f} s   x = {bx:.3f} mm   v = {v:.3f} mm/s")
@@ -190,3 +137,43 @@ class SceneRenderer:
 
     def close(self):
         self.fig.clear()
+
+
+def _new_artist(ax, kind, data, style):
+    if kind == "points":
+        return ax.scatter([], [], **style)
+    if kind == "segments":
+        return ax.add_collection(LineCollection([], **style))
+    if kind == "polys":
+        return ax.add_collection(PolyCollection([], **style))
+    if kind == "discs":
+        xy, d = data
+        return ax.add_collection(EllipseCollection(d, d, 0.0, units="xy", offsets=xy, offset_transform=ax.transData,
+                                                   **style))
+    if kind == "line":
+        return ax.add_line(Line2D([], [], **style))
+    if kind == "circle":
+        return ax.add_patch(Circle((0, 0), data[1], **style))
+    if kind == "rect":
+        return ax.add_patch(Rectangle((0, 0), data[1], data[2], **style))
+    if kind == "text":
+        return ax.text(0, 0, "", **style)
+    raise ValueError(f"unknown shape kind {kind!r}")
+
+
+def _update_artist(art, kind, data):
+    if kind in ("points", "discs"):
+        art.set_offsets(data[0] if kind == "discs" else data)
+    elif kind == "segments":
+        art.set_segments(data)
+    elif kind == "polys":
+        art.set_verts(data)
+    elif kind == "line":
+        art.set_data(*data)
+    elif kind == "circle":
+        art.center = data[0]
+    elif kind == "rect":
+        art.set_xy(data[0])
+    elif kind == "text":
+        art.set_position(data[0])
+        art.set_text(data[1])

@@ -88,8 +88,8 @@ def _check_trace_size(sc, n_out: int):
                              "--duration or split the run)")
 
 
-_REC_ARRAYS = ("t", "out", "pad_force", "n_contact", "p_state", "p_force", "recycle")
-_FORMAT = "frictionnoise-checkpoint-3"
+_REC_ARRAYS = ("t", "out", "pad_force", "n_contact", "p_state", "p_force", "recycle", "micro_force")
+_FORMAT = "frictionnoise-checkpoint-4"  # 4: the recorder holds micro_force
 
 
 def _rec_state(rec, k) -> dict:
@@ -263,7 +263,7 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     meta = {
         "producer": "engine_sim", "scenario": sc.to_dict(), "seed": scene.seed, "version": package_version(),
         "wall_s": wall, "steps": scene.steps, "us_per_step": wall / max(scene.steps, 1) * 1e6,
-        "steady_velocity_law": sc.steady_velocity, "drive_force": sc.drive_force if sc.drive.kind != "velocity" else None,
+        "steady_velocity_law": sc.steady_velocity, "drive_force": sc.drive_force if sc.drive_part.constant_force else None,
         "segments_generated": sum(t.generated for t in scene.tracks),
         "segments_live": sum(len(t.segments) for t in scene.tracks),
         "partial": partial, "resumed_from_checkpoint": resumed, "scene": describe(sc),

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import engine_sim
+from engine_sim.laws.log import LogSpec
 from compare.fits import fit_power_law
 from compare.spectra import band_average, displacement_spectrum
 from engine_sim import ScenarioError, load_scenario, scenario_from_dict, shipped_scenarios
@@ -159,7 +160,7 @@ def test_log_friction_law_mobility_and_its_explicit_limit():
     # balanced (measured 5e-13); a v_c below the explicit-update limit b N_pad dt / (0.5 m_pad) is refused.
     sc = load_scenario(PATCHES)
     sc = replace(sc, substrate=replace(sc.substrate, alpha=0.0), pads=replace(sc.pads, N=4),
-                 friction=replace(sc.friction, law="log", b=0.05, v_c=1e-3, c=0.0))
+                 friction=LogSpec(mu0=sc.friction.mu0, b=0.05, v_c=1e-3, c=0.0))
     sc = _short(sc, duration=1.0)
     tr = engine_sim.run(sc)
     v = (tr.x[-1] - tr.x[0]) / (tr.t[-1] - tr.t[0])

@@ -24,8 +24,10 @@ def test_restored_scene_and_recorder_know_their_new_bodies():
     back = pickle.loads(pickle.dumps(rec))
     s2 = back.scene
     # pymunk ids are addresses: the restored bodies have new ones, and both parts re-read them
-    assert set(s2._pad_ids) == {p.id for p in s2.pads} and not set(s2._pad_ids) & set(scene._pad_ids)
+    assert not {p.id for p in s2.pads} & {p.id for p in scene.pads}
     assert set(back._tab[:, 0]) == {s2.block.id, *(p.id for p in s2.pads)}
+    s2.advance(1)  # the log law reads the restored bodies' order: b N_pad on exactly the pads
+    assert np.count_nonzero(s2.law._bN) == len(s2.pads)
     assert back.k == 1 and np.array_equal(back.out[:1], rec.out[:1])
     assert all(s.a.x for tr in s2.tracks for s in tr.segments)  # neighbours re-applied without error
 

@@ -30,13 +30,14 @@ class SubstrateSpec:
 class Substrate:
     """One substrate kind. Subclasses set ``kind``, ``Spec`` and override what differs.
 
-    shared: one track under the whole sole (a flat block on feet, free vertically) instead of one track per pad;
+    arrangement: the pad arrangement a scenario gets when its ``[pads]`` section names none (``engine_sim/arrangements``:
+    "tracks", one track per pad, or "sole", one track under a flat block on feet, free vertically);
     hosts_wear: flat tracks where wear particles can rest; positive / non_negative / choices: field checks made by
     the loader (names of Spec fields)."""
 
     kind: ClassVar[str] = ""
     Spec: ClassVar[type] = SubstrateSpec
-    shared: ClassVar[bool] = False
+    arrangement: ClassVar[str] = "tracks"
     hosts_wear: ClassVar[bool] = False
     positive: ClassVar[frozenset] = frozenset({"a", "segment_radius"})
     non_negative: ClassVar[frozenset] = frozenset()
@@ -60,7 +61,7 @@ class Substrate:
         return self.spec.a
 
     def top(self) -> float:
-        """The highest point of the substrate above its datum (mm): feet on a shared track start above it."""
+        """The highest point of the substrate above its datum (mm): feet on a sole start above it."""
         return 0.0
 
     def floor_depth(self) -> float:

@@ -27,7 +27,7 @@ class AsperitiesSpec(SubstrateSpec):
 class Asperities(Substrate):
     kind = "asperities"
     Spec = AsperitiesSpec
-    shared = True
+    arrangement = "sole"
     positive = Substrate.positive | {"cell", "p", "bump_radius"}
     non_negative = frozenset({"h_max"})
 

@@ -1,0 +1,229 @@
+"""Pads that carry micro-pads: the scene of model Ib (the paper's Fig. 1c and sections 10-11; issue 18).
+
+Each pad (a miniblock, on its own track of friction patches of renewal length a, as in "tracks") carries n
+micro-pads (microblocks), each spring-mounted on it (tangential k2, c2; a pre-compressed normal spring) and
+sliding on a micro-track of its own: friction patches of renewal length a2 and contrast alpha2. Model Ib:
+
+    m x_i''   = -k0 (x_i - x) - ... - f_i(t) - sum_j [k2 (x_i - y_ij) + c2 (x_i' - y_ij')]
+    m2 y_ij'' = -k2 (y_ij - x_i) - c2 (y_ij' - x_i') - c_micro y_ij' - mu0 N2 - f_ij(t)
+
+Loads: a pad column (pad and its micro-pads) carries L = M g cos(theta) / N + (m + n m2) g; its micro-pads carry
+``micro_share`` L together (N2 = micro_share L / n each) and the pad's own contact the rest, N1 = (1 -
+micro_share) L. Every sliding body follows the scenario's friction law, with viscous slope c (pads) or micro_c
+(micro-pads). Micro-tracks lie between pad i's track and pad i+1's (``micro_spacing`` apart) and share one
+ShapeFilter category (bit 31) that no pad uses, so micro-pads meet only their own tracks.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pymunk
+
+from frictionnoise import G
+
+from .. import units as U
+from ..substrates.patches import Patches, PatchesSpec
+from . import ARRANGEMENTS, LN, LT, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSpec
+from .tracks import Tracks
+
+_MICRO_BIT = 31
+
+
+@dataclass(frozen=True)
+class MicroSpec(PadSpec):
+    """The pads of "tracks" plus, per pad: n_micro micro-pads of micro_mass (kg) and micro_radius (m), held by a
+    tangential spring micro_k (N/m, the k2 of model Ib) with damping micro_c_spring (N s/m) and a normal spring
+    micro_k_normal (N/m); their micro-tracks: renewal length micro_a (m, a2) and patch contrast micro_alpha (mu =
+    mu0 (1 + micro_alpha (r - 1/2)), as the patches substrate states its alpha), micro_spacing (m) apart in y; the
+    micro-pads' viscous slope micro_c (N s/m each) and their share of the column's load micro_share.
+
+    micro_c_spring > 0 together with micro_c > 0 puts two dampers on one micro-pad; pymunk iterates their impulses
+    within a step, so the drag departs from the c v the recorder reads (force and energy balance off by 1.1 % at
+    micro_c_spring = 0.16, micro_c = 2.5, 2 iterations; 1e-5 with either one zero, measured)."""
+
+    arrangement: str = "micro"
+    n_micro: int = 4
+    micro_mass: float = 1e-4
+    micro_radius: float = 0.1e-3
+    micro_k: float = 300.0
+    micro_c_spring: float = 0.0
+    micro_k_normal: float = 100.0
+    micro_a: float = 0.1e-3
+    micro_alpha: float = 1.0
+    micro_spacing: float = 1e-3
+    micro_c: float = 1.25
+    micro_share: float = 0.5
+
+
+@ARRANGEMENTS.register
+class Micro(Tracks):
+    name = "micro"
+    Spec = MicroSpec
+    hosts_wear = False
+    positive = Tracks.positive | {"n_micro", "micro_mass", "micro_radius", "micro_k", "micro_k_normal", "micro_a",
+                                  "micro_spacing"}
+    non_negative = Tracks.non_negative | {"micro_c_spring", "micro_alpha", "micro_c", "micro_share"}
+
+    @classmethod
+    def validate(cls, p, sc):
+        super().validate(p, sc)
+        if p.N > _MICRO_BIT:
+            raise ValueError(f"pads.N = {p.N} must be at most {_MICRO_BIT} with micro-pads (one filter bit per pad "
+                             "track, one for the micro-tracks)")
+        if not p.micro_share < 1:
+            raise ValueError(f"pads.micro_share = {p.micro_share!r} must be < 1 (the pad keeps a contact of its own)")
+        if p.micro_alpha >= 2:
+            raise ValueError(f"pads.micro_alpha = {p.micro_alpha!r} must be < 2 (patch friction stays positive)")
+        room = p.track_spacing - p.n_micro * p.micro_spacing
+        if room < 2.5 * (p.radius + sc.substrate.segment_radius):
+            raise ValueError(f"pads.micro_spacing = {p.micro_spacing:.3g} m: n_micro micro-tracks must fit between two "
+                             f"pad tracks (n_micro micro_spacing + 2.5 (pad + segment radius) <= track_spacing)")
+        if p.micro_spacing < 2.5 * (p.micro_radius + sc.substrate.segment_radius):
+            raise ValueError(f"pads.micro_spacing = {p.micro_spacing:.3g} m must exceed 2.5 (micro_radius + segment "
+                             f"radius) = {2.5 * (p.micro_radius + sc.substrate.segment_radius):.3g} m")
+        a = cls(p, sc)
+        if not a.micro_load() > p.micro_mass * G:
+            raise ValueError(f"pads.micro_share = {p.micro_share!r} leaves a micro-pad {a.micro_load():.3g} N, less than "
+                             "its own weight: its normal spring would pull it off its track")
+
+    def dt_limit(self):
+        """omega dt < 0.3 for the pad (k0 + k_normal + 4 k1 + n (micro_k + micro_k_normal) on its mass) and for a
+        micro-pad (micro_k + micro_k_normal on micro_mass); spring damping c dt / m < 0.1 for both."""
+        p = self.spec
+        k = p.k0 + p.k_normal + 4 * p.k1 + p.n_micro * (p.micro_k + p.micro_k_normal)
+        lim = min(SPRING_OMEGA_DT / math.sqrt(k / p.mass),
+                  SPRING_OMEGA_DT / math.sqrt((p.micro_k + p.micro_k_normal) / p.micro_mass))
+        c = p.c0 + p.c_normal + 2 * p.c1 + p.n_micro * p.micro_c_spring
+        if c > 0:
+            lim = min(lim, SPRING_DAMPING_X * p.mass / c)
+        if p.micro_c_spring > 0:
+            lim = min(lim, SPRING_DAMPING_X * p.micro_mass / p.micro_c_spring)
+        return lim
+
+    # ------------------------------------------------------------------ loads and friction (SI)
+    @property
+    def column_mass(self):
+        return self.spec.mass + self.spec.n_micro * self.spec.micro_mass
+
+    def micro_load(self) -> float:
+        """N2: the normal load on one micro-pad's contact (N)."""
+        return self.spec.micro_share * self.sc.normal_load_per_pad / self.spec.n_micro
+
+    def pad_load(self):
+        """N1: the normal load on the pad's own contact (N)."""
+        return self.sc.normal_load_per_pad - self.spec.n_micro * self.micro_load()
+
+    def column_force(self, v):
+        law, p = self.sc.law_part, self.spec
+        return law.force(v, self.pad_load(), self.sc.friction.c) + p.n_micro * law.force(v, self.micro_load(), p.micro_c)
+
+    def column_slope(self, v):
+        law, p = self.sc.law_part, self.spec
+        return law.slope(v, self.pad_load(), self.sc.friction.c) + p.n_micro * law.slope(v, self.micro_load(), p.micro_c)
+
+    def sliders(self, sc):
+        return [(self.pad_load(), self.spec.mass), (self.micro_load(), self.spec.micro_mass)]
+
+    def describe(self):
+        """``micro``: what model Ib needs of the micro level (SI): n, mass, k, c (the micro spring's damping),
+        length_scale a2, friction_law (keys as the pads'), patch_contrast alpha2."""
+        p, law = self.spec, self.sc.law_part
+        return {"micro": {"n": p.n_micro, "mass": p.micro_mass, "k": p.micro_k, "c": p.micro_c_spring,
+                          "length_scale": p.micro_a, "friction_law": law.describe(self.micro_load(), p.micro_c),
+                          "patch_contrast": p.micro_alpha}}
+
+    # ------------------------------------------------------------------ build (scene units)
+    def _micro_substrate(self):
+        s = self.sc.substrate
+        return Patches(PatchesSpec(a=self.spec.micro_a, alpha=self.spec.micro_alpha, segment_radius=s.segment_radius),
+                       self.sc)
+
+    def build(self, scene):
+        """The pads and their tracks as "tracks" builds them (the pad's own load N1), then per pad its micro-pads,
+        their springs, friction law and micro-tracks; the micro-pads join the sliding bodies after the pads."""
+        super().build(scene)
+        sc, p = scene.sc, self.spec
+        space = scene.space
+        n = p.n_micro
+        sub = self._micro_substrate()
+        self.micro_pads, self.micro_tracks = [], []
+        m2, r2 = p.micro_mass * U.MASS, p.micro_radius * U.LENGTH
+        rs = sc.substrate.segment_radius * U.LENGTH
+        N2 = self.micro_load()
+        pre = (N2 - p.micro_mass * G) / (p.micro_k_normal * U.STIFFNESS) + scene.slop
+        flt = pymunk.ShapeFilter(categories=1 << _MICRO_BIT, mask=1 << _MICRO_BIT)
+        seeds = np.random.SeedSequence(scene.seed).spawn(p.N + 1 + p.N * n)[p.N + 1:]  # after the tracks' and grains'
+        x_start = sub.x_start(scene)
+        for i, pad in enumerate(scene.pads):
+            y_track = scene.track_surface[i] - rs  # pad i's track line
+            for j in range(n):
+                yt = y_track - (j + 1) * p.micro_spacing * U.LENGTH
+                body = pymunk.Body(m2, float("inf"))
+                body.position = (pad.position.x, yt + rs + r2)
+                body.velocity = (scene.v_law, 0.0)
+                shape = pymunk.Circle(body, r2)
+                shape.friction = scene.q_pad
+                shape.filter = flt
+                space.add(body, shape)
+                ry = body.position.y - pad.position.y
+                tangential = pymunk.DampedSpring(pad, body, (-LT, ry), (0, 0), LT, p.micro_k * U.STIFFNESS,
+                                                 p.micro_c_spring * U.DAMPING)
+                normal = pymunk.DampedSpring(pad, body, (0, ry + LN), (0, 0), LN + pre, p.micro_k_normal * U.STIFFNESS, 0.0)
+                space.add(tangential, normal)
+                scene.slider_springs += [tangential, normal]
+                scene.law.build(scene, body, p.micro_c)
+                self.micro_tracks.append(sub.build(space, yt, flt, np.random.default_rng(seeds[i * n + j]),
+                                                   scene.mu_track, x_start))
+                self.micro_pads.append(body)
+        scene.sliders += self.micro_pads
+        scene.slider_load += [N2] * len(self.micro_pads)
+        scene.slider_c += [p.micro_c] * len(self.micro_pads)
+        scene.slider_load[:p.N] = [self.pad_load()] * p.N
+        scene.tracks += self.micro_tracks
+        # the micro-tracks' margins: the patches' own (8 a2 ahead plus the scene's run-ahead, 4 a2 behind), without the
+        # room for wear particles (none here)
+        self.micro_ahead = 8 * p.micro_a * U.LENGTH + scene.run_ahead
+        self.micro_behind = 4 * p.micro_a * U.LENGTH
+        self._index(scene)
+
+    @staticmethod
+    def _index(scene):
+        """A spatial hash (1 mm cells) instead of pymunk's bounding-box trees: with 120 micro-pads over ~5000 track
+        segments a step cost 1.6-1.8 ms with the trees and 0.38-0.43 ms with the hash (measured, same trajectory).
+        pymunk does not pickle the choice: it is made again on restoring."""
+        scene.space.use_spatial_hash(1.0, 2000)
+
+    def restore(self, scene):
+        super().restore(scene)
+        self._index(scene)
+
+    def _pad_preload(self, scene):
+        """The pad's normal spring carries the block's share (the micro-pads' springs press on the pad)."""
+        return self.sc.normal_load_per_pad - self.column_mass * G
+
+    def maintain(self, scene):
+        super().maintain(scene)
+        for b, tr in zip(self.micro_pads, self.micro_tracks):
+            tr.maintain(b.position.x, self.micro_ahead, self.micro_behind)
+
+    # ------------------------------------------------------------------ drawing
+    def view(self, scene):
+        """The first three pads with their micro-pads and micro-tracks, 40 a2 either side of the block."""
+        v = super().view(scene)
+        p = self.spec
+        k = min(3, p.N) - 1
+        low = scene.track_surface[k] - (p.n_micro + 0.5) * p.micro_spacing * U.LENGTH
+        return {**v, "window": 40 * p.micro_a, "ylim": (low, scene.y_block + 4.0), "track_width": 2,
+                "ylabel": "y (mm): pad tracks, each followed by its micro-tracks"}
+
+    def draw(self, scene, lo, hi, view):
+        shapes = super().draw(scene, lo, hi, view)
+        xy = np.array([(b.position.x, b.position.y) for b in self.micro_pads])
+        pads = scene.pads
+        n = self.spec.n_micro
+        links = [((pads[k // n].position.x, pads[k // n].position.y), (q[0], q[1])) for k, q in enumerate(xy)]
+        shapes["micro_springs"] = ("segments", links, {"colors": "0.6", "linewidths": 0.4})
+        shapes["micro_pads"] = ("points", xy, {"s": 6, "c": "tab:orange", "zorder": 3})
+        return shapes

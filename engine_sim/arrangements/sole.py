@@ -1,0 +1,78 @@
+"""An elastic sole: N flat feet side by side on one shared track, under a block free vertically (load
+redistribution: the block's weight is shared by whichever feet stand on asperities; section 7)."""
+from __future__ import annotations
+
+import pymunk
+
+from .. import units as U
+from . import ARRANGEMENTS, Arrangement, PadSpec, track_rng
+
+
+@ARRANGEMENTS.register
+class Sole(Arrangement):
+    """Feet of ``foot_length`` (ends rounded with ``radius``), normal springs relaxed (the feet that stand on bumps
+    carry the block between them), lateral springs of rest length foot_length between foot centres."""
+
+    name = "sole"
+    Spec = PadSpec
+    guided = False
+
+    def contact_width(self):
+        return self.spec.N * self.spec.foot_length
+
+    def width(self):
+        return self.spec.N * (self.spec.foot_length * U.LENGTH)
+
+    def build(self, scene):
+        sc, p = scene.sc, self.spec
+        space = scene.space
+        m_p, R = p.mass * U.MASS, p.radius * U.LENGTH
+        foot = p.foot_length * U.LENGTH
+        x_start = scene.substrate.x_start(scene)
+        for i in range(p.N):
+            pad = pymunk.Body(m_p, float("inf"))
+            xp = (i - (p.N - 1) / 2) * foot
+            yp = scene.substrate.top() + R + 1e-3  # the feet start just above the highest bump
+            flt = pymunk.ShapeFilter(group=1)  # feet do not collide with each other
+            half = foot / 2 - R - 0.05 * foot  # a small gap between neighbouring feet
+            shape = pymunk.Segment(pad, (-half, 0.0), (half, 0.0), R)
+            pad.position = (xp, yp)
+            pad.velocity = (scene.v_law, 0.0)
+            shape.friction = scene.q_pad
+            shape.filter = flt
+            space.add(pad, shape)
+            self._mount(scene, pad, xp, yp, 0.0)
+            scene.law.build(scene, pad, sc.friction.c)
+            if i == 0:  # one track shared by the sole's feet
+                scene.tracks.append(scene.substrate.build(space, 0.0, pymunk.ShapeFilter(), track_rng(scene, 0),
+                                                          sc.friction.mu0, x_start))
+            self._add_pad(scene, pad, yp, xp, flt, R)
+        if p.k1 > 0 or p.c1 > 0:
+            for i in range(p.N - 1):
+                c = pymunk.DampedSpring(scene.pads[i], scene.pads[i + 1], (0, 0), (0, 0), foot, p.k1 * U.STIFFNESS,
+                                        p.c1 * U.DAMPING)
+                space.add(c)
+                scene.slider_springs.append(c)
+
+    def maintain(self, scene):
+        scene.tracks[0].maintain(scene.block.position.x, scene.ahead, scene.behind)
+
+    def view(self, scene):
+        """Micrometre relief under a centimetre sole: the axes zoom onto the interface."""
+        h = scene.substrate.top()
+        ylim = (-0.5 * h, 3 * h)
+        return {"window": 0.65 * self.spec.N * self.spec.foot_length, "ylim": ylim,
+                "ylabel": "y (mm, exaggerated): asperity caps under the feet", "track_width": 1.5,
+                "block_top": ylim[1] - 0.12 * (ylim[1] - ylim[0]), "block_half": scene.width / 2}
+
+    def draw(self, scene, lo, hi, view):
+        """Feet filled from their underside up into the block, which rests on them."""
+        top = view["ylim"][1]
+        feet = []
+        for p in scene.pads:
+            for sh in p.shapes:
+                a, b = p.local_to_world(sh.a), p.local_to_world(sh.b)
+                bot = 0.5 * (a.y + b.y) - sh.radius
+                feet.append([(a.x, bot), (b.x, bot), (b.x, top), (a.x, top)])
+        return {"feet": ("polys", feet, {"facecolors": (0.84, 0.15, 0.16, 0.35), "edgecolors": "tab:red",
+                                         "linewidths": 1.5, "zorder": 3})}

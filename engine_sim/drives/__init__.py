@@ -1,0 +1,119 @@
+"""Drives, one class each: its spec (the ``[drive]`` section, SI), validation, the drive force and the normal load
+it leaves on the pads, build (a spring from the pulled body to an anchor body, plus any bodies of its own), the
+recorded terms (that spring and those bodies: the recorder reads the drive's force, power and energy from them)
+and its drawing.
+
+A new drive is one module here with a :class:`Drive` subclass decorated with ``@DRIVES.register`` and one import
+line below.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+import pymunk
+
+from .. import units as U
+from ..parts import Registry
+
+__all__ = ["DriveSpec", "Drive", "DRIVES", "drive_kind", "FAR"]
+
+DRIVES = Registry("drive")
+
+# mm: a constant force is a soft spring anchored FAR behind and compressed by FAR, so over a metre of sliding its
+# force changes by 1 m / FAR = 1e-6 relative and no Python runs inside a step (pymunk clears body forces every step)
+FAR = 1e9
+
+
+@dataclass(frozen=True)
+class DriveSpec:
+    """Fields every drive has: kind, its registered name."""
+
+    kind: str = "force"
+
+
+class Drive:
+    """One drive. After :meth:`build`: ``spring`` (a DampedSpring from the pulled body to a kinematic anchor, body
+    b), ``bodies`` (bodies of the drive's own that carry kinetic energy) and ``pulled`` (the index in ``bodies`` of
+    the body the spring pulls, -1 for the block)."""
+
+    name: ClassVar[str] = ""
+    Spec: ClassVar[type] = DriveSpec
+    positive: ClassVar[frozenset] = frozenset()
+    non_negative: ClassVar[frozenset] = frozenset()
+    choices: ClassVar[dict] = {}
+    constant_force: ClassVar[bool] = True  # the drive force is set, the speed follows from the friction law
+
+    def __init__(self, spec, scenario):
+        self.spec, self.sc = spec, scenario
+        self.spring, self.bodies, self.pulled = None, [], -1
+
+    @classmethod
+    def validate(cls, spec, sc) -> None:
+        """Raise ValueError (naming the field) if the drive cannot slide the scene."""
+        if cls.constant_force and not sc.steady_velocity > 0:
+            raise ValueError(f"drive force {sc.drive_force:.4g} N does not exceed the kinetic friction "
+                             f"{sc.pads.N * sc.column_force(0.0):.4g} N: the block would not slide")
+
+    def load_factor(self) -> float:
+        """The share of the block's weight pressing on the pads (cos theta on a slope)."""
+        return 1.0
+
+    def force(self) -> float:
+        """The drive force (N); for a velocity drive the friction law's steady force at its speed."""
+        raise NotImplementedError
+
+    @property
+    def extra_mass(self) -> float:
+        """Mass the drive moves with the block (kg; the effective mass is the block's plus this)."""
+        return 0.0
+
+    def steady_velocity(self) -> float:
+        """The friction law's steady speed under the drive, N f(v) = F (m/s); <= 0 if F does not exceed the
+        kinetic friction (f: the friction of one pad column, ``Scenario.column_force``)."""
+        sc = self.sc
+        target = sc.drive_force / sc.pads.N
+        f0 = sc.column_force(0.0)
+        if target <= f0:
+            return (target - f0) / max(sc.friction_slope(0.0), 1e-300)
+        hi = 1e-6
+        while sc.column_force(hi) < target:
+            hi *= 2.0
+            if hi > 1e6:
+                return float("inf")
+        lo = 0.0
+        for _ in range(200):  # bisection: f is increasing; 200 halvings reach double precision
+            mid = 0.5 * (lo + hi)
+            if sc.column_force(mid) < target:
+                lo = mid
+            else:
+                hi = mid
+        return 0.5 * (lo + hi)
+
+    def build(self, scene) -> None:
+        """A constant force F: the far compressed spring on the block (scene units)."""
+        self._far_spring(scene, scene.block)
+
+    def _far_spring(self, scene, pulled):
+        F = self.sc.drive_force * U.FORCE
+        kd = F / FAR
+        anchor = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+        anchor.position = (-FAR, scene.y_block)  # behind: the compressed spring pushes the body forward
+        rest = FAR + FAR  # length FAR, compression FAR: force kd * FAR = F
+        self.spring = pymunk.DampedSpring(pulled, anchor, (0, 0), (0, 0), rest, kd, 0.0)
+        scene.space.add(anchor, self.spring)
+
+    def draw(self, scene, lo: float, hi: float) -> dict:
+        """Shapes to draw (see ``render.py``: name -> (kind, data, style)), scene units."""
+        return {}
+
+    def describe(self) -> dict:
+        return {}
+
+
+def drive_kind(name: str):
+    """The Drive class registered as ``name`` (KeyError if none)."""
+    return DRIVES[name]
+
+
+from . import force, tilted, velocity, leonardo  # noqa: E402,F401

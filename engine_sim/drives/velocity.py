@@ -1,0 +1,44 @@
+"""A constant pulling speed: the block is pulled through a spring whose far end moves at v."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import pymunk
+
+from .. import units as U
+from . import DRIVES, Drive, DriveSpec
+
+_REST = 5.0  # mm: the drive spring's rest length
+
+
+@dataclass(frozen=True)
+class VelocitySpec(DriveSpec):
+    """v: the anchor's speed (m/s); k_drive: the pulling spring's stiffness (N/m)."""
+
+    kind: str = "velocity"
+    v: float = 5e-3
+    k_drive: float = 1e3
+
+
+@DRIVES.register
+class Velocity(Drive):
+    name = "velocity"
+    Spec = VelocitySpec
+    positive = frozenset({"v", "k_drive"})
+    constant_force = False
+
+    def force(self):
+        return self.sc.pads.N * self.sc.column_force(self.spec.v)
+
+    def steady_velocity(self):
+        return self.spec.v
+
+    def build(self, scene):
+        """The anchor, a kinematic body moving at v, starts ahead by the spring's steady stretch."""
+        kd = self.spec.k_drive * U.STIFFNESS
+        F_ss = self.sc.pads.N * self.sc.column_force(self.spec.v)
+        anchor = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+        anchor.position = (_REST + F_ss / kd, scene.y_block)
+        anchor.velocity = (scene.v_law, 0.0)
+        self.spring = pymunk.DampedSpring(scene.block, anchor, (0, 0), (0, 0), _REST, kd, 0.0)
+        scene.space.add(anchor, self.spring)

@@ -1,0 +1,80 @@
+"""Friction laws, one class each: its spec (the ``[friction]`` section, SI), validation, build (the velocity part
+of the law as pymunk objects on each sliding body), stepping (a law that needs a force written each step),
+recorded terms (its drag force and power) and its share of ``describe()`` (parameters and slope dF/dv).
+
+Every law here is velocity strengthening, f(v) = mu N_pad + g(v), with the Coulomb part mu N_pad solved by
+pymunk's contact solver (mu carried by the substrate's shapes) and the velocity part g(v) added per sliding body.
+The recorder reads g in one form, g(v) = c v + b N_pad ln(1 + |v|/v_c) sign(v) (``drag_terms``), which covers
+both shipped laws. A new law is one module here with a :class:`Law` subclass decorated with ``@LAWS.register``
+and one import line below.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+from ..parts import Registry
+
+__all__ = ["FrictionSpec", "Law", "LAWS", "law_kind"]
+
+LAWS = Registry("friction law", key="law")
+
+
+@dataclass(frozen=True)
+class FrictionSpec:
+    """Fields every law has: law, its registered name; mu0: the Coulomb coefficient (the substrate's local value
+    varies about it); c: viscous slope (N s/m per sliding body)."""
+
+    law: str = "linear"
+    mu0: float = 0.6
+    c: float = 10.0
+
+
+class Law:
+    """One friction law. ``spec`` is its section; ``sc`` the scenario it belongs to."""
+
+    name: ClassVar[str] = ""
+    Spec: ClassVar[type] = FrictionSpec
+    positive: ClassVar[frozenset] = frozenset()
+    non_negative: ClassVar[frozenset] = frozenset({"mu0", "c"})
+    choices: ClassVar[dict] = {}
+
+    def __init__(self, spec, scenario):
+        self.spec, self.sc = spec, scenario
+
+    @classmethod
+    def validate(cls, spec, sc) -> None:
+        """Raise ValueError (naming the field) if the law cannot slide the scene steadily."""
+
+    def force(self, v: float, load: float, c: float) -> float:
+        """Steady friction force (N) of one sliding body under ``load`` (N) at speed v >= 0, viscous slope c."""
+        raise NotImplementedError
+
+    def slope(self, v: float, load: float, c: float) -> float:
+        """dF/dv (N s/m) of one sliding body at speed v."""
+        raise NotImplementedError
+
+    def drag_terms(self, load: float, c: float) -> tuple[float, float, float]:
+        """(c [N s/m], b N_pad [N], v_c [m/s]) of the velocity part in the recorder's form (b N_pad = 0: none)."""
+        return c, 0.0, 1.0
+
+    def describe(self, load: float, c: float) -> dict:
+        """The law's parameters for one sliding body (``metadata["scene"]["friction_law"]``)."""
+        return {"law": self.name, "c": c, "b": 0.0, "v_c": None, "load_per_pad": load}
+
+    def build(self, scene, body, c: float) -> None:
+        """Add the velocity part of the law on ``body`` (scene units) to ``scene.space``."""
+
+    def advance(self, scene, n: int) -> None:
+        """n pymunk steps of the scene (a law that writes forces each step overrides this)."""
+        step, dt = scene.space.step, scene.dt
+        for _ in range(n):
+            step(dt)
+
+
+def law_kind(name: str):
+    """The Law class registered as ``name`` (KeyError if none)."""
+    return LAWS[name]
+
+
+from . import linear, log  # noqa: E402,F401
