@@ -6,6 +6,9 @@ every module these import at their top, transitively (read from their source). A
 tests were all deselected import does not count. Subprocesses are not seen: a module only reached through
 `python -m ...` counts as untouched (the strict side).
 
+Under pytest-xdist (``-n 2``, the README's fast-tier command) each worker lists what its own tests left
+untouched and the controller fails the run on the modules every worker left untouched.
+
 With FRICTIONNOISE_CALLED=1 the check is stricter: a function of the module must have run in this process (a
 global trace function that returns None, so no line is traced; it costs about 40 % more CPU time, measured on
 four test files, so it is not the default)."""
@@ -152,23 +155,36 @@ def _whole_tier(session) -> bool:
             and cfg.option.markexpr in ("", "not slow") and not cfg.option.collectonly)
 
 
+_worker_lists: list = []  # under pytest-xdist (``-n 2``): each worker's untouched modules, gathered by the controller
+
+
+@pytest.hookimpl(optionalhook=True)  # an xdist hook: without xdist installed, never called
+def pytest_testnodedown(node, error):
+    if "untouched" in getattr(node, "workeroutput", {}):
+        _worker_lists.append(set(node.workeroutput["untouched"]))
+
+
 def pytest_sessionfinish(session, exitstatus):
     if _CALLED:
         sys.settrace(None)
         threading.settrace(None)
+    cfg = session.config
+    if hasattr(cfg, "workerinput"):  # an xdist worker: hand its list to the controller, which decides
+        cfg.workeroutput["untouched"] = untouched_modules()
+        return
     if _whole_tier(session) and exitstatus == 0:
-        missed = untouched_modules()
-        session.config._untouched = missed
+        if getattr(cfg.option, "numprocesses", None):  # a module is untouched if no worker touched it
+            missed = sorted(set.intersection(*_worker_lists)) if _worker_lists else list(project_modules())
+        else:
+            missed = untouched_modules()
         if missed:
             session.exitstatus = pytest.ExitCode.TESTS_FAILED
-
-
-def pytest_terminal_summary(terminalreporter, exitstatus, config):
-    missed = getattr(config, "_untouched", None)
-    if missed is None:
-        return
-    how = "called" if _CALLED else "imported"
-    if missed:
-        terminalreporter.write_line(f"modules no selected test {how} ({len(missed)}): {', '.join(missed)}", red=True)
-    else:
-        terminalreporter.write_line(f"every project module ({len(project_modules())}) {how} by a selected test")
+        # written here, not in pytest_terminal_summary: under xdist the controller's summary comes first
+        how = "called" if _CALLED else "imported"
+        tr = cfg.pluginmanager.get_plugin("terminalreporter")
+        line = (f"modules no selected test {how} ({len(missed)}): {', '.join(missed)}" if missed
+                else f"every project module ({len(project_modules())}) {how} by a selected test")
+        if tr is not None:
+            tr.write_line(line, red=bool(missed))
+        else:
+            print(line, file=sys.stderr)

@@ -60,6 +60,7 @@ def _popen(cmd, **kw):
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL), **kw)
 
 
+@pytest.mark.slow  # fast tier under a minute: run in CI's slow tier
 def test_checkpointing_does_not_change_the_bits(tmp_path):
     """Every run passes through the same pickle round trip at its epochs, so a checkpoint file, its interval and
     a resume change nothing (before, a checkpointed run departed from a plain one at the first checkpoint)."""

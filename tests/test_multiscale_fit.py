@@ -112,6 +112,7 @@ def _fake_scene_trace(p, T=300.0, dt=1e-3, seed=7, columns="pads"):
                            F_drag=np.full(n, p.N * p.m * p.eta1 * p.v), metadata={"scene": scene})
 
 
+@pytest.mark.slow  # fast tier under a minute: run in CI's slow tier (the estimator itself has fast tests above)
 @pytest.mark.parametrize("columns", ["pads", "sum"])
 def test_multiscale_params_from_a_trace(columns):
     # The builder on an engine-like trace made from a model Ib run with known parameters: the layout comes back

@@ -66,6 +66,7 @@ def test_micro_fields_are_validated_one_line_naming_the_field():
         scenario_from_dict({"pads": {"n_micro": 2}})
 
 
+@pytest.mark.slow  # fast tier under a minute; the log-law scene's resume test stays fast
 def test_run_through_checkpoints_and_resume_is_bitwise_the_uninterrupted_run(tmp_path):
     # as tests/test_checkpoint.py does for the patches: every run passes through the same round trips (epochs of
     # 0.1 s here), so a checkpoint file and a resume from it change no bit

@@ -43,6 +43,7 @@ def test_friction_split_gives_the_wanted_pairs():
     assert np.mean(grain_mu[0] * track_mu) == pytest.approx(sc.wear.mu_track, rel=0.03)  # same 1 % sampling, 3 sigma
 
 
+@pytest.mark.slow  # fast tier under a minute: run in CI's slow tier
 def test_episodes_and_B2_against_exact_rectangles():
     # Independent rectangles of random sign (B2's assumption): durations exponential (mean 20 ms), heights +-c.
     # The empirical (B2) must read the periodogram of the series within the Welch scatter (31 half-overlapping
@@ -101,6 +102,7 @@ def test_pads_with_wear_keeps_its_grains_and_closes_energy():
     assert tr0.p_state.shape[1] == 0 and tr0.x[-1] > tr.x[-1]  # grains add friction
 
 
+@pytest.mark.slow  # fast tier under a minute: run in CI's slow tier
 def test_render_colours_grains_by_the_recorders_state_within_the_frame_budget(tmp_path):
     # 30 pads on their tracks and 100 grains: a frame costs at most a fifth of pymunk's own matplotlib drawing, measured
     # in turns (an absolute budget failed whenever other processes shared the cores); grains coloured by the

@@ -73,6 +73,7 @@ def test_bad_study_factor_in_a_sweep_is_one_line_naming_it(tmp_path):
     assert "\n" not in str(e.value)
 
 
+@pytest.mark.slow  # fast tier under a minute: run in CI's slow tier
 def test_substepped_grains_resume_bit_for_bit(tmp_path):
     # the grain step rule cuts run.dt into fixed substeps (4 on the study's scene), so a run interrupted at an epoch
     # and resumed from its checkpoint is the uninterrupted run, bit for bit
