@@ -238,7 +238,9 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
                 if k + 1 < n_out:
                     scene.advance(n_sub)
                 k += 1
-                if k % e_out == 0 and k < n_out:  # an epoch: continue from the restored copy, as a resumed run will
+                # an epoch: continue from the restored copy, as a resumed run will (not before the last sample, which
+                # no step follows: that round trip was wasted, and it woke every sleeping grain the last sample reads)
+                if k % e_out == 0 and k + 1 < n_out:
                     t_rt = time.perf_counter()
                     scene_bytes = pickle.dumps(scene, protocol=pickle.HIGHEST_PROTOCOL)
                     rs = _rec_state(rec, k)

@@ -65,7 +65,7 @@ def test_study_sweeps_load_with_the_issues_factors():
 
 def test_bad_study_factor_in_a_sweep_is_one_line_naming_it(tmp_path):
     text = (SWEEPS / "wear_study_quick.toml").read_text().replace('"narrow", "broad"', '"narrow", "wide"')
-    text = text.replace('scenario = "../', f'scenario = "{SWEEPS.parent}/')
+    text = text.replace('scenario = "', f'scenario = "{SWEEPS}/')
     p = tmp_path / "bad.toml"
     p.write_text(text)
     with pytest.raises(SweepError, match="study.size = 'wide'") as e:
@@ -80,7 +80,7 @@ def test_substepped_grains_resume_bit_for_bit(tmp_path):
     import engine_sim
     from engine_sim import load_scenario
 
-    sc = load_scenario(str(SWEEPS.parent / "pads_with_wear_study.toml")).with_wear(count=10).with_run(duration=0.3, warmup=0.05)
+    sc = load_scenario(str(SWEEPS / "pads_with_wear_study.toml")).with_wear(count=10).with_run(duration=0.3, warmup=0.05)
     a = engine_sim.run(sc, epoch=0.1)
     assert a.metadata["scene"]["grain_step"]["substeps"] == 4
     ck = tmp_path / "checkpoint.pkl"
@@ -104,7 +104,7 @@ def _paired_rise(track, seed=0):
     from compare.sweep import SweepSpec, run_task
 
     spec = SweepSpec(name="wear_cell", target="scenario", fixed={"duration": _CELL_T, "run.warmup": 0.5}, grid={},
-                     analysis={"wear": True}, scenario=str(SWEEPS.parent / "pads_with_wear_study.toml"))
+                     analysis={"wear": True}, scenario=str(SWEEPS / "pads_with_wear_study.toml"))
     cell = run_task(spec, {**spec.fixed, **_CELL, "study.track": track}, seed)
     twin = run_task(spec, {**spec.fixed, **_CELL, "study.track": track, "wear.count": 0}, seed)
     assert "error" not in cell and "error" not in twin, (cell.get("error"), twin.get("error"))
