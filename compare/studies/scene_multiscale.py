@@ -169,4 +169,4 @@ def run(quick: bool, seed: int) -> StudyResult:
                        (), paragraphs([f"Skipped: {esc(reason)}."]))
 
 
-STUDY = Study(key=f"scenarios/{NAME}_model_Ib", label=f"scene {NAME} vs model Ib", run=run, quick=False, cost=20.0)
+STUDY = Study(key=f"scenarios/{NAME}_model_Ib", label=f"scene {NAME} vs model Ib", run=run, quick=True, cost=20.0)
