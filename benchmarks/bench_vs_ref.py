@@ -8,13 +8,17 @@ the two commits taking turns (ref, head, ref, head, ...) so that a drift in the 
 
 - the engine's loop / bare-step ratio per shipped scene (``benchmarks.bench_engine.loop_ratio`` of each tree,
   best of 3 inside each call), ``--repeats`` calls per commit;
-- the wall time of ``frictionnoise report --quick --seed K`` (``--repeats`` runs per commit);
+- the wall time of ``frictionnoise report --quick --seed K --workers 1`` (``--repeats`` runs per commit), in all
+  and per study (each study's own wall_s from summary.json), with the studies both commits run summed apart from
+  the studies only head has;
 - the quick report's summary.json of the two commits (same seed): the relative difference per numeric key, the
   keys that differ by more than ``--rtol`` (default 1e-12), timings listed apart (they differ by nature), and
-  the keys only one commit has.
+  the keys only one commit has; each differing key assigned to its cause by ``benchmarks.summary_causes`` (keys
+  no rule explains are listed), and where the two commits' traces part (first differing sample of x) for the
+  scenes those rules rest on.
 
     python -m benchmarks.bench_vs_ref [--ref c9e0afb] [--head HEAD] [--repeats 3] [--steps 50000] [--seed 0]
-                                      [--json OUT] [--smoke]
+                                      [--workers 1] [--skip-engine] [--json OUT] [--smoke]
 
 ``--smoke`` (CI): one repeat, 3000 steps on one scene, and `frictionnoise analyze` of the shipped synthetic
 model I file in place of the quick report: it checks that the worktrees, the isolation and the diff work, in
@@ -53,6 +57,15 @@ for name, path in shipped_scenarios().items():
 print(json.dumps(out))
 """
 _WHERE = "import engine_sim; print(engine_sim.__file__)"
+_TRACE = """
+import sys, numpy as np, engine_sim
+from engine_sim import load_scenario, shipped_scenarios
+sc = load_scenario(shipped_scenarios()[sys.argv[1]]).with_run(duration=float(sys.argv[2]), seed=0)
+np.save(sys.argv[3], engine_sim.run(sc).x)
+"""
+# where the two commits' traces part (the summary_causes rules rest on these), with the quick report's durations
+_FIRST_DIFF = {"asperity_field": 6.0, "pads_with_wear": 0.5, "pads_rough_profile": 0.3, "pads_friction_patches": 12.0,
+               "tilted_plane": 12.0}
 # summary keys that hold timings or speeds: they differ between any two runs, so they are listed apart
 _TIMING = re.compile(r"(wall|_s_per_|per_wall|us_per|seconds|elapsed|cost|speed_ratio|steps_per_s|timing)", re.I)
 
@@ -121,6 +134,29 @@ def diff_summaries(ref: dict, head: dict, rtol: float = 1e-12) -> dict:
             "max_rel": max((v for k, v in rel.items() if not _TIMING.search(k)), default=0.0)}
 
 
+def first_difference(trees: dict, tmp: Path, name: str, duration: float) -> dict:
+    """Run one shipped scene in both trees (seed 0) and find the first recorded sample whose x differs."""
+    import numpy as np
+    xs = {}
+    for k, tree in trees.items():
+        out = tmp / f"x_{k}_{name}.npy"
+        _run(tree, ["-c", _TRACE, name, str(duration), str(out)])
+        xs[k] = np.load(out)
+    n = min(len(x) for x in xs.values())
+    bad = np.nonzero(xs["ref"][:n] != xs["head"][:n])[0]
+    return {"samples": int(n), "first_differing_sample": int(bad[0]) if len(bad) else None,
+            "max_abs_dx_m": float(np.abs(xs["ref"][:n] - xs["head"][:n]).max())}
+
+
+def study_walls(summary: dict) -> dict:
+    """{study: wall_s} of one quick report's summary (scenes under scenarios/, the models at the top level)."""
+    out = {f"scene {k}": v["wall_s"] for k, v in summary.get("scenarios", {}).items()
+           if isinstance(v, dict) and isinstance(v.get("wall_s"), (int, float))}
+    out.update({k: v["wall_s"] for k, v in summary.items()
+                if k != "scenarios" and isinstance(v, dict) and isinstance(v.get("wall_s"), (int, float))})
+    return out
+
+
 def _spread(xs) -> str:
     return f"{statistics.median(xs):.3f} [{min(xs):.3f}-{max(xs):.3f}]"
 
@@ -140,6 +176,10 @@ def main(argv=None) -> int:
     ap.add_argument("--rtol", type=float, default=1e-12, help="relative difference listed (default: %(default)s)")
     ap.add_argument("--json", default=None, help="also write the results here")
     ap.add_argument("--smoke", action="store_true", help="a short check that the script runs (CI)")
+    ap.add_argument("--workers", type=int, default=1,
+                    help="the quick report's --workers (default: %(default)s, so that each study's wall time is "
+                         "its own)")
+    ap.add_argument("--skip-engine", action="store_true", help="skip the loop/bare-step part")
     a = ap.parse_args(argv)
     if a.repeats < 1:
         ap.error("--repeats must be at least 1")
@@ -164,19 +204,20 @@ def main(argv=None) -> int:
         print(f"ref {commits['ref'][:10]}  head {commits['head'][:10]}  ({repeats} repeats, taking turns)")
 
         engine = {k: [] for k in commits}
-        for i in range(repeats):
+        for i in range(0 if a.skip_engine else repeats):
             for k in commits:
                 out = json.loads(_run(trees[k], ["-c", _ENGINE, str(steps), *only]).stdout.splitlines()[-1])
                 engine[k].append(out["scenes"])
-        scenes = [s for s in engine["head"][0] if s in engine["ref"][0]]
+        scenes = [s for s in engine["head"][0] if s in engine["ref"][0]] if engine["head"] else []
         table = {}
-        print("\n| scene | loop/bare ref | loop/bare head | ranges overlap |\n|---|---|---|---|")
+        if scenes:
+            print("\n| scene | loop/bare ref | loop/bare head | ranges overlap |\n|---|---|---|---|")
         for s in scenes:
             r = [e[s]["ratio"] for e in engine["ref"]]
             h = [e[s]["ratio"] for e in engine["head"]]
             table[s] = {"ref": r, "head": h, "overlap": _overlap(r, h)}
             print(f"| {s} | {_spread(r)} | {_spread(h)} | {'yes' if _overlap(r, h) else 'NO'} |")
-        extra = sorted(set(engine["head"][0]) ^ set(engine["ref"][0]))
+        extra = sorted(set(engine["head"][0]) ^ set(engine["ref"][0])) if engine["head"] else []
         if extra:
             print(f"scenes in one commit only: {', '.join(extra)}")
         results["engine_loop_over_bare"] = table
@@ -186,23 +227,42 @@ def main(argv=None) -> int:
                    "--x-unit", "um", "--band", "5", "50"]
             label = "analyze (smoke)"
         else:
-            cmd = ["-m", "compare.cli", "report", "--quick", "--seed", str(a.seed)]
+            cmd = ["-m", "compare.cli", "report", "--quick", "--seed", str(a.seed), "--workers", str(a.workers)]
             label = "report --quick"
         walls = {k: [] for k in commits}
-        summaries = {}
+        summaries, stage_walls = {}, {k: [] for k in commits}
         for i in range(repeats):
             for k in commits:
                 out = tmp / f"{k}-report-{i}"
                 t0 = time.perf_counter()
                 _run(trees[k], [*cmd, "-o", str(out)])
                 walls[k].append(time.perf_counter() - t0)
-                summaries.setdefault(k, json.loads((out / "summary.json").read_text()))
+                summary = json.loads((out / "summary.json").read_text())
+                summaries.setdefault(k, summary)
+                if not a.smoke:
+                    stage_walls[k].append(study_walls(summary))
         print(f"\n{label} wall s: ref {_spread(walls['ref'])}, head {_spread(walls['head'])}, "
               f"head / ref {statistics.median(walls['head']) / statistics.median(walls['ref']):.3f}, ranges "
               f"{'overlap' if _overlap(walls['ref'], walls['head']) else 'DO NOT overlap'}")
         print("  each run (the first of each commit includes numba's compilation into its fresh worktree's cache): "
               + "; ".join(f"{k} " + ", ".join(f"{w:.1f}" for w in walls[k]) for k in commits))
         results["report_wall_s"] = {**walls, "overlap": _overlap(walls["ref"], walls["head"])}
+        if stage_walls["head"]:
+            common = sorted(set(stage_walls["ref"][0]) & set(stage_walls["head"][0]))
+            print("\nper study (the report's own wall_s per study, --workers "
+                  f"{a.workers}):\n| study | ref s | head s | ranges overlap |\n|---|---|---|---|")
+            per = {}
+            for st in common + ["common studies, summed"]:
+                if st in common:
+                    r, h = ([w[st] for w in stage_walls[k]] for k in ("ref", "head"))
+                else:
+                    r, h = ([sum(w[c] for c in common) for w in stage_walls[k]] for k in ("ref", "head"))
+                per[st] = {"ref": r, "head": h, "overlap": _overlap(r, h)}
+                print(f"| {st} | {_spread(r)} | {_spread(h)} | {'yes' if _overlap(r, h) else 'NO'} |")
+            new = {st: [w[st] for w in stage_walls["head"]] for st in sorted(set(stage_walls["head"][0]) - set(common))}
+            for st, h in new.items():
+                print(f"| {st} (head only) | - | {_spread(h)} | - |")
+            results["study_wall_s"] = {"common": per, "head_only": new}
 
         d = diff_summaries(summaries["ref"], summaries["head"], a.rtol)
         results["summary_diff"] = d
@@ -215,6 +275,22 @@ def main(argv=None) -> int:
             if d[side]:
                 print(f"keys in {side.split('_')[1]} only ({len(d[side])}): {', '.join(d[side][:40])}"
                       + (" ..." if len(d[side]) > 40 else ""))
+        if not a.smoke:
+            from benchmarks.summary_causes import explain
+            e = explain(d)
+            results["causes"] = e
+            print("\ncauses (benchmarks/summary_causes.py):")
+            for cause, keys in e["causes"].items():
+                print(f"  {len(keys):4d}  {cause}")
+            print(f"  unexplained differing keys: {len(e['unexplained'])} {e['unexplained'][:20]}")
+            print(f"  keys only in head: {e['new_in_head']['explained']} new studies/flags, unexplained "
+                  f"{e['new_in_head']['unexplained'][:20]}; keys only in ref: {e['only_ref'][:20]}")
+            fd = {name: first_difference(trees, tmp, name, dur) for name, dur in _FIRST_DIFF.items()}
+            results["first_difference"] = fd
+            print("\nwhere the traces part (x, seed 0, the quick report's spectral settings aside):")
+            for name, r in fd.items():
+                print(f"  {name}: {r['samples']} samples, first differing sample {r['first_differing_sample']}, "
+                      f"max |dx| {r['max_abs_dx_m']:.3g} m")
         if a.json:
             Path(a.json).write_text(json.dumps(results, indent=1, default=str))
     finally:

@@ -38,7 +38,7 @@ def _build_parser() -> argparse.ArgumentParser:
     rep = add("report", "the main job: the paper's model figures, every shipped scene against its reduced model, "
                         "fits and timings, as an HTML report with summary.json")
     rep.add_argument("-o", "--output", default="frictionnoise-report", help="output folder (default: %(default)s)")
-    rep.add_argument("--quick", action="store_true", help="shorter runs (under a minute)")
+    rep.add_argument("--quick", action="store_true", help="shorter runs (about 2 min on 2 cores)")
     rep.add_argument("--seed", type=int, default=0,
                      help="random seed of every model and scene run (default: %(default)s); same seed, same numbers")
     rep.add_argument("--workers", type=int, default=None, metavar="N",
