@@ -12,6 +12,26 @@ class UserError(Exception):
     """An error in the user's input: printed as one line, exit status 2."""
 
 
+# names that end like a file: `-o ms.npz` once made a folder named ms.npz (a new user's trial)
+_FILE_SUFFIXES = frozenset({".npz", ".npy", ".json", ".html", ".htm", ".png", ".gif", ".pdf", ".svg", ".pkl", ".csv",
+                            ".txt", ".toml", ".zip"})
+
+
+def _output_dir(arg, default, writes: str):
+    """The folder a command writes into (``-o DIR``, else ``default``). An ``-o`` name ending in a file suffix
+    is refused (unless that folder exists already): every command writes several files into a folder."""
+    from pathlib import Path
+
+    from .inputs import output_folder
+
+    if arg is not None:
+        suffix = Path(arg).suffix.lower()
+        if suffix in _FILE_SUFFIXES and not Path(arg).is_dir():
+            raise UserError(f"-o/--output {arg}: names a folder, not a {suffix} file (the command writes {writes} into "
+                            f"it); give a folder name without the {suffix} suffix")
+    return output_folder(arg or default)
+
+
 def cmd_scenarios(args) -> int:
     from engine_sim import load_scenario, shipped_scenarios
     from engine_sim.scenario import scenario_summary
@@ -38,9 +58,7 @@ def cmd_sweep(args) -> int:
         raise UserError(f"--workers must be between 1 and 64 (got {args.workers})")
     if not 0 < args.connect_timeout <= 3600:
         raise UserError(f"--connect-timeout must be in (0, 3600] seconds (got {args.connect_timeout})")
-    from .inputs import output_folder
-
-    out = output_folder(args.output or f"sweep-{spec.name}")
+    out = _output_dir(args.output, f"sweep-{spec.name}", "index.html, summary.json and its task cache")
     bar = tqdm(total=0, desc=spec.name, unit="task", file=sys.stderr, disable=not sys.stderr.isatty())
 
     def progress(done, total):
@@ -74,7 +92,7 @@ def cmd_analyze(args) -> int:
 
     import math
 
-    from .inputs import input_file, output_folder, sniff
+    from .inputs import input_file, sniff
 
     if sniff(input_file(args.data)) != "text":  # kind, emptiness, binary; the format is read by compare.measured
         raise UserError(f"{args.data}: binary data, not a CSV text file")
@@ -101,7 +119,7 @@ def cmd_analyze(args) -> int:
         raise UserError(str(e)) from None
     if data.warning:
         print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)
-    out = output_folder(args.output or f"analyze-{Path(args.data).stem}")
+    out = _output_dir(args.output, f"analyze-{Path(args.data).stem}", "index.html and summary.json")
     band = tuple(args.band) if args.band else None
     try:
         if force:
@@ -137,7 +155,6 @@ def cmd_analyze(args) -> int:
 
 def cmd_render(args) -> int:
 
-    from .inputs import output_folder
     from .outputs import atomic_folder
 
     sc = _load_scenario(args.scenario)
@@ -149,7 +166,7 @@ def cmd_render(args) -> int:
     from engine_sim import Scene
     from engine_sim.render import SceneRenderer
 
-    out = output_folder(args.output or f"render-{sc.name}")
+    out = _output_dir(args.output, f"render-{sc.name}", "frame_000.png, ... (and animation.gif)")
     scene = Scene(sc, args.seed)
     renderer = SceneRenderer(scene)
     n_out = max(1, int(round(args.duration / sc.run.dt_out / args.frames)))  # output steps between frames
@@ -234,13 +251,11 @@ def progress_bar(desc, stream=None):
 
 
 def cmd_run(args) -> int:
-    from .inputs import output_folder
-
     sc = _load_scenario(args.scenario)
     _check_seed(args.seed)
     if args.duration is not None and not 0 < args.duration < float("inf"):
         raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
-    out = output_folder(args.output or f"run-{sc.name}")
+    out = _output_dir(args.output, f"run-{sc.name}", "trace.npz and trace.json")
     if args.epoch is not None and not 0 < args.epoch < float("inf"):
         raise UserError(f"--epoch must be a positive number of seconds (got {args.epoch})")
     ck = None
@@ -298,7 +313,7 @@ def cmd_compare(args) -> int:
     from .report import build_scene_report
     from .traceio import TraceFileError, load_trace
 
-    from .inputs import input_file, output_folder, sniff
+    from .inputs import input_file, sniff
 
     src = input_file(_scenario_path(args.source))
     _check_seed(args.seed)
@@ -320,7 +335,7 @@ def cmd_compare(args) -> int:
             raise UserError(str(e)) from None
     else:
         sc = _load_scenario(src)
-    out = output_folder(args.output or f"compare-{sc.name}")
+    out = _output_dir(args.output, f"compare-{sc.name}", "index.html, summary.json and figures/")
     note = None
     if trace is not None and trace.metadata.get("partial"):
         note = f"{src} is a partial trace (interrupted at t = {trace.t[-1]:.3f} s)"
@@ -357,9 +372,7 @@ def cmd_report(args) -> int:
     from .progress import StageProgress
     from .report import build_report
 
-    from .inputs import output_folder
-
-    out = output_folder(args.output)
+    out = _output_dir(args.output, "frictionnoise-report", "index.html, summary.json and figures/")
     _check_seed(args.seed)
     if args.workers is not None and args.workers < 1:
         raise UserError(f"--workers must be at least 1 (got {args.workers})")
