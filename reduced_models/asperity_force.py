@@ -194,7 +194,7 @@ def theory_force_spectrum(params: AsperityForceParams, omega) -> np.ndarray:
 
 
 def theory_spectrum(params: AsperityForceParams, omega) -> np.ndarray:
-    """C_x = C_F / (M^2 omega^4), eq. (3) (Units: m^2 s)."""
+    """C_x = C_F / (M^2 omega^4), eq. (3) (Units: m^2 s); omega is the angular frequency (Units: rad/s)."""
     w = np.asarray(omega, dtype=float)
     return theory_force_spectrum(params, w) / (params.M**2 * w**4)
 

@@ -356,9 +356,7 @@ def transfer_functions(params: MultiscaleParams, omega):
 
 
 def _force_spectrum(v, a, amp, omega, closure):
-    """C_f of one contact's renewing force, eq. (A8) (Units: N^2 s); closure "cumulant" is the paper's
-    <cos w tau> = exp(-s^2 w^2 / 2) cos(w tau0), s^2 = tau0^2 / 6; "exact" the triangular law of
-    tau = tau0 (1 + r - r'): cos(w tau0) sinc^2(w tau0 / 2)."""
+    """C_f of one contact's renewing force, eq. (A8) (Units: N^2 s); closure as in :func:`theory_spectrum`."""
     w = np.asarray(omega, dtype=float)
     tau0 = a / v
     if closure == "cumulant":
@@ -380,7 +378,12 @@ def theory_components(params: MultiscaleParams, omega, closure: str = "cumulant"
 
 
 def theory_spectrum(params: MultiscaleParams, omega, closure: str = "cumulant") -> np.ndarray:
-    """C_x(omega) = |Z~|^2 / N [C_f1 + n |T2|^2 C_f2], the generalisation of eq. (A10) (Units: m^2 s).
+    """C_x(omega) = |Z~|^2 / N [C_f1 + n |T2|^2 C_f2], the generalisation of eq. (A10) (Units: m^2 s), at the
+    angular frequencies omega (Units: rad/s; omega = 2 pi f). ``closure``: how eq. (A8) averages <cos omega tau> over
+    the renewal interval tau = tau0 (1 + r - r') (tau0 = a / v, r and r' uniform), at both levels: "cumulant"
+    (default, the paper's) a Gaussian of tau's mean and variance, exp(-s^2 omega^2 / 2) cos(omega tau0), s^2 =
+    tau0^2 / 6; "exact" tau's own triangular law, cos(omega tau0) sinc^2(omega tau0 / 2), as the simulators draw
+    it. They differ by under 0.03 % below omega tau0 = 0.5 and by at most 5 % near omega tau0 = 4-6.
     With n = 0 it equals :func:`reduced_models.spring_block.theory_spectrum` (closure "cumulant")."""
     c1, c2 = theory_components(params, omega, closure)
     return c1 + c2

@@ -375,7 +375,9 @@ def transfer_function(params: SpringBlockParams, omega) -> np.ndarray:
 
 
 def theory_spectrum(params: SpringBlockParams, omega) -> np.ndarray:
-    """C_x(omega) = |Z|^2 C_f / N, eq. (A10), full Z of (A5) and C_f of (A8) (Units: m^2 s)."""
+    """C_x(omega) = |Z|^2 C_f / N, eq. (A10), full Z of (A5) and C_f of (A8) (Units: m^2 s); omega is the angular
+    frequency (Units: rad/s). C_f uses the paper's cumulant closure of <cos omega tau>
+    (:func:`reduced_models.multiscale.theory_spectrum` offers the exact one)."""
     return np.abs(transfer_function(params, omega)) ** 2 * random_force_spectrum(params, omega) / params.N
 
 

@@ -388,7 +388,7 @@ def _avg_gain(w, dt_avg):
 
 
 def theory_spectrum(params: WearParticleParams, omega, **kw) -> np.ndarray:
-    """C_x = C_F / (M^2 omega^4), eq. (3) (Units: m^2 s)."""
+    """C_x = C_F / (M^2 omega^4), eq. (3) (Units: m^2 s); omega is the angular frequency (Units: rad/s)."""
     w = np.asarray(omega, dtype=float)
     return theory_force_spectrum(params, w, **kw) / (params.M**2 * w**4)
 

@@ -209,3 +209,12 @@ def test_real_cluster_survives_a_killed_worker(tmp_path):
         a, b = dict(ra[k]), dict(rb[k])
         a.pop("wall_s"), b.pop("wall_s")
         assert a == b
+
+
+def test_the_sweep_file_example_lives_in_one_docstring():
+    """sweep_spec.py carries the sweep-file example; sweep.py points to it instead of a second copy."""
+    import compare.sweep as sweep
+    import compare.sweep_spec as sweep_spec
+
+    assert "[grid]" in sweep_spec.__doc__ and "target =" in sweep_spec.__doc__
+    assert "[grid]" not in sweep.__doc__ and ":mod:`compare.sweep_spec`" in sweep.__doc__
