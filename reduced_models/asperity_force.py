@@ -20,6 +20,8 @@ from dataclasses import asdict, dataclass
 import numba
 import numpy as np
 
+from frictionnoise.checks import check_fields
+
 from ._version import package_version
 from .trace import ModelTrace
 
@@ -64,10 +66,7 @@ class AsperityForceParams:
     N: float = 30.0
 
     def __post_init__(self):
-        for name in ("F_f", "v", "M", "w", "N"):
-            val = getattr(self, name)
-            if not (isinstance(val, (int, float)) and math.isfinite(val) and val > 0):
-                raise ValueError(f"{name} must be a positive finite number (got {val!r})")
+        check_fields(self, positive=("F_f", "v", "M", "w", "N"))
         if not (isinstance(self.p, (int, float)) and 0 < self.p <= 1):
             raise ValueError(f"p must lie in (0, 1] (got {self.p!r})")
         if self.N_w < 2:

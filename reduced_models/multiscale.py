@@ -47,6 +47,8 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from frictionnoise.checks import check_fields
+
 from . import spring_block as _m1
 from ._exact import Modes, first_order, modal_decomposition
 from ._two_level import run_two_level, sort_windows
@@ -116,15 +118,9 @@ class MultiscaleParams:
         _m1.SpringBlockParams(N=self.N, v=self.v, a=self.a, k0=self.k0, k1=self.k1, M=self.M, m=self.m,
                               eta0=self.eta0, eta_lat=self.eta_lat, alpha=self.alpha, F_drive=self.F_drive,
                               F_kin=0.0)  # model I's field checks first (each names its field)
+        check_fields(self, integer=("n_micro",), positive=("m2", "k2", "a2"),  # the scene's micro-pads: the same check
+                     non_negative=("eta2", "eta3", "alpha2", "F_kin2"))
         n = self.n_micro
-        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
-            raise ValueError(f"n_micro must be an integer >= 0 (got {n!r})")
-        for names, lo, what in ((("m2", "k2", "a2"), 0.0, "a positive"), (("eta2", "eta3", "alpha2", "F_kin2"), None,
-                                                                          "a non-negative")):
-            for name in names:
-                val = getattr(self, name)
-                if not (isinstance(val, (int, float)) and math.isfinite(val) and (val > 0 if lo is not None else val >= 0)):
-                    raise ValueError(f"{name} must be {what} finite number (got {val!r})")
         if n == 0 and self.F_kin2 != 0:
             raise ValueError(f"F_kin2 = N n f_kin2 must be 0 when n_micro = 0 (got {self.F_kin2!r})")
         micro = self.N * n * self.m2 * self.eta3 * self.v + self.F_kin2 if n else 0.0

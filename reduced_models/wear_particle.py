@@ -29,6 +29,8 @@ import numba
 import numpy as np
 from scipy import integrate
 
+from frictionnoise.checks import check_fields
+
 from ._version import package_version
 from .trace import ModelTrace
 
@@ -159,10 +161,7 @@ class WearParticleParams:
             val = getattr(self, name)
             if not (isinstance(val, (int, float)) and math.isfinite(val)):
                 raise ValueError(f"{name} must be a finite force in N (got {val!r})")
-        for name in ("M", "v"):
-            val = getattr(self, name)
-            if not (isinstance(val, (int, float)) and math.isfinite(val) and val > 0):
-                raise ValueError(f"{name} must be a positive finite number (got {val!r})")
+        check_fields(self, positive=("M", "v"))
         if self.mode not in _MODES:
             raise ValueError(f"mode must be one of {', '.join(_MODES)} (got {self.mode!r})")
         if self.tau_link not in _LINKS:

@@ -22,6 +22,7 @@ import numpy as np
 import pymunk
 
 from frictionnoise import G
+from frictionnoise.checks import check_number
 
 from .. import units as U
 from ..substrates.patches import Patches, PatchesSpec
@@ -72,10 +73,8 @@ class Micro(Tracks):
         if p.N > _MICRO_BIT:
             raise ValueError(f"pads.N = {p.N} must be at most {_MICRO_BIT} with micro-pads (one filter bit per pad "
                              "track, one for the micro-tracks)")
-        if not p.micro_share < 1:
-            raise ValueError(f"pads.micro_share = {p.micro_share!r} must be < 1 (the pad keeps a contact of its own)")
-        if p.micro_alpha >= 2:
-            raise ValueError(f"pads.micro_alpha = {p.micro_alpha!r} must be < 2 (patch friction stays positive)")
+        check_number("pads.micro_share", p.micro_share, below=1, why="the pad keeps a contact of its own")
+        check_number("pads.micro_alpha", p.micro_alpha, below=2, why="patch friction stays positive")
         room = p.track_spacing - p.n_micro * p.micro_spacing
         if room < 2.5 * (p.radius + sc.substrate.segment_radius):
             raise ValueError(f"pads.micro_spacing = {p.micro_spacing:.3g} m: n_micro micro-tracks must fit between two "
