@@ -225,28 +225,48 @@ def _load_scenario(path):
         raise UserError(str(e)) from None
 
 
-def progress_bar(desc, stream=None):
-    """A bar in simulated time on a terminal; otherwise (a log, CI) one line per tenth of the run with the
-    elapsed wall time."""
+def progress_bar(desc, stream=None, *, warmup: float = 0.0, duration: float | None = None, runs: int = 1, tty=None):
+    """A bar in simulated time on a terminal; otherwise (a log, CI) one line per tenth of the work with the
+    elapsed wall time. Its total is what will be simulated: ``runs`` x (``warmup``, simulated and not recorded,
+    + the recorded ``duration``), known before the first report; the label names the warm-up and the run.
+
+    Returns (bar, update); ``update(done, total)`` takes one run's seconds as ``engine_sim.run`` reports them
+    (total = its warm-up + its recorded samples); a run that starts again from zero is the next run."""
     import time
 
     from tqdm import tqdm
 
     stream = stream or sys.stderr
-    tty = stream.isatty()
-    bar = tqdm(total=1.0, desc=desc, unit="s", file=stream, disable=not tty,
+    tty = stream.isatty() if tty is None else tty
+    per_run = [warmup + duration if duration else 0.0]  # one run's simulated seconds, as far as known
+    state = {"run": 0, "last": -1.0, "next_tenth": 1}
+    bar = tqdm(total=runs * per_run[0] or 1.0, desc=desc, unit="s", file=stream, disable=not tty,
                bar_format="{desc}: {percentage:3.0f}%|{bar}| {postfix} [{elapsed}<{remaining}]")
-    t0, next_tenth = time.perf_counter(), [1]
+    t0 = time.perf_counter()
+
+    def label(done_run):
+        which = f"run {state['run'] + 1}/{runs}: " if runs > 1 else ""
+        part = "warm-up, not recorded" if done_run < warmup * (1 - 1e-9) else "recorded"
+        return f"{which}{warmup:g} s warm-up + {per_run[0] - warmup:.1f} s recorded; now {part}"
+
+    if duration:
+        bar.set_postfix_str(f"0.0/{runs * per_run[0]:.1f} s simulated ({label(0.0)})")
 
     def update(done, total):
-        bar.total = total
-        bar.n = done
-        bar.set_postfix_str(f"{done:.1f}/{total:.1f} s simulated")
+        if done < state["last"]:  # the next run began
+            state["run"] = min(state["run"] + 1, runs - 1)
+        state["last"] = done
+        per_run[0] = total
+        done_all, total_all = state["run"] * total + done, runs * total
+        bar.total = total_all
+        bar.n = done_all
+        bar.set_postfix_str(f"{done_all:.1f}/{total_all:.1f} s simulated ({label(done)})")
         bar.refresh()
-        if not tty and total > 0 and done >= next_tenth[0] * total / 10 * (1 - 1e-9):
-            next_tenth[0] = int(10 * done / total * (1 + 1e-9)) + 1
-            print(f"{desc}: {done:.1f}/{total:.1f} s simulated ({100 * done / total:.0f} %), "
-                  f"{time.perf_counter() - t0:.1f} s elapsed", file=stream, flush=True)
+        k = state["next_tenth"]
+        if not tty and total_all > 0 and done_all >= k * total_all / 10 * (1 - 1e-9):
+            state["next_tenth"] = int(10 * done_all / total_all * (1 + 1e-9)) + 1
+            print(f"{desc}: {done_all:.1f}/{total_all:.1f} s simulated ({100 * done_all / total_all:.0f} %; "
+                  f"{label(done)}), {time.perf_counter() - t0:.1f} s elapsed", file=stream, flush=True)
     return bar, update
 
 
@@ -285,7 +305,7 @@ def _run_into(args, sc, out, ck) -> int:
     def on_plan(epoch_s, every_s):
         if every_s is not None and abs(every_s - args.checkpoint_every) > 1e-9:
             print(f"checkpoints every {every_s:g} s (whole epochs of {epoch_s:g} s)", file=sys.stderr)
-    bar, update = progress_bar(sc.name)
+    bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration)
     with bar:
         try:
             tr = engine_sim.run(sc, duration=args.duration, seed=args.seed, progress=update, checkpoint=ck,
@@ -341,7 +361,10 @@ def cmd_compare(args) -> int:
         note = f"{src} is a partial trace (interrupted at t = {trace.t[-1]:.3f} s)"
     try:
         if trace is None:
-            bar, update = progress_bar(sc.name)
+            # the recorded duration as the study sets it (--duration, else the scenario's); a wear scene runs twice,
+            # with and without its particles (compare.studies.scene_wear)
+            bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration,
+                                       runs=2 if sc.wear.count > 0 else 1)
             with bar:
                 sections, summary = build_scene_report(sc, duration=args.duration, seed=args.seed, progress=update)
         else:
