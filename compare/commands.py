@@ -59,6 +59,10 @@ def cmd_sweep(args) -> int:
     if not 0 < args.connect_timeout <= 3600:
         raise UserError(f"--connect-timeout must be in (0, 3600] seconds (got {args.connect_timeout})")
     out = _output_dir(args.output, f"sweep-{spec.name}", "index.html, summary.json and its task cache")
+    if spec.target != "scenario":  # its tasks run the reduced models, in dask's processes
+        from .compile_notice import announce_cold
+
+        announce_cold()
     bar = tqdm(total=0, desc=spec.name, unit="task", file=sys.stderr, disable=not sys.stderr.isatty())
 
     def progress(done, total):
@@ -359,16 +363,20 @@ def cmd_compare(args) -> int:
     note = None
     if trace is not None and trace.metadata.get("partial"):
         note = f"{src} is a partial trace (interrupted at t = {trace.t[-1]:.3f} s)"
+    from .compile_notice import compile_notice
+
     try:
-        if trace is None:
-            # the recorded duration as the study sets it (--duration, else the scenario's); a wear scene runs twice,
-            # with and without its particles (compare.studies.scene_wear)
-            bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration,
-                                       runs=2 if sc.wear.count > 0 else 1)
-            with bar:
-                sections, summary = build_scene_report(sc, duration=args.duration, seed=args.seed, progress=update)
-        else:
-            sections, summary = build_scene_report(sc, trace=trace)
+        with compile_notice():  # the reduced model's kernels compile on the first comparison after an install
+            if trace is None:
+                # the recorded duration as the study sets it (--duration, else the scenario's); a wear scene runs
+                # twice, with and without its particles (compare.studies.scene_wear)
+                bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration,
+                                           runs=2 if sc.wear.count > 0 else 1)
+                with bar:
+                    sections, summary = build_scene_report(sc, duration=args.duration, seed=args.seed,
+                                                           progress=update)
+            else:
+                sections, summary = build_scene_report(sc, trace=trace)
     except ValueError as e:  # e.g. a record too short for the fit band
         raise UserError(f"{src}: {e}" + (f"; {note}" if note else "")) from None
     if note:
@@ -401,7 +409,14 @@ def cmd_report(args) -> int:
         raise UserError(f"--workers must be at least 1 (got {args.workers})")
     workers = args.workers or _usable_cores(cap=4)
     chosen = studies.selected(args.quick)
-    with StageProgress([s.label for s in chosen], desc="report") as progress:
+    from contextlib import nullcontext
+
+    from .compile_notice import announce_cold, compile_notice
+
+    # kernels compiled in the pool's processes are announced here, beforehand, from numba's disk cache
+    said = workers > 1 and announce_cold()
+    with compile_notice() if not said else nullcontext(), \
+            StageProgress([s.label for s in chosen], desc="report") as progress:
         results, summary = build_report(quick=args.quick, seed=args.seed, progress=progress, workers=workers,
                                         studies=chosen)
     path = write_report(out, results, summary)
