@@ -209,20 +209,28 @@ class Micro(Tracks):
 
     # ------------------------------------------------------------------ drawing
     def view(self, scene):
-        """The first three pads with their micro-pads and micro-tracks, 40 a2 either side of the block."""
+        """The whole block (every pad on its track, as "tracks" draws it) and a second panel enlarging column 1:
+        its pad, micro-pads and micro-tracks, 40 a2 either side of the block."""
         v = super().view(scene)
         p = self.spec
-        k = min(3, p.N) - 1
-        low = scene.track_surface[k] - (p.n_micro + 0.5) * p.micro_spacing * U.LENGTH
-        return {**v, "window": 40 * p.micro_a, "ylim": (low, scene.y_block + 4.0), "track_width": 2,
-                "ylabel": "y (mm): pad tracks, each followed by its micro-tracks"}
+        top, ms = scene.track_surface[0], p.micro_spacing * U.LENGTH
+        zoom = {"window": 40 * p.micro_a, "ylim": (top - (p.n_micro + 0.6) * ms, v["block_top"] + 0.8),
+                "track_width": 3, "zoomed": True, "ylabel": "y (mm): column 1",
+                "title": f"column 1 of {p.N} (dashed box), enlarged: its pad and {p.n_micro} micro-pads on their tracks"}
+        return {**v, "zoom": zoom, "ylabel": f"y (mm): {p.N} columns, each a pad track and {p.n_micro} micro-tracks",
+                "track_label": "pad track / micro-track (colour: patch friction)"}
 
     def draw(self, scene, lo, hi, view):
         shapes = super().draw(scene, lo, hi, view)
+        big = view.get("zoomed", False)
         xy = np.array([(b.position.x, b.position.y) for b in self.micro_pads])
         pads = scene.pads
         n = self.spec.n_micro
         links = [((pads[k // n].position.x, pads[k // n].position.y), (q[0], q[1])) for k, q in enumerate(xy)]
-        shapes["micro_springs"] = ("segments", links, {"colors": "0.6", "linewidths": 0.4})
-        shapes["micro_pads"] = ("points", xy, {"s": 6, "c": "tab:orange", "zorder": 3})
+        shapes["pads"][2].update(label="pad (macro contact)", s=60 if big else 14)
+        shapes["micro_springs"] = ("segments", links, {"colors": "0.5", "linewidths": 0.8 if big else 0.3,
+                                                       "label": "micro-pad spring"})
+        shapes["micro_pads"] = ("points", xy, {"s": 30 if big else 4, "c": "tab:orange", "zorder": 3,
+                                               "edgecolors": "k" if big else "none", "linewidths": 0.5,
+                                               "label": "micro-pad (micro contact)"})
         return shapes
