@@ -309,8 +309,10 @@ def _run_into(args, sc, out, ck) -> int:
     def on_plan(epoch_s, every_s):
         if every_s is not None and abs(every_s - args.checkpoint_every) > 1e-9:
             print(f"checkpoints every {every_s:g} s (whole epochs of {epoch_s:g} s)", file=sys.stderr)
+    from .compile_notice import compile_notice
+
     bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration)
-    with bar:
+    with bar, compile_notice():  # the recorder's and friction laws' kernels compile on a fresh install
         try:
             tr = engine_sim.run(sc, duration=args.duration, seed=args.seed, progress=update, checkpoint=ck,
                                 checkpoint_every=args.checkpoint_every, epoch=args.epoch, on_plan=on_plan)
