@@ -1,11 +1,13 @@
-"""Headless rendering of a scene (a matplotlib Figure on its own Agg canvas, collections updated in place: ~20-60 ms a frame).
+"""Headless rendering of a scene (a matplotlib Figure on its own Agg canvas, collections updated in place:
+~20-100 ms a frame; pads_multiscale's two panels ~290 ms).
 
 Draws a window around the block: the substrate (friction patches coloured by mu, or the rough profile, or the
 asperity caps), the pads or feet, their springs, the block, the drive's own bodies, wear particles coloured by
-state (trapped: at rest on the substrate; moving), the time above the axes and a key below them. The parts say what to draw as named shapes in
-scene units, ``name -> (kind, data, style)`` with kind one of "points" (xy array), "segments" (list of point
-pairs), "polys" (list of vertex lists), "line" ((xs, ys)), "circle" ((centre, radius)), "rect" ((corner, width,
-height)), "text" ((position, string)); style is passed to matplotlib. The only matplotlib importer of engine_sim.
+state (trapped: at rest on the substrate; moving), the time above the axes and a key below them. The parts say
+what to draw as named shapes in scene units, ``name -> (kind, data, style)`` with kind one of "points" (xy array),
+"segments" (list of point pairs), "polys" (list of vertex lists), "line" ((xs, ys)), "circle" ((centre, radius)),
+"rect" ((corner, width, height)), "text" ((position, string)); style is passed to matplotlib, and a shape whose
+style has a "label" gets an entry in the key. The only matplotlib importer of engine_sim.
 """
 from __future__ import annotations
 
