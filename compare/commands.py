@@ -170,7 +170,8 @@ def cmd_render(args) -> int:
     from engine_sim import Scene
     from engine_sim.render import SceneRenderer
 
-    out = _output_dir(args.output, f"render-{sc.name}", "frame_000.png, frame_001.png, ... and with --gif animation.gif")
+    out = _output_dir(args.output, f"render-{sc.name}",
+                      "frame_000.png, frame_001.png, ... and with --gif animation.gif")
     scene = Scene(sc, args.seed)
     renderer = SceneRenderer(scene)
     n_out = max(1, int(round(args.duration / sc.run.dt_out / args.frames)))  # output steps between frames
