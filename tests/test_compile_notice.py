@@ -25,7 +25,7 @@ def _module(tmp_path, name):
     (tmp_path / f"{name}.py").write_text(_SRC)
     sys.path.insert(0, str(tmp_path))
     try:
-        return importlib.import_module(name)  # a module by name, as numba's cache wants (it pickles the globals' module)
+        return importlib.import_module(name)  # by name, as numba's cache wants (it pickles the globals' module)
     finally:
         sys.path.remove(str(tmp_path))
 

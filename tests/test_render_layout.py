@@ -25,7 +25,8 @@ def test_caption_and_key_lie_outside_the_scene_and_inside_the_figure(name):
         assert fig_bb.x0 <= bb.x0 and bb.x1 <= fig_bb.x1 and fig_bb.y0 <= bb.y0 and bb.y1 <= fig_bb.y1, art
         for pn in r.panels:
             assert not bb.overlaps(pn["ax"].get_window_extent(rend)), (art, pn["view"]["ylabel"])
-    for ax in r.fig.axes + [c for pn in r.panels for c in pn["ax"].child_axes]:  # axis labels (the colour bar's among them) are not cut off at the figure's edge
+    # axis labels (the colour bar's among them) are not cut off at the figure's edge
+    for ax in r.fig.axes + [c for pn in r.panels for c in pn["ax"].child_axes]:
         bb = ax.get_tightbbox(rend)
         assert fig_bb.x0 - 1 <= bb.x0 and bb.x1 <= fig_bb.x1 + 1, ax
     labels = [t.get_text() for t in r._legend.get_texts()]
@@ -39,7 +40,8 @@ def test_multiscale_shows_the_whole_block_and_an_enlarged_column_with_a_key():
     r, _ = _rendered("pads_multiscale")
     s = r.scene
     labels = [t.get_text() for t in r._legend.get_texts()]
-    for want in ("pad (macro contact)", "micro-pad (micro contact)", "pad track / micro-track (colour: patch friction)"):
+    for want in ("pad (macro contact)", "micro-pad (micro contact)",
+                 "pad track / micro-track (colour: patch friction)"):
         assert want in labels, labels
     assert len(r.panels) == 2
     whole, zoom = (pn["ax"] for pn in r.panels)

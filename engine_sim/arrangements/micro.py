@@ -216,7 +216,8 @@ class Micro(Tracks):
         top, ms = scene.track_surface[0], p.micro_spacing * U.LENGTH
         zoom = {"window": 40 * p.micro_a, "ylim": (top - (p.n_micro + 0.6) * ms, v["block_top"] + 0.8),
                 "track_width": 3, "zoomed": True, "ylabel": "y (mm): column 1",
-                "title": f"column 1 of {p.N} (dashed box), enlarged: its pad and {p.n_micro} micro-pads on their tracks"}
+                "title": f"column 1 of {p.N} (dashed box), enlarged: its pad and {p.n_micro} micro-pads on their "
+                         "tracks"}
         return {**v, "zoom": zoom, "ylabel": f"y (mm): {p.N} columns, each a pad track and {p.n_micro} micro-tracks",
                 "track_label": "pad track / micro-track (colour: patch friction)"}
 
