@@ -26,7 +26,8 @@ def _build_parser() -> argparse.ArgumentParser:
         description="Displacement noise of sliding friction: reduced models, scenes and spectra.",
         epilog="Seeds: report, run, compare and render take --seed K (the same seed gives the same numbers, bit for "
                "bit); a sweep's seeds are the grid axis `seed` of its file; analyze draws no random numbers. "
-               "`frictionnoise COMMAND --help` describes a command.",
+               "Every -o names a folder the command writes its files into (a name ending in a file suffix such as "
+               ".npz or .png is refused). `frictionnoise COMMAND --help` describes a command.",
     )
     ap.add_argument("--version", action="version", version=f"frictionnoise {package_version()}")
     sub = ap.add_subparsers(dest="command", metavar="COMMAND")
@@ -37,7 +38,8 @@ def _build_parser() -> argparse.ArgumentParser:
 
     rep = add("report", "the main job: the paper's model figures, every shipped scene against its reduced model, "
                         "fits and timings, as an HTML report with summary.json")
-    rep.add_argument("-o", "--output", default="frictionnoise-report", help="output folder (default: %(default)s)")
+    rep.add_argument("-o", "--output", default="frictionnoise-report",
+                     help="output folder for index.html, summary.json and figures/ (default: %(default)s)")
     rep.add_argument("--quick", action="store_true", help="shorter runs (about 2 min on 2 cores)")
     rep.add_argument("--seed", type=int, default=0,
                      help="random seed of every model and scene run (default: %(default)s); same seed, same numbers")
@@ -48,7 +50,9 @@ def _build_parser() -> argparse.ArgumentParser:
 
     run = add("run", "run a scenario and write its trace (.npz arrays in SI units + .json metadata)")
     run.add_argument("scenario", help="scenario TOML file or shipped name (see `frictionnoise scenarios`)")
-    run.add_argument("-o", "--output", default=None, help="output folder (default: run-<scenario name>)")
+    run.add_argument("-o", "--output", default=None, metavar="DIR",
+                     help="output folder, created if needed: the run writes DIR/trace.npz and DIR/trace.json (a name "
+                          "ending in a file suffix such as .npz is refused; default: run-<scenario name>)")
     run.add_argument("--duration", type=float, default=None, help="simulated seconds (default: the scenario's)")
     run.add_argument("--seed", type=int, default=None,
                      help="random seed of the substrate and the scene (default: the scenario's [run] seed)")
@@ -62,7 +66,8 @@ def _build_parser() -> argparse.ArgumentParser:
 
     cmp_ = add("compare", "report one scene (scenario TOML or trace .npz) against the reduced model that fits it")
     cmp_.add_argument("source", help="scenario TOML file, shipped name, or trace .npz written by `frictionnoise run`")
-    cmp_.add_argument("-o", "--output", default=None, help="output folder (default: compare-<name>)")
+    cmp_.add_argument("-o", "--output", default=None, metavar="DIR",
+                      help="output folder for index.html, summary.json and figures/ (default: compare-<name>)")
     cmp_.add_argument("--duration", type=float, default=None, help="simulated seconds when running a scenario")
     cmp_.add_argument("--seed", type=int, default=None,
                       help="random seed of the scene run and of the reduced model's run (default: the scenario's)")
@@ -70,7 +75,8 @@ def _build_parser() -> argparse.ArgumentParser:
 
     ren = add("render", "render a scenario headless to PNG frames (and an animated GIF)")
     ren.add_argument("scenario", help="scenario TOML file or shipped name")
-    ren.add_argument("-o", "--output", default=None, help="output folder (default: render-<scenario name>)")
+    ren.add_argument("-o", "--output", default=None, metavar="DIR",
+                     help="output folder for frame_000.png, ... and animation.gif (default: render-<scenario name>)")
     ren.add_argument("--frames", type=int, default=12, help="number of frames (default: %(default)s)")
     ren.add_argument("--duration", type=float, default=0.6, help="simulated seconds spanned (default: %(default)s)")
     ren.add_argument("--gif", action="store_true", help="also write animation.gif")

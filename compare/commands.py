@@ -12,6 +12,26 @@ class UserError(Exception):
     """An error in the user's input: printed as one line, exit status 2."""
 
 
+# names that end like a file: `-o ms.npz` once made a folder named ms.npz (a new user's trial)
+_FILE_SUFFIXES = frozenset({".npz", ".npy", ".json", ".html", ".htm", ".png", ".gif", ".pdf", ".svg", ".pkl", ".csv",
+                            ".txt", ".toml", ".zip"})
+
+
+def _output_dir(arg, default, writes: str):
+    """The folder a command writes into (``-o DIR``, else ``default``). An ``-o`` name ending in a file suffix
+    is refused (unless that folder exists already): every command writes several files into a folder."""
+    from pathlib import Path
+
+    from .inputs import output_folder
+
+    if arg is not None:
+        suffix = Path(arg).suffix.lower()
+        if suffix in _FILE_SUFFIXES and not Path(arg).is_dir():
+            raise UserError(f"-o/--output {arg}: names a folder, not a {suffix} file (the command writes {writes} into "
+                            f"it); give a folder name without the {suffix} suffix")
+    return output_folder(arg or default)
+
+
 def cmd_scenarios(args) -> int:
     from engine_sim import load_scenario, shipped_scenarios
     from engine_sim.scenario import scenario_summary
@@ -38,9 +58,11 @@ def cmd_sweep(args) -> int:
         raise UserError(f"--workers must be between 1 and 64 (got {args.workers})")
     if not 0 < args.connect_timeout <= 3600:
         raise UserError(f"--connect-timeout must be in (0, 3600] seconds (got {args.connect_timeout})")
-    from .inputs import output_folder
+    out = _output_dir(args.output, f"sweep-{spec.name}", "index.html, summary.json and its task cache")
+    if spec.target != "scenario":  # its tasks run the reduced models, in dask's processes
+        from .compile_notice import announce_cold
 
-    out = output_folder(args.output or f"sweep-{spec.name}")
+        announce_cold()
     bar = tqdm(total=0, desc=spec.name, unit="task", file=sys.stderr, disable=not sys.stderr.isatty())
 
     def progress(done, total):
@@ -74,7 +96,7 @@ def cmd_analyze(args) -> int:
 
     import math
 
-    from .inputs import input_file, output_folder, sniff
+    from .inputs import input_file, sniff
 
     if sniff(input_file(args.data)) != "text":  # kind, emptiness, binary; the format is read by compare.measured
         raise UserError(f"{args.data}: binary data, not a CSV text file")
@@ -101,7 +123,7 @@ def cmd_analyze(args) -> int:
         raise UserError(str(e)) from None
     if data.warning:
         print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)
-    out = output_folder(args.output or f"analyze-{Path(args.data).stem}")
+    out = _output_dir(args.output, f"analyze-{Path(args.data).stem}", "index.html and summary.json")
     band = tuple(args.band) if args.band else None
     try:
         if force:
@@ -137,7 +159,6 @@ def cmd_analyze(args) -> int:
 
 def cmd_render(args) -> int:
 
-    from .inputs import output_folder
     from .outputs import atomic_folder
 
     sc = _load_scenario(args.scenario)
@@ -149,7 +170,8 @@ def cmd_render(args) -> int:
     from engine_sim import Scene
     from engine_sim.render import SceneRenderer
 
-    out = output_folder(args.output or f"render-{sc.name}")
+    out = _output_dir(args.output, f"render-{sc.name}",
+                      "frame_000.png, frame_001.png, ... and with --gif animation.gif")
     scene = Scene(sc, args.seed)
     renderer = SceneRenderer(scene)
     n_out = max(1, int(round(args.duration / sc.run.dt_out / args.frames)))  # output steps between frames
@@ -208,39 +230,57 @@ def _load_scenario(path):
         raise UserError(str(e)) from None
 
 
-def progress_bar(desc, stream=None):
-    """A bar in simulated time on a terminal; otherwise (a log, CI) one line per tenth of the run with the
-    elapsed wall time."""
+def progress_bar(desc, stream=None, *, warmup: float = 0.0, duration: float | None = None, runs: int = 1, tty=None):
+    """A bar in simulated time on a terminal; otherwise (a log, CI) one line per tenth of the work with the
+    elapsed wall time. Its total is what will be simulated: ``runs`` x (``warmup``, simulated and not recorded,
+    + the recorded ``duration``), known before the first report; the label names the warm-up and the run.
+
+    Returns (bar, update); ``update(done, total)`` takes one run's seconds as ``engine_sim.run`` reports them
+    (total = its warm-up + its recorded samples); a run that starts again from zero is the next run."""
     import time
 
     from tqdm import tqdm
 
     stream = stream or sys.stderr
-    tty = stream.isatty()
-    bar = tqdm(total=1.0, desc=desc, unit="s", file=stream, disable=not tty,
+    tty = stream.isatty() if tty is None else tty
+    per_run = [warmup + duration if duration else 0.0]  # one run's simulated seconds, as far as known
+    state = {"run": 0, "last": -1.0, "next_tenth": 1}
+    bar = tqdm(total=runs * per_run[0] or 1.0, desc=desc, unit="s", file=stream, disable=not tty,
                bar_format="{desc}: {percentage:3.0f}%|{bar}| {postfix} [{elapsed}<{remaining}]")
-    t0, next_tenth = time.perf_counter(), [1]
+    t0 = time.perf_counter()
+
+    def label(done_run):
+        which = f"run {state['run'] + 1}/{runs}: " if runs > 1 else ""
+        part = "warm-up, not recorded" if done_run < warmup * (1 - 1e-9) else "recorded"
+        return f"{which}{warmup:g} s warm-up + {per_run[0] - warmup:.1f} s recorded; now {part}"
+
+    if duration:
+        bar.set_postfix_str(f"0.0/{runs * per_run[0]:.1f} s simulated ({label(0.0)})")
 
     def update(done, total):
-        bar.total = total
-        bar.n = done
-        bar.set_postfix_str(f"{done:.1f}/{total:.1f} s simulated")
+        if done < state["last"]:  # the next run began
+            state["run"] = min(state["run"] + 1, runs - 1)
+        state["last"] = done
+        per_run[0] = total
+        done_all, total_all = state["run"] * total + done, runs * total
+        bar.total = total_all
+        bar.n = done_all
+        bar.set_postfix_str(f"{done_all:.1f}/{total_all:.1f} s simulated ({label(done)})")
         bar.refresh()
-        if not tty and total > 0 and done >= next_tenth[0] * total / 10 * (1 - 1e-9):
-            next_tenth[0] = int(10 * done / total * (1 + 1e-9)) + 1
-            print(f"{desc}: {done:.1f}/{total:.1f} s simulated ({100 * done / total:.0f} %), "
-                  f"{time.perf_counter() - t0:.1f} s elapsed", file=stream, flush=True)
+        k = state["next_tenth"]
+        if not tty and total_all > 0 and done_all >= k * total_all / 10 * (1 - 1e-9):
+            state["next_tenth"] = int(10 * done_all / total_all * (1 + 1e-9)) + 1
+            print(f"{desc}: {done_all:.1f}/{total_all:.1f} s simulated ({100 * done_all / total_all:.0f} %; "
+                  f"{label(done)}), {time.perf_counter() - t0:.1f} s elapsed", file=stream, flush=True)
     return bar, update
 
 
 def cmd_run(args) -> int:
-    from .inputs import output_folder
-
     sc = _load_scenario(args.scenario)
     _check_seed(args.seed)
     if args.duration is not None and not 0 < args.duration < float("inf"):
         raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
-    out = output_folder(args.output or f"run-{sc.name}")
+    out = _output_dir(args.output, f"run-{sc.name}", "trace.npz and trace.json")
     if args.epoch is not None and not 0 < args.epoch < float("inf"):
         raise UserError(f"--epoch must be a positive number of seconds (got {args.epoch})")
     ck = None
@@ -270,8 +310,10 @@ def _run_into(args, sc, out, ck) -> int:
     def on_plan(epoch_s, every_s):
         if every_s is not None and abs(every_s - args.checkpoint_every) > 1e-9:
             print(f"checkpoints every {every_s:g} s (whole epochs of {epoch_s:g} s)", file=sys.stderr)
-    bar, update = progress_bar(sc.name)
-    with bar:
+    from .compile_notice import compile_notice
+
+    bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration)
+    with bar, compile_notice():  # the recorder's and friction laws' kernels compile on a fresh install
         try:
             tr = engine_sim.run(sc, duration=args.duration, seed=args.seed, progress=update, checkpoint=ck,
                                 checkpoint_every=args.checkpoint_every, epoch=args.epoch, on_plan=on_plan)
@@ -298,7 +340,7 @@ def cmd_compare(args) -> int:
     from .report import build_scene_report
     from .traceio import TraceFileError, load_trace
 
-    from .inputs import input_file, output_folder, sniff
+    from .inputs import input_file, sniff
 
     src = input_file(_scenario_path(args.source))
     _check_seed(args.seed)
@@ -320,17 +362,24 @@ def cmd_compare(args) -> int:
             raise UserError(str(e)) from None
     else:
         sc = _load_scenario(src)
-    out = output_folder(args.output or f"compare-{sc.name}")
+    out = _output_dir(args.output, f"compare-{sc.name}", "index.html, summary.json and figures/")
     note = None
     if trace is not None and trace.metadata.get("partial"):
         note = f"{src} is a partial trace (interrupted at t = {trace.t[-1]:.3f} s)"
+    from .compile_notice import compile_notice
+
     try:
-        if trace is None:
-            bar, update = progress_bar(sc.name)
-            with bar:
-                sections, summary = build_scene_report(sc, duration=args.duration, seed=args.seed, progress=update)
-        else:
-            sections, summary = build_scene_report(sc, trace=trace)
+        with compile_notice():  # the reduced model's kernels compile on the first comparison after an install
+            if trace is None:
+                # the recorded duration as the study sets it (--duration, else the scenario's); a wear scene runs
+                # twice, with and without its particles (compare.studies.scene_wear)
+                bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration,
+                                           runs=2 if sc.wear.count > 0 else 1)
+                with bar:
+                    sections, summary = build_scene_report(sc, duration=args.duration, seed=args.seed,
+                                                           progress=update)
+            else:
+                sections, summary = build_scene_report(sc, trace=trace)
     except ValueError as e:  # e.g. a record too short for the fit band
         raise UserError(f"{src}: {e}" + (f"; {note}" if note else "")) from None
     if note:
@@ -357,15 +406,20 @@ def cmd_report(args) -> int:
     from .progress import StageProgress
     from .report import build_report
 
-    from .inputs import output_folder
-
-    out = output_folder(args.output)
+    out = _output_dir(args.output, "frictionnoise-report", "index.html, summary.json and figures/")
     _check_seed(args.seed)
     if args.workers is not None and args.workers < 1:
         raise UserError(f"--workers must be at least 1 (got {args.workers})")
     workers = args.workers or _usable_cores(cap=4)
     chosen = studies.selected(args.quick)
-    with StageProgress([s.label for s in chosen], desc="report") as progress:
+    from contextlib import nullcontext
+
+    from .compile_notice import announce_cold, compile_notice
+
+    # kernels compiled in the pool's processes are announced here, beforehand, from numba's disk cache
+    said = workers > 1 and announce_cold()
+    with compile_notice() if not said else nullcontext(), \
+            StageProgress([s.label for s in chosen], desc="report") as progress:
         results, summary = build_report(quick=args.quick, seed=args.seed, progress=progress, workers=workers,
                                         studies=chosen)
     path = write_report(out, results, summary)

@@ -1,18 +1,7 @@
 """Parameter sweeps: a grid over model or scenario parameters and seeds, run serially or on
 dask.distributed, with per-task results cached on disk (a rerun completes only what is missing).
 
-Sweep file (TOML; read and checked by :mod:`compare.sweep_spec`)::
-
-    name = "velocity_model1"
-    target = "model_I"            # model_I | model_II | model_III | scenario
-    scenario = "../pads_friction_patches.toml"   # for target = "scenario", relative to this file
-    [fixed]                       # held fixed: model parameters, or run settings (duration, dt_out)
-    duration = 300.0
-    [grid]                        # the Cartesian product of these lists; "seed" sets the seeds
-    v = [1e-4, 5e-4, 1e-3]
-    seed = [0]
-    [analysis]
-    omega_ref = [70.0, 140.0]     # band (rad/s) for C_x at fixed omega against v
+The sweep file's format, with an example, is in :mod:`compare.sweep_spec`, which reads and checks it.
 
 Each task returns its log-binned spectrum and fit, never the raw trace. Pure numerics except
 :func:`run_sweep`, which does the I/O and scheduling.

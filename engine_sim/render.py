@@ -1,11 +1,13 @@
-"""Headless rendering of a scene (a matplotlib Figure on its own Agg canvas, collections updated in place: ~20-60 ms a frame).
+"""Headless rendering of a scene (a matplotlib Figure on its own Agg canvas, collections updated in place:
+~20-100 ms a frame; pads_multiscale's two panels ~290 ms).
 
 Draws a window around the block: the substrate (friction patches coloured by mu, or the rough profile, or the
 asperity caps), the pads or feet, their springs, the block, the drive's own bodies, wear particles coloured by
-state (trapped: at rest on the substrate; moving), and the time. The parts say what to draw as named shapes in
-scene units, ``name -> (kind, data, style)`` with kind one of "points" (xy array), "segments" (list of point
-pairs), "polys" (list of vertex lists), "line" ((xs, ys)), "circle" ((centre, radius)), "rect" ((corner, width,
-height)), "text" ((position, string)); style is passed to matplotlib. The only matplotlib importer of engine_sim.
+state (trapped: at rest on the substrate; moving), the time above the axes and a key below them. The parts say
+what to draw as named shapes in scene units, ``name -> (kind, data, style)`` with kind one of "points" (xy array),
+"segments" (list of point pairs), "polys" (list of vertex lists), "line" ((xs, ys)), "circle" ((centre, radius)),
+"rect" ((corner, width, height)), "text" ((position, string)); style is passed to matplotlib, and a shape whose
+style has a "label" gets an entry in the key. The only matplotlib importer of engine_sim.
 """
 from __future__ import annotations
 
@@ -30,7 +32,11 @@ _STATE_NAMES = ("idle", "trapped", "moving")
 
 class SceneRenderer:
     """Draws frames of a :class:`~engine_sim.scene.Scene`; call :meth:`observe` after every output step (grain
-    states are the recorder's: one classifier for traces and frames) and :meth:`frame` to draw."""
+    states are the recorder's: one classifier for traces and frames) and :meth:`frame` to draw.
+
+    Layout: the scene's axes (and, when the arrangement's view asks with a ``zoom`` entry, a second panel
+    enlarging part of it, framed in the first); the time line as the first panel's title and the key (the parts'
+    labelled shapes, the tracks, the block) below the axes, so no text lies over the scene."""
 
     def __init__(self, scene, window: float | None = None, dpi: int = 90):
         self.scene = scene
@@ -44,39 +50,77 @@ class SceneRenderer:
             view = {**view, "window": 0.6 * sc.wear.ahead, "ylim": (surf - 0.3, surf + 0.9),
                     "ylabel": "y (mm): the first pad's track", "block_top": view["block_top"]}
         self.view = view
-        self.window = (view["window"] if window is None else window) * U.LENGTH  # mm either side of the block
+        inset = view.get("zoom")
         # a Figure on its own Agg canvas: importing or rendering never changes the program's matplotlib backend
-        self.fig = Figure(figsize=(7.0, 5.0), dpi=dpi)
+        self.fig = Figure(figsize=(11.0, 5.6) if inset else (7.0, 5.4), dpi=dpi)
         FigureCanvasAgg(self.fig)
-        self.ax = ax = self.fig.subplots()
-        self.ylim = view["ylim"]
-        ax.set_ylabel(view["ylabel"])
-        if self.zoom:
-            ax.set_aspect("equal", adjustable="box")
-        ax.set_ylim(*self.ylim)
-        ax.set_xlabel("x (mm)")
+        axes = self.fig.subplots(1, 2, width_ratios=(1, 1.25)) if inset else [self.fig.subplots()]
+        self.ax = axes[0]
         mu_lo, mu_hi = scene.substrate.mu_range(sc.friction.mu0)
         self.q_pad = scene.q_pad  # pad-track friction = shape friction x q_pad
         self.norm = matplotlib.colors.Normalize(mu_lo, mu_hi + 1e-12)
-        self.tracks = LineCollection([], cmap="viridis", norm=self.norm, linewidths=view["track_width"])
-        ax.add_collection(self.tracks)
-        top = view["block_top"]
-        self.block = Rectangle((0, top), 8.0, self.ylim[1] - top, color="tab:blue", alpha=0.35, zorder=4)
-        ax.add_patch(self.block)
-        self._artists = {}
+        self.coloured = mu_hi > mu_lo  # tracks coloured by their friction, with a colour bar
+        self.panels = [self._panel(axes[0], view, window)]
+        if inset:
+            self.panels.append(self._panel(axes[1], {**view, **inset}, None))
+            lo, hi = inset["ylim"]
+            self.frame_box = Rectangle((0, lo), 2 * inset["window"] * U.LENGTH, hi - lo, fill=False, ec="k", lw=1.0,
+                                       ls="--", zorder=7)
+            self.ax.add_patch(self.frame_box)
+            axes[1].set_title(inset["title"], loc="left", fontsize=9)
+        self.window = self.panels[0]["window"]
+        self.ylim = view["ylim"]
+        if self.zoom:
+            self.ax.set_aspect("equal", adjustable="box")
         self.particles = None
-        self.text = ax.text(0.02, 0.01, "", transform=ax.transAxes, va="bottom", fontsize=9, zorder=6,
-                            bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
-        if self._rec is not None:
-            ax.legend([Line2D([], [], ls="", marker="o", ms=7, mfc=c, mec="none") for c in _STATE_COLORS],
-                      [f"grain {n}" for n in _STATE_NAMES], loc="upper right", fontsize=8, framealpha=0.85)
-        self.fig.tight_layout()
-        if mu_hi > mu_lo:  # a colour bar exactly as tall as the axes (also when their aspect is fixed)
-            self.fig.subplots_adjust(right=0.86)
-            cb = self.fig.colorbar(self.tracks, cax=ax.inset_axes([1.03, 0.0, 0.035, 1.0]))
+        # the time line: above the axes, not over the scene (a placeholder of its size for the layout)
+        self.text = self.ax.set_title("t = 0.000 s   x = 0.000 mm   v = 0.000 mm/s", loc="left", fontsize=9)
+        self._legend = None
+        self.fig.tight_layout(rect=(0, 0.09, 1, 1))  # the bottom 9 %: the key
+        if mu_hi > mu_lo:  # a colour bar exactly as tall as the last axes (also when their aspect is fixed)
+            self.fig.subplots_adjust(right=0.89 if inset else 0.86)
+            cb = self.fig.colorbar(self.panels[-1]["tracks"], cax=axes[-1].inset_axes([1.03, 0.0, 0.035, 1.0]))
             cb.set_label("patch friction coefficient")
         else:
-            self.tracks.set_cmap(matplotlib.colors.ListedColormap(["0.25"]))
+            for pn in self.panels:
+                pn["tracks"].set_cmap(matplotlib.colors.ListedColormap(["0.25"]))
+
+    def _panel(self, ax, view, window):
+        """One axes with its window (mm either side of the block), tracks and block."""
+        ax.set_ylabel(view["ylabel"])
+        ax.set_ylim(*view["ylim"])
+        ax.set_xlabel("x (mm)")
+        tracks = LineCollection([], cmap="viridis", norm=self.norm, linewidths=view["track_width"])
+        ax.add_collection(tracks)
+        top = view["block_top"]
+        block = Rectangle((0, top), 8.0, view["ylim"][1] - top, color="tab:blue", alpha=0.35, zorder=4)
+        ax.add_patch(block)
+        return {"ax": ax, "view": view, "window": (view["window"] if window is None else window) * U.LENGTH,
+                "tracks": tracks, "block": block, "artists": {}}
+
+    def _key(self):
+        """The key below the axes: what each colour and mark is (the parts' labelled shapes first)."""
+        handles, labels = [], []
+        for art in self.panels[-1]["artists"].values():
+            lab = art.get_label()
+            if lab and not lab.startswith("_") and lab not in labels:
+                if isinstance(art, EllipseCollection):  # no legend handle of its own: a disc marker of its colour
+                    art = Line2D([], [], ls="", marker="o", ms=9, mfc=art.get_facecolor()[0], mec="none")
+                handles.append(art)
+                labels.append(lab)
+        if self.coloured:
+            handles.append(Line2D([], [], color=matplotlib.cm.viridis(0.6), lw=3))
+            labels.append(self.view.get("track_label", "track (colour: patch friction)"))
+        else:  # one friction coefficient: grey tracks, no colour bar
+            handles.append(Line2D([], [], color="0.25", lw=3))
+            labels.append("track")
+        handles.append(Rectangle((0, 0), 1, 1, color="tab:blue", alpha=0.35))
+        labels.append("block")
+        if self._rec is not None:
+            handles += [Line2D([], [], ls="", marker="o", ms=7, mfc=c, mec="none") for c in _STATE_COLORS]
+            labels += [f"grain {n}" for n in _STATE_NAMES]
+        self._legend = self.fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 5), fontsize=8,
+                                       frameon=False, bbox_to_anchor=(0.5, 0.0))
 
     def observe(self):
         """Sample the scene after an output step (the recorder classifies grains on their mean speed over it)."""
@@ -84,30 +128,39 @@ class SceneRenderer:
             self._rec.k = 0  # keep only the latest sample
             self._rec.sample()
 
-    def _shapes(self, shapes: dict):
+    @staticmethod
+    def _shapes(panel, shapes: dict):
         """Create (first time) or update the artists of the parts' named shapes."""
-        ax = self.ax
         for name, (kind, data, style) in shapes.items():
-            art = self._artists.get(name)
+            art = panel["artists"].get(name)
             if art is None:
-                art = self._artists[name] = _new_artist(ax, kind, data, style)
+                art = panel["artists"][name] = _new_artist(panel["ax"], kind, data, style)
             _update_artist(art, kind, data)
 
     def frame(self) -> np.ndarray:
         """Update the artists to the scene's state and render; returns the RGBA image."""
         s = self.scene
         bx = s.block.position.x
-        lo, hi = bx - self.window, bx + self.window
-        segs, mus = s.arrangement.draw_tracks(s, lo, hi, self.q_pad)
-        self.tracks.set_segments(segs)
-        self.tracks.set_array(np.asarray(mus))
-        if self.zoom:  # pads at their true size
-            pads = np.array([(p.position.x, p.position.y) for p in s.pads])
-            self._shapes({"pad_discs": ("discs", (pads, 2 * s.R_pad), {"facecolors": "tab:orange", "alpha": 0.6,
-                                                                        "zorder": 3})})
-        else:
-            self._shapes(s.arrangement.draw(s, lo, hi, self.view))
-        self._shapes(s.drive.draw(s, lo, hi))
+        for k, pn in enumerate(self.panels):
+            lo, hi = bx - pn["window"], bx + pn["window"]
+            segs, mus = s.arrangement.draw_tracks(s, lo, hi, self.q_pad)
+            pn["tracks"].set_segments(segs)
+            pn["tracks"].set_array(np.asarray(mus))
+            if self.zoom:  # pads at their true size
+                pads = np.array([(p.position.x, p.position.y) for p in s.pads])
+                self._shapes(pn, {"pad_discs": ("discs", (pads, 2 * s.R_pad), {"facecolors": "tab:orange",
+                                                                                "alpha": 0.6, "zorder": 3,
+                                                                                "label": "pad"})})
+            else:
+                self._shapes(pn, s.arrangement.draw(s, lo, hi, pn["view"]))
+            if k == 0:
+                self._shapes(pn, s.drive.draw(s, lo, hi))
+            half = pn["view"]["block_half"]
+            pn["block"].set_x(bx - half)
+            pn["block"].set_width(2 * half)
+            pn["ax"].set_xlim(lo, hi)
+        if len(self.panels) > 1:
+            self.frame_box.set_x(bx - self.panels[1]["window"])
         if self._rec is not None:
             if self._rec.k == 0:
                 self.observe()
@@ -118,10 +171,8 @@ class SceneRenderer:
                 self.ax.add_collection(self.particles)
             self.particles.set_offsets(xy)
             self.particles.set_facecolor(_STATE_COLORS[self.states])
-        half = self.view["block_half"]
-        self.block.set_x(bx - half)
-        self.block.set_width(2 * half)
-        self.ax.set_xlim(lo, hi)
+        if self._legend is None:
+            self._key()
         v = s.block.velocity.x / U.VELOCITY * U.LENGTH  # mm/s
         self.text.set_text(f"t = {s.time:.3f} s   x = {bx:.3f} mm   v = {v:.3f} mm/s")
         self.fig.canvas.draw()

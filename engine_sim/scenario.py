@@ -7,7 +7,6 @@ file, the field and the limit, including the time-step limit that the pad spring
 """
 from __future__ import annotations
 
-import math
 import re
 import tomllib
 from dataclasses import dataclass, field, fields, replace
@@ -15,6 +14,7 @@ from importlib import resources
 from pathlib import Path
 
 from frictionnoise import G
+from frictionnoise.checks import check_number
 
 from .arrangements import ARRANGEMENTS, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSpec  # noqa: F401
 from .drives import DRIVES, DriveSpec
@@ -177,17 +177,11 @@ def _check_value(where, name, ftype, val, positive=False, non_negative=False, ch
         return val
     if val is None and "None" in str(ftype):
         return None
-    if isinstance(val, bool) or not isinstance(val, (int, float)):
-        raise _err(where, f"{name} must be a number (got {type(val).__name__} {val!r})")
-    if is_int and not float(val).is_integer():
-        raise _err(where, f"{name} must be an integer (got {val!r})")
-    if not math.isfinite(val):
-        raise _err(where, f"{name} must be finite (got {val!r})")
-    if positive and not val > 0:
-        raise _err(where, f"{name} must be > 0 (got {val!r})")
-    if non_negative and val < 0:
-        raise _err(where, f"{name} must be >= 0 (got {val!r})")
-    return int(val) if is_int else float(val)
+    try:  # the one number check, shared with the reduced models' parameters (same rule, same message)
+        val = check_number(name, val, positive=positive, non_negative=non_negative, integer=is_int)
+    except ValueError as e:
+        raise _err(where, str(e)) from None
+    return val if is_int else float(val)
 
 
 def _section(where, sec, cls, raw, strict=True, default=None):

@@ -20,6 +20,8 @@ from dataclasses import asdict, dataclass
 import numba
 import numpy as np
 
+from frictionnoise.checks import check_fields
+
 from ._version import package_version
 from .trace import ModelTrace
 
@@ -64,10 +66,7 @@ class AsperityForceParams:
     N: float = 30.0
 
     def __post_init__(self):
-        for name in ("F_f", "v", "M", "w", "N"):
-            val = getattr(self, name)
-            if not (isinstance(val, (int, float)) and math.isfinite(val) and val > 0):
-                raise ValueError(f"{name} must be a positive finite number (got {val!r})")
+        check_fields(self, positive=("F_f", "v", "M", "w", "N"))
         if not (isinstance(self.p, (int, float)) and 0 < self.p <= 1):
             raise ValueError(f"p must lie in (0, 1] (got {self.p!r})")
         if self.N_w < 2:
@@ -194,7 +193,7 @@ def theory_force_spectrum(params: AsperityForceParams, omega) -> np.ndarray:
 
 
 def theory_spectrum(params: AsperityForceParams, omega) -> np.ndarray:
-    """C_x = C_F / (M^2 omega^4), eq. (3) (Units: m^2 s)."""
+    """C_x = C_F / (M^2 omega^4), eq. (3) (Units: m^2 s); omega is the angular frequency (Units: rad/s)."""
     w = np.asarray(omega, dtype=float)
     return theory_force_spectrum(params, w) / (params.M**2 * w**4)
 

@@ -47,6 +47,8 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from frictionnoise.checks import check_fields
+
 from . import spring_block as _m1
 from ._exact import Modes, first_order, modal_decomposition
 from ._two_level import run_two_level, sort_windows
@@ -116,15 +118,9 @@ class MultiscaleParams:
         _m1.SpringBlockParams(N=self.N, v=self.v, a=self.a, k0=self.k0, k1=self.k1, M=self.M, m=self.m,
                               eta0=self.eta0, eta_lat=self.eta_lat, alpha=self.alpha, F_drive=self.F_drive,
                               F_kin=0.0)  # model I's field checks first (each names its field)
+        check_fields(self, integer=("n_micro",), positive=("m2", "k2", "a2"),  # the scene's micro-pads: the same check
+                     non_negative=("eta2", "eta3", "alpha2", "F_kin2"))
         n = self.n_micro
-        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
-            raise ValueError(f"n_micro must be an integer >= 0 (got {n!r})")
-        for names, lo, what in ((("m2", "k2", "a2"), 0.0, "a positive"), (("eta2", "eta3", "alpha2", "F_kin2"), None,
-                                                                          "a non-negative")):
-            for name in names:
-                val = getattr(self, name)
-                if not (isinstance(val, (int, float)) and math.isfinite(val) and (val > 0 if lo is not None else val >= 0)):
-                    raise ValueError(f"{name} must be {what} finite number (got {val!r})")
         if n == 0 and self.F_kin2 != 0:
             raise ValueError(f"F_kin2 = N n f_kin2 must be 0 when n_micro = 0 (got {self.F_kin2!r})")
         micro = self.N * n * self.m2 * self.eta3 * self.v + self.F_kin2 if n else 0.0
@@ -356,9 +352,7 @@ def transfer_functions(params: MultiscaleParams, omega):
 
 
 def _force_spectrum(v, a, amp, omega, closure):
-    """C_f of one contact's renewing force, eq. (A8) (Units: N^2 s); closure "cumulant" is the paper's
-    <cos w tau> = exp(-s^2 w^2 / 2) cos(w tau0), s^2 = tau0^2 / 6; "exact" the triangular law of
-    tau = tau0 (1 + r - r'): cos(w tau0) sinc^2(w tau0 / 2)."""
+    """C_f of one contact's renewing force, eq. (A8) (Units: N^2 s); closure as in :func:`theory_spectrum`."""
     w = np.asarray(omega, dtype=float)
     tau0 = a / v
     if closure == "cumulant":
@@ -380,7 +374,12 @@ def theory_components(params: MultiscaleParams, omega, closure: str = "cumulant"
 
 
 def theory_spectrum(params: MultiscaleParams, omega, closure: str = "cumulant") -> np.ndarray:
-    """C_x(omega) = |Z~|^2 / N [C_f1 + n |T2|^2 C_f2], the generalisation of eq. (A10) (Units: m^2 s).
+    """C_x(omega) = |Z~|^2 / N [C_f1 + n |T2|^2 C_f2], the generalisation of eq. (A10) (Units: m^2 s), at the
+    angular frequencies omega (Units: rad/s; omega = 2 pi f). ``closure``: how eq. (A8) averages <cos omega tau> over
+    the renewal interval tau = tau0 (1 + r - r') (tau0 = a / v, r and r' uniform), at both levels: "cumulant"
+    (default, the paper's) a Gaussian of tau's mean and variance, exp(-s^2 omega^2 / 2) cos(omega tau0), s^2 =
+    tau0^2 / 6; "exact" tau's own triangular law, cos(omega tau0) sinc^2(omega tau0 / 2), as the simulators draw
+    it. They differ by under 0.03 % below omega tau0 = 0.5 and by at most 5 % near omega tau0 = 4-6.
     With n = 0 it equals :func:`reduced_models.spring_block.theory_spectrum` (closure "cumulant")."""
     c1, c2 = theory_components(params, omega, closure)
     return c1 + c2

@@ -24,6 +24,8 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from frictionnoise.checks import check_fields, check_number
+
 from ._checkpoint import load_checkpoint as _load_checkpoint, save_checkpoint as _save_checkpoint
 from ._exact import Modes, first_order, modal_decomposition, run_renewals
 from ._version import package_version
@@ -91,16 +93,8 @@ class SpringBlockParams:
     eta1_derived: bool = field(default=False, repr=False)
 
     def __post_init__(self):
-        if isinstance(self.N, bool) or not isinstance(self.N, (int, np.integer)) or self.N < 1:
-            raise ValueError(f"N must be an integer >= 1 (got {self.N!r})")
-        for name in ("v", "a", "k0", "M", "m", "F_drive"):
-            val = getattr(self, name)
-            if not (isinstance(val, (int, float)) and math.isfinite(val) and val > 0):
-                raise ValueError(f"{name} must be a positive finite number (got {val!r})")
-        for name in ("k1", "eta0", "eta_lat", "alpha", "F_kin"):
-            val = getattr(self, name)
-            if not (isinstance(val, (int, float)) and math.isfinite(val) and val >= 0):
-                raise ValueError(f"{name} must be a non-negative finite number (got {val!r})")
+        check_fields(self, integer=("N",), positive=("N", "v", "a", "k0", "M", "m", "F_drive"),
+                     non_negative=("k1", "eta0", "eta_lat", "alpha", "F_kin"))
         if self.eta1 is None or self.eta1_derived:
             if not self.F_drive > self.F_kin:
                 raise ValueError(
@@ -109,14 +103,14 @@ class SpringBlockParams:
                 )
             object.__setattr__(self, "eta1", (self.F_drive - self.F_kin) / (self.N * self.m * self.v))
             object.__setattr__(self, "eta1_derived", True)
-        elif not (math.isfinite(self.eta1) and self.eta1 > 0):
-            raise ValueError(f"eta1 must be a positive finite number (got {self.eta1!r})")
-        elif not math.isclose(self.N * (self.m * self.eta1 * self.v + self.f_kin), self.F_drive, rel_tol=1e-6):
-            raise ValueError(
-                f"eta1 = {self.eta1!r} 1/s does not give steady sliding at v = {self.v!r} m/s: "
-                f"N (m eta1 v + f_kin) = {self.N * (self.m * self.eta1 * self.v + self.f_kin):.6g} N "
-                f"!= F_drive = {self.F_drive!r} N (leave eta1 unset to derive it)"
-            )
+        else:
+            check_number("eta1", self.eta1, positive=True)
+            if not math.isclose(self.N * (self.m * self.eta1 * self.v + self.f_kin), self.F_drive, rel_tol=1e-6):
+                raise ValueError(
+                    f"eta1 = {self.eta1!r} 1/s does not give steady sliding at v = {self.v!r} m/s: "
+                    f"N (m eta1 v + f_kin) = {self.N * (self.m * self.eta1 * self.v + self.f_kin):.6g} N "
+                    f"!= F_drive = {self.F_drive!r} N (leave eta1 unset to derive it)"
+                )
 
     @classmethod
     def reference(cls) -> "SpringBlockParams":
@@ -375,7 +369,9 @@ def transfer_function(params: SpringBlockParams, omega) -> np.ndarray:
 
 
 def theory_spectrum(params: SpringBlockParams, omega) -> np.ndarray:
-    """C_x(omega) = |Z|^2 C_f / N, eq. (A10), full Z of (A5) and C_f of (A8) (Units: m^2 s)."""
+    """C_x(omega) = |Z|^2 C_f / N, eq. (A10), full Z of (A5) and C_f of (A8) (Units: m^2 s); omega is the angular
+    frequency (Units: rad/s). C_f uses the paper's cumulant closure of <cos omega tau>
+    (:func:`reduced_models.multiscale.theory_spectrum` offers the exact one)."""
     return np.abs(transfer_function(params, omega)) ** 2 * random_force_spectrum(params, omega) / params.N
 
 

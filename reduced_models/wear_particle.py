@@ -29,6 +29,8 @@ import numba
 import numpy as np
 from scipy import integrate
 
+from frictionnoise.checks import check_fields
+
 from ._version import package_version
 from .trace import ModelTrace
 
@@ -159,10 +161,7 @@ class WearParticleParams:
             val = getattr(self, name)
             if not (isinstance(val, (int, float)) and math.isfinite(val)):
                 raise ValueError(f"{name} must be a finite force in N (got {val!r})")
-        for name in ("M", "v"):
-            val = getattr(self, name)
-            if not (isinstance(val, (int, float)) and math.isfinite(val) and val > 0):
-                raise ValueError(f"{name} must be a positive finite number (got {val!r})")
+        check_fields(self, positive=("M", "v"))
         if self.mode not in _MODES:
             raise ValueError(f"mode must be one of {', '.join(_MODES)} (got {self.mode!r})")
         if self.tau_link not in _LINKS:
@@ -388,7 +387,7 @@ def _avg_gain(w, dt_avg):
 
 
 def theory_spectrum(params: WearParticleParams, omega, **kw) -> np.ndarray:
-    """C_x = C_F / (M^2 omega^4), eq. (3) (Units: m^2 s)."""
+    """C_x = C_F / (M^2 omega^4), eq. (3) (Units: m^2 s); omega is the angular frequency (Units: rad/s)."""
     w = np.asarray(omega, dtype=float)
     return theory_force_spectrum(params, w, **kw) / (params.M**2 * w**4)
 

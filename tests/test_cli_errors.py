@@ -201,6 +201,36 @@ def test_output_where_a_folder_cannot_be(cmd, tmp_path, capsys):
     assert f.read_text() == "x"
 
 
+@pytest.mark.parametrize("cmd", ["run", "render", "compare", "report"])
+def test_output_named_like_a_file_is_refused(cmd, tmp_path, capsys):
+    """`-o ms.npz` once made a folder named ms.npz: -o names a folder (README, --help), so a name ending in a
+    file suffix is one line naming the option, exit 2, nothing created."""
+    src = [] if cmd == "report" else [str(PATCHES)]
+    for name in ("ms.npz", "frame.PNG", "out.json"):
+        o = tmp_path / name
+        assert main([cmd, *src, "-o", str(o)]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "-o/--output" in err and name in err and "Traceback" not in err, err
+        assert not o.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+def test_output_folder_with_a_dot_is_still_a_folder(tmp_path, capsys):
+    """Only file suffixes are refused: a folder `run.v2`, or an existing folder named like a file, is written into."""
+    old = tmp_path / "old.npz"
+    old.mkdir()
+    for o in (tmp_path / "run.v2", old):
+        assert main(["run", str(PATCHES), "--duration", "0.02", "-o", str(o)]) == 0
+        assert sorted(p.name for p in o.iterdir()) == ["trace.json", "trace.npz"]
+
+
+def test_run_help_says_o_is_a_folder(capsys):
+    with pytest.raises(SystemExit):
+        main(["run", "--help"])
+    out = " ".join(capsys.readouterr().out.split())
+    assert "DIR/trace.npz and DIR/trace.json" in out and "is refused" in out
+
+
 @pytest.mark.parametrize("flag, value, needle", [("--duration", "nan", "--duration must be"),
                                                  ("--duration", "-1", "--duration must be"),
                                                  ("--duration", "inf", "--duration must be"),

@@ -229,3 +229,20 @@ def test_strong_micro_slopes_on_both_sides_of_the_crossover(label):
         fit = fit_power_law(spec, band=band)
         assert _band_slope(p, band) == pytest.approx(gamma, abs=tol), (label, band)
         assert fit.gamma == pytest.approx(_band_slope(p, band), abs=1.5 * fit.gamma_err), (label, fit)
+
+
+def test_closures_differ_as_the_docstring_says():
+    """theory_spectrum's docstring: omega in rad/s; the two closures of <cos omega tau> differ by under 0.03 % below
+    omega tau0 = 0.5 and at most 5 % near omega tau0 = 4-6 (the macro part isolates one level's closure: same Z~)."""
+    doc = " ".join(ms.theory_spectrum.__doc__.split())
+    assert "rad/s" in doc and '"cumulant"' in doc and '"exact"' in doc
+    tau0 = REF.a / REF.v
+    x = np.logspace(-2, 2, 4001)  # omega tau0
+    cum = ms.theory_components(REF, x / tau0, "cumulant")[0]
+    exact = ms.theory_components(REF, x / tau0, "exact")[0]
+    r = cum / exact
+    assert np.all(np.abs(r[x < 0.5] - 1) < 3e-4)
+    assert 0.04 < np.max(np.abs(r - 1)) < 0.05
+    assert 4 <= x[np.argmax(np.abs(r - 1))] <= 6
+    with pytest.raises(ValueError, match="closure must be"):
+        ms.theory_spectrum(REF, x, "gaussian")

@@ -150,8 +150,47 @@ def test_run_progress_without_a_terminal_prints_tenths():
             update(0.06 * k, 6.0)
     lines = buf.getvalue().splitlines()
     assert len(lines) == 10, lines
-    assert lines[0].startswith("scene: 0.6/6.0 s simulated (10 %), ") and lines[-1].startswith("scene: 6.0/6.0 s simulated (100 %)")
+    assert lines[0].startswith("scene: 0.6/6.0 s simulated (10 %; ") and lines[-1].startswith("scene: 6.0/6.0 s simulated (100 %;")
     assert all(re.search(r"\d+\.\d s elapsed$", ln) for ln in lines)
+
+
+def test_run_progress_total_is_warm_up_plus_duration_from_the_start():
+    """`run --duration D`: the bar's total is what the run simulates, the warm-up plus D, before the first report
+    and after the run's own reports (engine_sim.run counts the warm-up in), and its label names the warm-up."""
+    import engine_sim
+    from compare.commands import progress_bar as _progress_bar
+    from engine_sim import load_scenario
+
+    sc = load_scenario("pads_friction_patches").with_run(warmup=0.03)
+    buf = io.StringIO()
+    bar, update = _progress_bar("scene", stream=buf, warmup=0.03, duration=0.05, tty=True)
+    with bar:
+        assert bar.total == pytest.approx(0.08) and "0.03 s warm-up + 0.1 s recorded" in bar.postfix
+        seen = []
+        engine_sim.run(sc, duration=0.05, progress=lambda d, t: (seen.append((d, t)), update(d, t)))
+        assert seen[0][0] == pytest.approx(0.03)  # its first report comes after the warm-up
+        assert bar.total == pytest.approx(0.08 + sc.run.dt_out) and bar.n == bar.total  # plus the sample at t = 0
+        assert "0.03 s warm-up + 0.1 s recorded; now recorded" in bar.postfix
+
+
+def test_paired_runs_fill_one_bar_and_logs_name_the_warm_up():
+    """compare on a wear scene simulates two runs (with and without particles): one bar of both, run by run."""
+    from compare.commands import progress_bar as _progress_bar
+
+    buf = io.StringIO()
+    bar, update = _progress_bar("wear", stream=buf, warmup=1.0, duration=4.0, runs=2)
+    with bar:
+        for _ in range(2):
+            for k in range(10, 51):
+                update(0.1 * k, 5.0)
+    lines = buf.getvalue().splitlines()
+    assert lines[0].startswith("wear: 1.0/10.0 s simulated (10 %; run 1/2: 1 s warm-up + 4.0 s recorded; now recorded)")
+    assert lines[-1].startswith("wear: 10.0/10.0 s simulated (100 %; run 2/2: ")
+    assert len(lines) == 10 and bar.n == bar.total == 10.0
+    bar, update = _progress_bar("w", stream=io.StringIO(), warmup=1.0, duration=4.0, runs=2, tty=True)
+    with bar:
+        assert bar.total == 10.0 and bar.postfix == ("0.0/10.0 s simulated (run 1/2: 1 s warm-up + 4.0 s recorded; "
+                                                     "now warm-up, not recorded)")
 
 
 def test_process_pool_returns_results_and_ends_its_workers_on_an_interrupt():

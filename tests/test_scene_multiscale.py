@@ -54,7 +54,7 @@ def test_scene_builds_with_its_micro_pads_loads_and_orderings():
 
 def test_micro_fields_are_validated_one_line_naming_the_field():
     d = load_scenario(MS).to_dict()
-    for key, val, msg in (("micro_share", 1.0, "pads.micro_share = 1.0 must be < 1"),
+    for key, val, msg in (("micro_share", 1.0, r"pads.micro_share must be < 1 \(got 1.0\): the pad keeps"),
                           ("micro_spacing", 3e-3, "pads.micro_spacing"),
                           ("micro_k", 1e4, "exceeds the pad spring limit"),
                           ("micro_mass", -1.0, "pads.micro_mass must be > 0")):
@@ -64,6 +64,33 @@ def test_micro_fields_are_validated_one_line_naming_the_field():
         assert "\n" not in str(e.value)
     with pytest.raises(ScenarioError, match="unknown key pads.n_micro"):  # micro fields belong to the micro pads
         scenario_from_dict({"pads": {"n_micro": 2}})
+
+
+def test_scene_and_model_Ib_check_the_micro_fields_alike():
+    """One helper (frictionnoise.checks) checks a micro-pad field in the scenario and its model Ib twin: the same
+    bad value gives the same message after the field's name (issue: two hand-written checks had drifted apart)."""
+    from dataclasses import replace
+
+    from reduced_models.multiscale import MultiscaleParams
+
+    d = load_scenario(MS).to_dict()
+    ref = MultiscaleParams.reference()
+    pairs = (("micro_mass", "m2"), ("micro_k", "k2"), ("micro_a", "a2"), ("micro_alpha", "alpha2"),
+             ("micro_c_spring", "eta2"), ("n_micro", "n_micro"))
+    checked = 0
+    for scene_key, model_field in pairs:
+        for val in (-1.0, float("nan"), 2.5, "x"):
+            if (val == 2.5) != (scene_key == "n_micro") and val in (-1.0, 2.5):  # the scene needs a micro-pad (n >= 1),
+                continue  # model Ib's n = 0 is model I: -1 is refused by different rules
+            with pytest.raises(ScenarioError) as e_scene:
+                scenario_from_dict({**d, "pads": {**d["pads"], scene_key: val}})
+            with pytest.raises(ValueError) as e_model:
+                replace(ref, **{model_field: val})
+            tail = str(e_model.value).removeprefix(model_field)
+            assert str(e_model.value).startswith(model_field + " must be ") and str(e_scene.value).endswith(
+                f"pads.{scene_key}{tail}"), (str(e_scene.value), str(e_model.value))
+            checked += 1
+    assert checked == 5 * 3 + 3
 
 
 @pytest.mark.slow  # fast tier under a minute; the log-law scene's resume test stays fast

@@ -69,7 +69,7 @@ def test_failed_task_is_reported_and_does_not_lose_the_others(tmp_path):
     res = run_sweep(spec, tmp_path / "o", serial=True)
     assert res["ran"] == 1 and res["failed"] == 1
     fail = json.loads(next((tmp_path / "o" / "failures").glob("*.json")).read_text())
-    assert fail["params"]["v"] == -1.0 and "v must be a positive" in fail["error"]
+    assert fail["params"]["v"] == -1.0 and "v must be > 0 (got -1.0)" in fail["error"]
 
 
 @pytest.mark.slow  # dask cluster / long model I runs
@@ -92,7 +92,7 @@ def test_sweep_file_errors(tmp_path):
     with pytest.raises(SweepError, match="target must be one of"):
         load_sweep(p)
     p.write_text('target = "model_I"\n[grid]\nv = [-1e-3]\n')
-    with pytest.raises(SweepError, match="v must be a positive"):
+    with pytest.raises(SweepError, match=r"v must be > 0 \(got -0.001\)"):
         load_sweep(p)
     p.write_text('target = "model_I"\n[grid]\nvelocity = [1e-3]\n')
     with pytest.raises(SweepError, match="velocity"):
@@ -209,3 +209,12 @@ def test_real_cluster_survives_a_killed_worker(tmp_path):
         a, b = dict(ra[k]), dict(rb[k])
         a.pop("wall_s"), b.pop("wall_s")
         assert a == b
+
+
+def test_the_sweep_file_example_lives_in_one_docstring():
+    """sweep_spec.py carries the sweep-file example; sweep.py points to it instead of a second copy."""
+    import compare.sweep as sweep
+    import compare.sweep_spec as sweep_spec
+
+    assert "[grid]" in sweep_spec.__doc__ and "target =" in sweep_spec.__doc__
+    assert "[grid]" not in sweep.__doc__ and ":mod:`compare.sweep_spec`" in sweep.__doc__

@@ -25,7 +25,7 @@ def wear_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult
         T = float(tw.t[-1])
     else:
         tw, wall_w = timed(whole_run, sc.with_run(duration=T), seed=seed, progress=progress)
-    t0, wall_0 = timed(whole_run, sc.with_run(duration=T).with_wear(count=0), seed=seed)
+    t0, wall_0 = timed(whole_run, sc.with_run(duration=T).with_wear(count=0), seed=seed, progress=progress)
     nper = min(2**12 if quick else 2**13, 1 << int(math.floor(math.log2(len(tw.t) / 3))))
     runs = {"with": tw, "without": t0}
     specs = {k: displacement_spectrum(tr.t, tr.x, nperseg=nper) for k, tr in runs.items()}

@@ -195,8 +195,8 @@ class Arrangement:
         pads = np.array([(p.position.x, p.position.y) for p in scene.pads])
         anchors = [scene.block.local_to_world(c.anchor_a) for c in scene.block_springs[::2]]
         return {"springs": ("segments", [((a.x, a.y), (q[0], q[1])) for a, q in zip(anchors, pads)],
-                            {"colors": "0.4", "linewidths": 0.6}),
-                "pads": ("points", pads, {"s": 18, "c": "tab:red", "zorder": 3})}
+                            {"colors": "0.4", "linewidths": 0.6, "label": "pad spring"}),
+                "pads": ("points", pads, {"s": 18, "c": "tab:red", "zorder": 3, "label": "pad"})}
 
 
 def arrangement_kind(name: str):

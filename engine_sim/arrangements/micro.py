@@ -22,6 +22,7 @@ import numpy as np
 import pymunk
 
 from frictionnoise import G
+from frictionnoise.checks import check_number
 
 from .. import units as U
 from ..substrates.patches import Patches, PatchesSpec
@@ -72,10 +73,8 @@ class Micro(Tracks):
         if p.N > _MICRO_BIT:
             raise ValueError(f"pads.N = {p.N} must be at most {_MICRO_BIT} with micro-pads (one filter bit per pad "
                              "track, one for the micro-tracks)")
-        if not p.micro_share < 1:
-            raise ValueError(f"pads.micro_share = {p.micro_share!r} must be < 1 (the pad keeps a contact of its own)")
-        if p.micro_alpha >= 2:
-            raise ValueError(f"pads.micro_alpha = {p.micro_alpha!r} must be < 2 (patch friction stays positive)")
+        check_number("pads.micro_share", p.micro_share, below=1, why="the pad keeps a contact of its own")
+        check_number("pads.micro_alpha", p.micro_alpha, below=2, why="patch friction stays positive")
         room = p.track_spacing - p.n_micro * p.micro_spacing
         if room < 2.5 * (p.radius + sc.substrate.segment_radius):
             raise ValueError(f"pads.micro_spacing = {p.micro_spacing:.3g} m: n_micro micro-tracks must fit between two "
@@ -210,20 +209,29 @@ class Micro(Tracks):
 
     # ------------------------------------------------------------------ drawing
     def view(self, scene):
-        """The first three pads with their micro-pads and micro-tracks, 40 a2 either side of the block."""
+        """The whole block (every pad on its track, as "tracks" draws it) and a second panel enlarging column 1:
+        its pad, micro-pads and micro-tracks, 40 a2 either side of the block."""
         v = super().view(scene)
         p = self.spec
-        k = min(3, p.N) - 1
-        low = scene.track_surface[k] - (p.n_micro + 0.5) * p.micro_spacing * U.LENGTH
-        return {**v, "window": 40 * p.micro_a, "ylim": (low, scene.y_block + 4.0), "track_width": 2,
-                "ylabel": "y (mm): pad tracks, each followed by its micro-tracks"}
+        top, ms = scene.track_surface[0], p.micro_spacing * U.LENGTH
+        zoom = {"window": 40 * p.micro_a, "ylim": (top - (p.n_micro + 0.6) * ms, v["block_top"] + 0.8),
+                "track_width": 3, "zoomed": True, "ylabel": "y (mm): column 1",
+                "title": f"column 1 of {p.N} (dashed box), enlarged: its pad and {p.n_micro} micro-pads on their "
+                         "tracks"}
+        return {**v, "zoom": zoom, "ylabel": f"y (mm): {p.N} columns, each a pad track and {p.n_micro} micro-tracks",
+                "track_label": "pad track / micro-track (colour: patch friction)"}
 
     def draw(self, scene, lo, hi, view):
         shapes = super().draw(scene, lo, hi, view)
+        big = view.get("zoomed", False)
         xy = np.array([(b.position.x, b.position.y) for b in self.micro_pads])
         pads = scene.pads
         n = self.spec.n_micro
         links = [((pads[k // n].position.x, pads[k // n].position.y), (q[0], q[1])) for k, q in enumerate(xy)]
-        shapes["micro_springs"] = ("segments", links, {"colors": "0.6", "linewidths": 0.4})
-        shapes["micro_pads"] = ("points", xy, {"s": 6, "c": "tab:orange", "zorder": 3})
+        shapes["pads"][2].update(label="pad (macro contact)", s=60 if big else 14)
+        shapes["micro_springs"] = ("segments", links, {"colors": "0.5", "linewidths": 0.8 if big else 0.3,
+                                                       "label": "micro-pad spring"})
+        shapes["micro_pads"] = ("points", xy, {"s": 30 if big else 4, "c": "tab:orange", "zorder": 3,
+                                               "edgecolors": "k" if big else "none", "linewidths": 0.5,
+                                               "label": "micro-pad (micro contact)"})
         return shapes

@@ -75,4 +75,4 @@ class Sole(Arrangement):
                 bot = 0.5 * (a.y + b.y) - sh.radius
                 feet.append([(a.x, bot), (b.x, bot), (b.x, top), (a.x, top)])
         return {"feet": ("polys", feet, {"facecolors": (0.84, 0.15, 0.16, 0.35), "edgecolors": "tab:red",
-                                         "linewidths": 1.5, "zorder": 3})}
+                                         "linewidths": 1.5, "zorder": 3, "label": "foot of the sole"})}
