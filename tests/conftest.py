@@ -79,6 +79,64 @@ def pytest_ignore_collect(collection_path, config):
     return None
 
 
+@pytest.fixture(scope="session")
+def installed(tmp_path_factory):
+    """A non-editable install of this checkout into a fresh venv (tests/installed.py), once per session."""
+    from tests.installed import install_non_editable
+
+    return install_non_editable(tmp_path_factory.mktemp("install"))
+
+
+@pytest.fixture(scope="session")
+def installed_quick_report(installed):
+    """(folder, wall s) of `frictionnoise report --quick` from the installed package, once per session: read by
+    tests/test_install.py and tests/test_report_cli.py (one quick report per CI run, not two)."""
+    from tests.installed import quick_report
+
+    return quick_report(installed)
+
+
+def _shared_fixtures(item) -> list:
+    """The fixtures of this test folder wider than a test (module or session scope) that ``item`` uses."""
+    here = str(Path(__file__).resolve().parent) + "/"
+    info = getattr(item, "_fixtureinfo", None)
+    out = []
+    for name, defs in (info.name2fixturedefs.items() if info is not None else ()):
+        src = getattr(getattr(defs[-1].func, "__code__", None), "co_filename", "")
+        if defs[-1].scope != "function" and src.startswith(here):
+            out.append(f"{Path(src).stem}::{name}")
+    return out
+
+
+@pytest.hookimpl(tryfirst=True)  # before pytest-xdist's own hook reads the xdist_group marks (--dist loadgroup)
+def pytest_collection_modifyitems(config, items):
+    # The slow tier runs in two groups (README, .ci/run): `slow and not timing` on both cores, `slow and timing`
+    # (tests that measure a speed or a time bound) on one. A `timing` test outside the slow tier would run in
+    # neither group's sense: refuse it.
+    stray = [it.nodeid for it in items if it.get_closest_marker("timing") and not it.get_closest_marker("slow")]
+    if stray:
+        raise pytest.UsageError(f"tests marked timing but not slow (the timing group is part of the slow tier): "
+                                f"{', '.join(stray)}")
+    # Under pytest-xdist with --dist loadgroup: tests that share a module- or session-scoped fixture of this folder
+    # (a 60 s scene run, the install, a quick report) go to one worker, so the fixture is built once, not once
+    # per worker. Groups are the connected sets of tests linked by such fixtures (found, not listed by hand).
+    if not config.pluginmanager.hasplugin("xdist"):
+        return
+    parent: dict = {}
+
+    def root(n):
+        while parent.setdefault(n, n) != n:
+            n = parent[n]
+        return n
+    shared = {it: _shared_fixtures(it) for it in items}
+    for names in shared.values():
+        for a in names[1:]:
+            parent[root(a)] = root(names[0])
+    for it, names in shared.items():
+        if names:
+            it.add_marker(pytest.mark.xdist_group(name=root(names[0])))
+
+
 def pytest_collectreport(report):
     now = _loaded()
     if report.fspath and report.fspath.endswith(".py"):

@@ -104,6 +104,7 @@ def test_render_png_and_gif_headless(tmp_path):
 
 
 @pytest.mark.slow  # pymunk's matplotlib drawing takes 0.3-0.4 s a frame, twice
+@pytest.mark.timing  # a frame's cost against pymunk's drawing
 def test_render_frame_costs_a_fraction_of_pymunks_drawing():
     from engine_sim import Scene, load_scenario
     from engine_sim.render import SceneRenderer

@@ -84,6 +84,7 @@ def _one_line_130(proc, err, wall, limit):
 
 
 @pytest.mark.slow  # a real report's worker pool, signalled once busy (about 7 s)
+@pytest.mark.timing  # exit within 2.5 s of the signal, two worker processes of its own
 def test_ctrl_c_during_report_ends_its_workers(tmp_path):
     out = tmp_path / "rep"
     proc = _start(["report", "--quick", "--workers", "2", "-o", out])
@@ -98,6 +99,7 @@ def test_ctrl_c_during_report_ends_its_workers(tmp_path):
 
 
 @pytest.mark.slow  # a dask LocalCluster started, a task completed, then signalled (about 11 s)
+@pytest.mark.timing  # exit within 3 s of the signal, two dask workers of its own
 def test_ctrl_c_during_sweep_keeps_completed_tasks(tmp_path):
     spec = tmp_path / "s.toml"
     spec.write_text('name = "s"\ntarget = "model_I"\n[fixed]\nduration = 150.0\n[grid]\n'
@@ -119,9 +121,10 @@ def test_ctrl_c_during_sweep_keeps_completed_tasks(tmp_path):
 
 # the fast tier keeps `run` (the same handler in main() serves every subcommand); render and compare wait longer
 @pytest.mark.parametrize("cmd, delay", [(["run", PATCHES, "--duration", "30"], 1.5),  # warm-up or first samples
-                                        pytest.param(["render", PATCHES, "--frames", "400"], 2.5, marks=pytest.mark.slow),
+                                        pytest.param(["render", PATCHES, "--frames", "400"], 2.5,
+                                                     marks=[pytest.mark.slow, pytest.mark.timing]),
                                         pytest.param(["compare", PATCHES, "--duration", "30"], 3.0,
-                                                     marks=pytest.mark.slow)])
+                                                     marks=[pytest.mark.slow, pytest.mark.timing])])
 def test_ctrl_c_in_other_subcommands(tmp_path, cmd, delay):
     out = tmp_path / "o"
     proc = _start([*cmd, "-o", out])

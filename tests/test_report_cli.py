@@ -11,13 +11,15 @@ from compare.cli import main
 
 
 @pytest.fixture(scope="module")
-def quick_report(tmp_path_factory):
-    out = tmp_path_factory.mktemp("r") / "out"
-    assert main(["report", "--quick", "-o", str(out)]) == 0
-    return out
+def quick_report(installed_quick_report):
+    """The output folder of `frictionnoise report --quick`, run by a non-editable install of this checkout from a
+    folder outside the tree (conftest.py: once per session, shared with tests/test_install.py; run alone, this file
+    installs and reports by itself). The same code and seed as an in-process `main(["report", "--quick"])`."""
+    return installed_quick_report[0]
 
 
-@pytest.mark.slow  # the quick report (~1 min on 2 idle cores)
+@pytest.mark.slow  # the quick report (about 2 min on 2 idle cores, its own worker processes on both)
+@pytest.mark.timing  # the session's quick report measures the particles' cost ratio (a speed): run alone
 def test_summary_holds_the_model_exponents(quick_report):
     s = json.loads((quick_report / "summary.json").read_text())
     for key, truth, tol in (("model_I", 4.0, 0.15), ("model_III", 6.0, 0.2), ("model_II", 5.0, 0.2)):
@@ -30,7 +32,8 @@ def test_summary_holds_the_model_exponents(quick_report):
     assert s["model_III"]["mean_force_over_F_f"] == pytest.approx(1.0, abs=0.02)
 
 
-@pytest.mark.slow  # the quick report (~1 min on 2 idle cores)
+@pytest.mark.slow  # the quick report (about 2 min on 2 idle cores, its own worker processes on both)
+@pytest.mark.timing  # the session's quick report measures the particles' cost ratio (a speed): run alone
 def test_summary_holds_every_shipped_scenario(quick_report):
     # Quick mode: 12 s per scene (the profile scenes 8 s), 6 bands. The friction-patch scenes are in model I's regime:
     # gamma near 4 and model I built from the scene's own measured parameters within a factor 1.5 per band
@@ -110,7 +113,8 @@ def test_summary_holds_every_shipped_scenario(quick_report):
             assert sc["extracted"]["a"]["value"] == pytest.approx(sc["extracted"]["a"]["substrate_value"], rel=0.15)
 
 
-@pytest.mark.slow  # the quick report (~1 min on 2 idle cores)
+@pytest.mark.slow  # the quick report (about 2 min on 2 idle cores, its own worker processes on both)
+@pytest.mark.timing  # the session's quick report measures the particles' cost ratio (a speed): run alone
 def test_html_embeds_non_blank_figures(quick_report):
     import matplotlib.image as mpimg
 

@@ -46,6 +46,7 @@ def test_studies_in_workers_match_one_process():
 
 
 @pytest.mark.slow  # report stages in worker processes
+@pytest.mark.timing  # the particles' cost per step against the twin's
 def test_particles_cost_more_side_by_side():
     # 50 grains cost 1.4-1.6x the particle-free twin at 20 iterations (benchmarks/wear_iterations.py);
     # asserted only as "more", since a timing can be disturbed, and as finite positive numbers

@@ -128,6 +128,7 @@ def test_sweep_file_validated_at_load(tmp_path, body, needle):
 
 
 @pytest.mark.slow  # a fresh interpreter importing dask, then the timeout (about 5 s)
+@pytest.mark.timing  # exit within 14 s
 def test_unreachable_scheduler_one_line_after_the_timeout_nothing_left(tmp_path):
     import socket
 

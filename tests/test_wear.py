@@ -103,6 +103,7 @@ def test_pads_with_wear_keeps_its_grains_and_closes_energy():
 
 
 @pytest.mark.slow  # fast tier under a minute: run in CI's slow tier
+@pytest.mark.timing  # a frame's cost against pymunk's drawing
 def test_render_colours_grains_by_the_recorders_state_within_the_frame_budget(tmp_path):
     # 30 pads on their tracks and 100 grains: a frame costs at most a fifth of pymunk's own matplotlib drawing, measured
     # in turns (an absolute budget failed whenever other processes shared the cores); grains coloured by the

@@ -58,6 +58,7 @@ def test_time_step_beyond_the_limit_is_refused():
         scenario_from_dict({"run": {"dt": 3e-4, "dt_out": 3e-3}})
 
 
+@pytest.mark.timing  # wall time per simulated second, late against early
 def test_cost_flat_and_substrate_bounded_over_two_metres():
     # 2 m of sliding at 100 mm/s. The wall time per simulated second late in the run (1.35-2 m) stays
     # within 20 % of its early value (5-70 cm), and the live substrate does not grow: the
