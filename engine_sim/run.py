@@ -161,6 +161,16 @@ def _every(e_out: int, dt_out: float, checkpoint_every: float | None) -> int | N
     return e_out * max(1, int(round(checkpoint_every / (e_out * dt_out))))
 
 
+def _load_recorder_kernel(sc, seed):
+    """Load (or compile) the recorder's numba kernel before signals are deferred: the first sample of a process
+    loads it (0.7 s from numba's cache, about 9 s compiling in a fresh clone), and a Ctrl-C landing in that load
+    waited for it (1.3-9 s to the exit). A one-sample Recorder on a throwaway Scene, once per process (measured
+    0.03 s for pads_friction_patches), outside the deferral, where a Ctrl-C interrupts at once."""
+    from .record import _reduce
+    if not _reduce.signatures:
+        Recorder(Scene(sc, seed), 1).sample()
+
+
 def run(scenario, duration: float | None = None, seed: int | None = None, progress=None, *,
         checkpoint: str | None = None, checkpoint_every: float | None = None, epoch: float | None = None,
         on_plan=None) -> EngineTrace:
@@ -198,6 +208,7 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     seed_used = sc.run.seed if seed is None else int(seed)
     t0 = time.perf_counter()
     resumed = False
+    _load_recorder_kernel(sc, seed)
     intr = _Interrupts()
     with intr.deferred():
         scen = sc.to_dict()
