@@ -295,3 +295,14 @@ def test_compare_says_a_trace_is_partial(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "note: " in err and "is a partial trace (interrupted at t = 2.000 s)" in err, err
     assert "partial trace" in json.loads((tmp_path / "d" / "summary.json").read_text())["partial_trace"]
+
+
+def test_compare_too_short_for_the_asperity_comparison(out, capsys):
+    # 2 s of asperity_field cannot resolve the band below model III's corner (3.97 rad/s): one line saying how long
+    # it must be (it was 'band [18.41, 3.975) rad/s holds no spectral ordinate'), nothing written
+    assert main(["compare", "asperity_field", "--duration", "2", "-o", str(out)]) == 2
+    err = capsys.readouterr().err  # off a terminal the progress lines come first, then the one error line
+    assert "Traceback" not in err
+    last = err.strip().splitlines()[-1]
+    assert last.startswith("frictionnoise: error:") and "too short" in last and "at least 12 s" in last, err
+    assert sorted(p.name for p in out.iterdir()) == ["keep.txt"]
