@@ -24,7 +24,11 @@ from . import units as U
 __all__ = ["EngineTrace", "Recorder"]
 
 _COLS = ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "penetration", "power_in", "power_out", "mech", "pairs",
-         "p_pen")
+         "p_pen", "stale")
+_AF = 9  # floats per arbiter in the batch buffer: impulse (2), normal (2), point A 1 (2), point B 1 (2), distance 1
+# A grain's contact point lies on its circle (pymunk computes contacts from the positions the step ends with); one
+# farther than this fraction of the radius off it belongs to a stale arbiter (see _reduce)
+STALE_TOL = 0.01
 
 
 @dataclass(frozen=True)
@@ -73,7 +77,7 @@ class Recorder:
              | B.BodyFields.ANGULAR_VELOCITY)
     _ARB = (B.ArbiterFields.BODY_A_ID | B.ArbiterFields.BODY_B_ID | B.ArbiterFields.CONTACT_COUNT
             | B.ArbiterFields.TOTAL_IMPULSE | B.ArbiterFields.NORMAL | B.ArbiterFields.POINT_A_1
-            | B.ArbiterFields.DISTANCE_1)
+            | B.ArbiterFields.POINT_B_1 | B.ArbiterFields.DISTANCE_1)
 
     def __init__(self, scene, n_samples: int):
         self.scene = scene
@@ -182,6 +186,8 @@ class Recorder:
         o = {c: self.out[:n, i] for i, c in enumerate(_COLS)}
         dt_s = np.diff(t) * U.TIME
         cum = lambda p: np.concatenate([[0.0], np.cumsum(0.5 * (p[1:n] + p[: n - 1]) * dt_s)]) / U.ENERGY
+        if self.scene.wear is not None:  # grains' stale arbiters left out of the samples (see _reduce)
+            metadata = {**metadata, "stale_arbiters_skipped": int(o["stale"].sum())}
         return EngineTrace(
             t=t - t[0], x=(o["x"] - o["x"][0]) / U.LENGTH, v=o["v"] / U.VELOCITY, F_t=o["F_t"].copy(),
             F_n=o["F_n"].copy(), F_drag=o["F_drag"].copy(), F_drive=o["F_drive"].copy(),
@@ -246,13 +252,14 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, sl, dm, k, out, pad_force, 
     pen = 0.0
     p_pen = 0.0
     pairs = 0
+    stale = 0
     pout = 0.0
     kinds = np.empty(2, dtype=np.int64)  # per arbiter: kind and index of bodies A and B (-1: static)
     idx = np.empty(2, dtype=np.int64)
     for r in _arbiter_order(ai, af, tab):  # sums over several contacts of one pad must not depend on the batch's order
         if ai[3 * r + 2] <= 0:
             continue
-        a0 = 7 * r  # batch order: impulse (2), normal (2), point A 1 (2), distance 1
+        a0 = _AF * r  # batch order: impulse (2), normal (2), point A 1 (2), point B 1 (2), distance 1
         Fx, Fy = af[a0] / dt, af[a0 + 1] / dt  # on A; B feels minus this
         tx, ty = -af[a0 + 3], af[a0 + 2]  # contact tangent
         px, py = af[a0 + 4], af[a0 + 5]
@@ -264,6 +271,13 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, sl, dm, k, out, pad_force, 
         # a sleeping grain's cached arbiter holds stale contact data (overlaps of tens of mm were read);
         # asleep, a grain only rests on its track: skip its arbiters
         if (kinds[0] == 2 and part[idx[0], 3] > 0) or (kinds[1] == 2 and part[idx[1], 3] > 0):
+            continue
+        # a stale arbiter: pymunk re-lists a woken grain's cached arbiters (after a restore every grain wakes) with
+        # contact points from before it slept or was moved, until the next step recomputes them; its distance is then
+        # measured from the grain's new place (overlaps of 15 and 85 mm were read at epoch samples). A fresh contact
+        # is geometrically the bodies' present one: skip (and count) an arbiter that is not (_stale)
+        if _stale(kinds, idx, af, a0, Q, part):
+            stale += 1
             continue
         # friction power: tangential force x tangential slip at the contact point. The normal part is left out:
         # after a step of a few solver iterations the bodies keep a small residual normal velocity at resting
@@ -297,11 +311,11 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, sl, dm, k, out, pad_force, 
                 p_force[k, j] -= sg * Fx
                 p_touch[j] = True
             elif other == -1:  # the pad on its track
-                pen = max(pen, -af[a0 + 6])  # contact distance < 0: overlap depth
+                pen = max(pen, -af[a0 + 8])  # contact distance < 0: overlap depth
                 touch[i] = True
                 pairs += 1
         if (kinds[0] == 2 and kinds[1] == -1) or (kinds[1] == 2 and kinds[0] == -1):  # a particle on its track
-            p_pen = max(p_pen, -af[a0 + 6])
+            p_pen = max(p_pen, -af[a0 + 8])
     sft = 0.0
     sfn = 0.0
     fv = 0.0
@@ -380,7 +394,28 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, sl, dm, k, out, pad_force, 
     out[k, 9] = ke + pe
     out[k, 10] = pairs
     out[k, 11] = max(p_pen, 0.0)
+    out[k, 12] = stale
     n_contact[k] = nc
+
+
+@numba.njit(cache=True)
+def _stale(kinds, idx, af, a0, Q, part):
+    """True if this arbiter's contact data are not those of the bodies' present places, by more than STALE_TOL of a
+    grain's radius: a fresh contact's grain point lies on the grain's circle, and its two points lie on one line
+    along the normal (pymunk puts them on the surfaces, along the normal through the circle's centre). A cached
+    arbiter whose contact memory was reused fails the first; one whose grain was moved since fails the second."""
+    tol = 0.0
+    for s in range(2):
+        if kinds[s] == 2:
+            j = idx[s]
+            tol = max(tol, STALE_TOL * part[j, 2])
+            qx, qy = af[a0 + 4 + 2 * s], af[a0 + 5 + 2 * s]
+            if abs(np.hypot(qx - Q[j, 0], qy - Q[j, 1]) - part[j, 2]) > STALE_TOL * part[j, 2]:
+                return True
+    if tol == 0.0:  # no grain: pads and tracks never sleep, their arbiters are fresh
+        return False
+    nx, ny = af[a0 + 2], af[a0 + 3]
+    return abs((af[a0 + 6] - af[a0 + 4]) * ny - (af[a0 + 7] - af[a0 + 5]) * nx) > tol
 
 
 @numba.njit(cache=True)
@@ -390,8 +425,8 @@ def _less(key, af, r, q):
         if key[r, c] != key[q, c]:
             return key[r, c] < key[q, c]
     for c in (4, 5, 0, 1):
-        if af[7 * r + c] != af[7 * q + c]:
-            return af[7 * r + c] < af[7 * q + c]
+        if af[_AF * r + c] != af[_AF * q + c]:
+            return af[_AF * r + c] < af[_AF * q + c]
     return False
 
 
