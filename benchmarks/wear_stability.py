@@ -43,6 +43,7 @@ def measure(count: int, duration: float, seed: int, progress=None) -> dict:
         "omega_g_dt": gs["omega_g_dt"],
         "left_interface": int(wm.get("left_interface", -1)), "recycled": int(wm.get("recycled", -1)),
         "grain_overlap_max_m": float(np.max(tr.particle_penetration)),
+        "stale_arbiters_skipped": int(tr.metadata.get("stale_arbiters_skipped", -1)),
         "pad_overlap_max_m": float(np.max(tr.penetration)),
         "energy_balance_rel": float(bal["energy_balance_rel"]), "force_balance_rel": float(bal["force_balance_rel"]),
         "trapped_frac": float(np.mean(tr.p_state == 1)), "moving_frac": float(np.mean(tr.p_state == 2)),
