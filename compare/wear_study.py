@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 
-__all__ = ["SIZES", "TRACKS", "expand_factors", "task_stats", "cells", "study_sections"]
+__all__ = ["SIZES", "TRACKS", "expand_factors", "task_stats", "cells", "mass_sensitivity", "widen", "study_sections"]
 
 # Issue 17's size distributions: radii (m) in [20, 200] um; r_min = 20 um is the tunnelling limit at dt = 1e-4 s.
 SIZES = {
@@ -38,6 +38,7 @@ SIZES = {
 TRACKS = {"smooth": {"substrate.pit_p": 0.0}, "cavities": {"substrate.pit_p": 0.5}}
 _FACTORS = {"study.size": SIZES, "study.track": TRACKS}
 N_BANDS = 3  # log bands of C_x and C_F over the fit band
+REGIMES = ("trapped", "wedged", "pushed")  # engine_sim.wear.wedge_regime: what the pad's front does to a grain
 
 
 def expand_factors(model: dict) -> dict:
@@ -101,9 +102,16 @@ def task_stats(tr, sc, band) -> dict:
     ep = episodes(tr.p_state, tr.p_force, dt_out)
     pred = model_II_from_episodes(ep, float(tr.t[-1] - tr.t[0]), sg.omega)
     radii = np.asarray(tr.metadata["wear"]["radii_m"])
+    from engine_sim.wear import wedge_regime
+    regimes = [wedge_regime(r, sc.pads.radius, w.mu_pad, w.mu_track)[0] for r in radii]
     out.update({
         "fit_CF_grains": _fit(sg, band), "CFg_bands": band_average(sg, edges).tolist(),
         "B2_bands": band_average(sg, edges, pred).tolist(), "F_g_mean": float(Fg.mean()),
+        # the grains' force split by their state: in the light limit only the trapped part survives (a pushed or wedged
+        # grain's force falls with its mass; benchmarks/results/wear_light_limit.md)
+        "F_g_trapped": float((tr.p_force * (tr.p_state == 1)).sum(axis=1).mean()),
+        "F_g_moving": float((tr.p_force * (tr.p_state == 2)).sum(axis=1).mean()),
+        "regime_fractions": {k: regimes.count(k) / len(regimes) for k in REGIMES},
         "trapped_frac": float(np.mean(tr.p_state == 1)), "moving_frac": float(np.mean(tr.p_state == 2)),
         # grains' summed diameters over the length of the tracks' windows they live in (behind + ahead of each pad)
         "covered_fraction": float(2 * radii.sum() / (sc.pads.N * (w.ahead + w.behind))),
@@ -180,11 +188,56 @@ def cells(results: list) -> list:
         if count > 0:
             row["B2_ratio_bands"] = np.exp(np.mean([np.log(np.asarray(r["wear"]["CFg_bands"]) / np.asarray(r["wear"]["B2_bands"]))
                                                     for r in rs], axis=0)).tolist()
-            for q in ("trapped_frac", "moving_frac", "covered_fraction", "F_g_mean"):
-                row[q] = float(np.mean([r["wear"][q] for r in rs]))
+            for q in ("trapped_frac", "moving_frac", "covered_fraction", "F_g_mean", "F_g_trapped", "F_g_moving"):
+                if all(q in r["wear"] for r in rs):
+                    row[q] = float(np.mean([r["wear"][q] for r in rs]))
+            if all("regime_fractions" in r["wear"] for r in rs):
+                row["regime_fractions"] = {k: float(np.mean([r["wear"]["regime_fractions"][k] for r in rs])) for k in REGIMES}
             row["left_interface"] = sum(r["wear"]["left_interface"] for r in rs)
             row["grain_overlap_max_m"] = max(r["wear"]["grain_overlap_max_m"] for r in rs)
         out.append(row)
+    return out
+
+
+def mass_sensitivity(rows: list, rows_other: list, decades: float) -> dict:
+    """How gamma moves with the grains' mass: cells run at another mass (``rows_other``, ``decades`` decades of mass
+    away, signed: +1 for ten times heavier) against the same cells of ``rows``, paired by seed (same seed: same
+    substrate, radii and starting places). Per track: the pooled change of gamma per decade with its 95 % interval
+    (seed scatter, t quantile) and the systematic half-width it implies for one decade, |change| + interval (the
+    largest shift the pairs allow at 95 %); per cell: its own mean change. The particle-free twins carry no grains,
+    so a rise against them moves as gamma does."""
+    other = {(r["count"], r["size"], r["track"]): r for r in rows_other if r["count"] > 0}
+    out = {"decades": decades, "cells": [], "tracks": {}}
+    for r in rows:
+        o = other.get((r["count"], r["size"], r["track"]))
+        if o is None:
+            continue
+        g = dict(zip(r["seeds"], r["gamma_per_seed"]))
+        d = [(go - g[s]) / decades for s, go in zip(o["seeds"], o["gamma_per_seed"]) if s in g]
+        if d:
+            out["cells"].append({"count": r["count"], "size": r["size"], "track": r["track"], "per_decade": d,
+                                 "mean": float(np.mean(d))})
+    for track in TRACKS:
+        d = [x for c in out["cells"] if c["track"] == track for x in c["per_decade"]]
+        if len(d) > 1:
+            m, _, seed_part, _ = _mean_interval(d, [0.0] * len(d))
+            out["tracks"][track] = {"per_decade": m, "err": seed_part, "n": len(d), "systematic": abs(m) + seed_part}
+    return out
+
+
+def widen(rows: list, sens: dict) -> list:
+    """The cells with their gamma and rise intervals widened by one decade of grain mass: the track's systematic
+    half-width (:func:`mass_sensitivity`) added in quadrature to the statistical one (``*_err_total``)."""
+    out = []
+    for r in rows:
+        t = sens["tracks"].get(r["track"])
+        if t is None or r["count"] == 0:
+            out.append(r)
+            continue
+        r = dict(r, mass_systematic=t["systematic"], gamma_err_total=math.hypot(r["gamma_err"], t["systematic"]))
+        if "delta_gamma" in r:
+            r["delta_gamma_err_total"] = math.hypot(r["delta_gamma_err"], t["systematic"])
+        out.append(r)
     return out
 
 
@@ -235,8 +288,8 @@ def study_sections(spec, results: list):
     if not rows:
         return [], {"cells": []}
     hdr = ["track", "size", "count", "seeds", "gamma (95 %)", "rise vs twin (95 %)", "C_x / twin per band",
-           "C_F grains exp.", "C_F friction exp.", "trapped / moving", "covered", "grains' C_F / B2 per band",
-           "energy resid. max", "wall s / sim s"]
+           "C_F grains exp.", "C_F friction exp.", "trapped / moving", "F_g trapped / moving (mN)",
+           "grain regimes t / w / p", "covered", "grains' C_F / B2 per band", "energy resid. max", "wall s / sim s"]
     body = []
     for r in rows:
         cg, cf = r.get("fit_CF_grains"), r.get("fit_CF_friction")
@@ -246,6 +299,8 @@ def study_sections(spec, results: list):
                      ", ".join(f"{v:.2f}" for v in r.get("Cx_ratio_bands", [])) or "-",
                      _fmt(cg["exponent"], cg["err"]) if cg else "-", _fmt(cf["exponent"], cf["err"]) if cf else "-",
                      f"{r['trapped_frac']:.3f} / {r['moving_frac']:.3f}" if "trapped_frac" in r else "-",
+                     f"{1e3 * r['F_g_trapped']:.1f} / {1e3 * r['F_g_moving']:.1f}" if "F_g_trapped" in r else "-",
+                     " / ".join(f"{r['regime_fractions'][k]:.2f}" for k in REGIMES) if "regime_fractions" in r else "-",
                      f"{r['covered_fraction']:.3f}" if "covered_fraction" in r else "-",
                      ", ".join(f"{v:.2f}" for v in r.get("B2_ratio_bands", [])) or "-",
                      f"{100 * r['energy_resid_max']:.2f} %" + (" (> 1 %: flagged)" if r["energy_flagged"] else ""),
@@ -273,11 +328,20 @@ def answer(rows: list) -> str:
         pooled = [d for r in rs for d in r["delta_gamma_per_seed"]]
         pm, pi, _, _ = _mean_interval(pooled, [0.0] * len(pooled))
         big = max(rs, key=lambda r: r["count"])
+        if "delta_gamma_err_total" in rs[0]:
+            sys_ = rs[0]["mass_systematic"]
+            up_t = sum(r["delta_gamma"] - r["delta_gamma_err_total"] > 0 for r in rs)
+            down_t = sum(r["delta_gamma"] + r["delta_gamma_err_total"] < 0 for r in rs)
+            mass_note = (f" With one decade of grain mass as a systematic (&plusmn;{sys_:.2f} in gamma, measured), "
+                         f"{up_t} cells steeper and {down_t} flatter beyond the widened interval; pooled "
+                         f"{pm:+.2f} &plusmn; {math.hypot(pi, sys_):.2f}.")
+        else:
+            mass_note = ""
         parts.append(f"On the {track} track (no particles: gamma {z[0]['gamma']:.2f} &plusmn; {z[0]['gamma_err']:.2f}) the "
                      f"particles change gamma by {min(r['delta_gamma'] for r in rs):+.2f} to {max(r['delta_gamma'] for r in rs):+.2f} "
                      f"over {len(rs)} cells ({sum(r['delta_gamma'] > 0 for r in rs)} of them up), {pm:+.2f} &plusmn; {pi:.2f} "
                      f"pooled over the cells' {len(pooled)} paired runs (95 %, seed scatter; sizes and counts mixed); "
                      f"{up} cells steeper and {down} flatter beyond their own 95 % interval; at "
                      f"{big['count']} particles ({big['size']}) {big['delta_gamma']:+.2f} &plusmn; {big['delta_gamma_err']:.2f}, "
-                     f"C_x {', '.join(f'{v:.2f}' for v in big['Cx_ratio_bands'])}x the twin's per band.")
+                     f"C_x {', '.join(f'{v:.2f}' for v in big['Cx_ratio_bands'])}x the twin's per band.{mass_note}")
     return " ".join(parts) or "No paired cells."
