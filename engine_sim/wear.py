@@ -25,7 +25,8 @@ import pymunk
 
 from . import units as U
 
-__all__ = ["WearSpec", "check_wear", "draw_radii", "grain_step", "pad_friction_split", "Wear"]
+__all__ = ["WearSpec", "check_wear", "draw_radii", "grain_step", "pad_friction_split", "wedge_regime", "climb_force",
+           "Wear"]
 
 # No continuous collision detection in pymunk: a particle crosses a surface once v dt exceeds about 1.2 radii
 # (DESIGN.md). Particles are held to WEAR_SPEED_FACTOR x the sliding speed x dt < WEAR_TUNNEL_FRACTION r_min;
@@ -155,6 +156,43 @@ def pad_friction_split(mu0: float, mu_pad: float, mu_track: float) -> tuple[floa
         return 1.0, max(mu_pad, 0.0)
     q = math.sqrt(mu_pad * mu0 / mu_track)
     return q, mu_pad / q
+
+
+def wedge_regime(r: float, R: float, mu_pad: float, mu_track: float) -> tuple[str, float]:
+    """What a rigid, non-rolling, massless grain of radius r does when the front of a sliding circular pad of radius R
+    (resting on the same flat track) reaches it: ("trapped" | "wedged" | "pushed", theta in degrees).
+
+    The pad's contact normal on the grain points forward and down at theta below the horizontal, sin theta =
+    (R - r) / (R + r). The pad's contact force lies within its friction cone, theta +- atan(mu_pad); a massless grain
+    sliding on the track needs a force at phi = atan(1 / mu_track) below the horizontal. If the whole cone is steeper
+    than phi the track holds the grain and the pad climbs over it (trapped: the force is set by the pad's springs,
+    :func:`climb_force`); if it is shallower the grain slides ahead with a force of order mu_track m g (pushed, zero
+    in the light limit); if it contains phi the grain is wedged: every force along phi balances it, so rigid-body
+    mechanics leaves its magnitude undetermined (a static indeterminacy, as of a Coulomb wedge), and a contact
+    solver picks one through its step, iterations and mass ratio (benchmarks/results/wear_light_limit.md)."""
+    theta = math.asin((R - r) / (R + r))
+    phi, cone = math.atan(1.0 / mu_track), math.atan(mu_pad)
+    regime = "trapped" if theta - cone > phi else "pushed" if theta + cone < phi else "wedged"
+    return regime, math.degrees(theta)
+
+
+def climb_force(r: float, R: float, mu_pad: float, load: float, k_normal: float, n: int = 20001) -> float:
+    """Mean tangential force (N, against sliding) on a pad of radius R that climbs quasi-statically over a grain of
+    radius r stuck on a flat track, averaged over the horizontal distance of the climb (time at constant speed).
+
+    The pad's centre runs on the circle of radius R + r about the grain's centre, at angle psi from the vertical,
+    from -psi0 to psi0 (cos psi0 = (R - r) / (R + r): back on the track); it slides over the grain with friction
+    mu_pad. Its load is ``load`` (N: block share plus its weight) plus its normal spring k_normal (N/m) times the lift
+    (R + r) cos psi + r - R. Vertical balance N (cos psi + mu_pad sin psi) = load(psi) gives the contact force N, and
+    the force on the pad against sliding is f = N (mu_pad cos psi - sin psi); the mean weights it by dx = (R + r)
+    cos psi dpsi. Without friction (mu_pad = 0) climbing and descending cancel (mean 0): friction makes the climb
+    dearer than the descent repays. No inertia, damping or tangential spring (they add the few percent measured)."""
+    psi0 = math.acos((R - r) / (R + r))
+    psi = np.linspace(-psi0, psi0, n)
+    c, s = np.cos(psi), np.sin(psi)
+    lift = (R + r) * c + r - R
+    f = (load + k_normal * lift) * (mu_pad * c - s) / (c + mu_pad * s)
+    return float(np.trapezoid(f * c, psi) / np.trapezoid(c, psi))
 
 
 class Wear:

@@ -1,0 +1,166 @@
+"""Issue 17, item 1: is there a light-grain limit? One pad, one grain of a fixed radius, against closed forms.
+
+    python -m benchmarks.wear_light_limit [--radii 25,50,80,140] [--masses 1e-5] [--steps 2.5e-5,6.25e-6,1.5625e-6]
+                                          [--iterations 20] [--seeds 0,1] [--duration S] [--out PREFIX] [--smoke]
+
+The wear study's scene (``scenarios/sweeps/pads_with_wear_study.toml``: pads, track, grain frictions mu_pad = 0.2,
+mu_track = 1.2, smooth track) reduced to what one grain meets: one pad under a block of 1/30 of the study's (so the
+pad's load is the study's, 0.0425 N with its own weight), pulled at v = 5 mm/s by a stiff spring (1e4 N/m: the block
+follows the set speed, where in the 30-pad scene the other pads hold it), and one grain of radius r (a log-normal
+of width 1e-4) recycled ahead of the pad each time it is left behind. Every output step the recorder classifies the
+grain as idle, trapped (touching the pad, slower than 0.1 v) or moving, with its force on the pad. Per run: the mean
+force over the trapped samples and over the moving ones, the time fractions, the energy residual.
+
+Two closed forms (:mod:`engine_sim.wear`) say what to expect of a rigid, non-rolling grain:
+
+- :func:`~engine_sim.wear.wedge_regime` from the contact angle theta (sin theta = (R - r) / (R + r)) and the two
+  friction angles: the pad climbs over a grain below 37.4 um (trapped), pushes one above 106 um ahead with a force of
+  order mu_track m g (vanishing with m), and in between the grain is wedged, where rigid mechanics leaves the force
+  undetermined;
+- :func:`~engine_sim.wear.climb_force`: the mean force on a pad climbing quasi-statically over a stuck grain, from
+  its load and normal spring (no fitted constant): the trapped samples' force should converge to it.
+
+``--masses`` sets ``wear.min_mass``; ``--steps`` the pymunk step (``run.dt``; the grain step rule cuts it further
+if omega_g dt > 0.6). Finished runs are kept in ``PREFIX.json`` (a rerun skips them) and ``PREFIX.md`` is
+rewritten after each. ``--smoke`` (CI): one 2 s run per regime at the shipped step.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+import engine_sim
+from compare.studies._common import balances
+from engine_sim import scenario_from_dict
+from engine_sim.wear import climb_force, wedge_regime
+
+BASE = Path(__file__).resolve().parent.parent / "scenarios" / "sweeps" / "pads_with_wear_study.toml"
+N_STUDY = 30  # pads of the study's scene: the one pad here carries 1/N_STUDY of its block
+
+
+def one_pad_scenario(r: float, mass: float, iterations: int, dt: float, duration: float, k_drive: float = 1e4):
+    """The study's scene reduced to one pad at constant speed and one grain of radius r (m) and mass ``mass`` (kg)."""
+    d = tomllib.loads(BASE.read_text())
+    d["block"]["M"] = d["block"]["M"] / N_STUDY
+    d["pads"]["N"] = 1
+    d["drive"] = {"kind": "velocity", "v": d["drive"]["v"], "k_drive": k_drive}
+    d["wear"].update(count=1, min_mass=mass, r_min=r * 0.999, r_max=r * 1.001, r_median=r, sigma=1e-4)
+    d["run"].update(iterations=iterations, dt=dt, duration=duration, warmup=0.2)
+    return scenario_from_dict(d, where=f"one-pad scene (r = {r:g} m)")
+
+
+def closed_forms(sc) -> dict:
+    """The regime and the quasi-static climb force (N) for the scenario's grain."""
+    r, R = sc.wear.r_median, sc.pads.radius
+    regime, theta = wedge_regime(r, R, sc.wear.mu_pad, sc.wear.mu_track)
+    return {"regime": regime, "theta_deg": theta,
+            "climb_N": climb_force(r, R, sc.wear.mu_pad, sc.normal_load_per_pad, sc.pads.k_normal),
+            "mu_track_m_g_N": sc.wear.mu_track * sc.wear.min_mass * 9.81}
+
+
+def measure(r, mass, iterations, dt, seed, duration) -> dict:
+    sc = one_pad_scenario(r, mass, iterations, dt, duration)
+    t0 = time.perf_counter()
+    tr = engine_sim.run(sc, seed=seed)
+    wall = time.perf_counter() - t0
+    F, st = tr.p_force[:, 0], tr.p_state[:, 0]
+    trapped, moving = st == 1, st == 2
+    return {"r_m": r, "mass_kg": mass, "iterations": iterations, "dt_step_s": tr.metadata["scene"]["grain_step"]["dt_step"],
+            "seed": seed, "duration_s": duration,
+            "F_trapped_N": float(F[trapped].mean()) if trapped.any() else None,
+            "F_moving_N": float(F[moving].mean()) if moving.any() else None,
+            "F_mean_N": float(F.mean()), "trapped_frac": float(trapped.mean()), "moving_frac": float(moving.mean()),
+            "energy_balance_rel": float(balances(tr)["energy_balance_rel"]),
+            "grain_overlap_max_m": float(tr.particle_penetration.max()), "recycled": int(tr.metadata["wear"]["recycled"]),
+            "wall_s": wall, **closed_forms(sc)}
+
+
+def _key(r, mass, it, dt, seed):
+    return f"r={r:g}|m={mass:g}|it={it}|dt={dt:g}|seed={seed}"
+
+
+def _mn(vals, scale=1e3):
+    v = [x for x in vals if x is not None]
+    if not v:
+        return "-"
+    return " / ".join(f"{scale * x:.2f}" for x in v)
+
+
+def markdown(runs: dict, meta: dict) -> str:
+    rows = {}
+    for rec in runs.values():
+        rows.setdefault((rec["r_m"], rec["mass_kg"], rec["iterations"], rec["dt_step_s"]), []).append(rec)
+    lines = ["# Is there a light-grain limit? One pad, one grain, against closed forms (issue 17, item 1)", "",
+             f"Commands: {'; '.join(f'`{c}`' for c in meta['commands'])}  ",
+             f"Wall time so far: {meta['wall_s']:.0f} s; runs: {len(runs)}; last update {meta['updated']}.", "",
+             "Scene: the wear study's (`scenarios/sweeps/pads_with_wear_study.toml`) reduced to one pad under 1/30 of its block, "
+             "pulled at 5 mm/s through a 1e4 N/m spring, and one grain of radius r recycled ahead of the pad (see the module "
+             "docstring). Forces in mN, per seed (separated by /); F_trapped: mean over the samples where the grain touches "
+             "the pad and is at rest, F_moving: where it touches and moves; climb: the quasi-static closed form "
+             "(`engine_sim.wear.climb_force`) for a trapped grain; regime: `engine_sim.wear.wedge_regime`.", "",
+             "| r (um) | regime (theta) | mass (kg) | its | step (s) | F_trapped (mN) | climb (mN) | F_moving (mN) | "
+             "mu_track m g (mN) | trapped / moving | energy resid. worst | wall s / sim s |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for (r, m, it, dt), rs in sorted(rows.items(), key=lambda kv: (kv[0][0], -kv[0][1], kv[0][2], -kv[0][3])):
+        rs = sorted(rs, key=lambda x: x["seed"])
+        a = rs[0]
+        lines.append(
+            f"| {1e6 * r:.0f} | {a['regime']} ({a['theta_deg']:.1f} deg) | {m:g} | {it} | {dt:.3g} | "
+            f"{_mn([x['F_trapped_N'] for x in rs])} | {1e3 * a['climb_N']:.2f} | {_mn([x['F_moving_N'] for x in rs])} | "
+            f"{1e3 * a['mu_track_m_g_N']:.3g} | "
+            + " / ".join(f"{x['trapped_frac']:.3f}-{x['moving_frac']:.3f}" for x in rs)
+            + f" | {100 * max(abs(x['energy_balance_rel']) for x in rs):.2f} % | "
+            f"{np.mean([x['wall_s'] / (x['duration_s'] + 0.2) for x in rs]):.2f} |")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--radii", default="25,50,80,140", help="um")
+    ap.add_argument("--masses", default="1e-5", help="kg")
+    ap.add_argument("--steps", default="2.5e-5,6.25e-6,1.5625e-6", help="s (run.dt; the grain step rule may cut it)")
+    ap.add_argument("--iterations", default="20")
+    ap.add_argument("--seeds", default="0,1")
+    ap.add_argument("--duration", type=float, default=10.0)
+    ap.add_argument("--out", default="benchmarks/results/wear_light_limit")
+    ap.add_argument("--smoke", action="store_true")
+    a = ap.parse_args(argv)
+    if a.smoke:
+        for r in (25e-6, 50e-6, 140e-6):
+            rec = measure(r, 1e-5, 20, 1e-4, 0, 2.0)
+            print(f"r {1e6 * r:.0f} um ({rec['regime']}): F_trapped {_mn([rec['F_trapped_N']])} mN (climb "
+                  f"{1e3 * rec['climb_N']:.2f}), F_moving {_mn([rec['F_moving_N']])} mN, energy residual "
+                  f"{100 * rec['energy_balance_rel']:+.2f} %, {rec['wall_s']:.1f} s wall")
+        return 0
+    out_json, out_md = Path(a.out + ".json"), Path(a.out + ".md")
+    store = json.loads(out_json.read_text()) if out_json.exists() else {"runs": {}, "commands": [], "wall_s": 0.0}
+    cmd = "python -m benchmarks.wear_light_limit " + " ".join(argv if argv is not None else sys.argv[1:])
+    if cmd not in store["commands"]:
+        store["commands"].append(cmd)
+    for r in (float(x) * 1e-6 for x in a.radii.split(",")):
+        for m in (float(x) for x in a.masses.split(",")):
+            for it in (int(x) for x in a.iterations.split(",")):
+                for dt in (float(x) for x in a.steps.split(",")):
+                    for seed in (int(x) for x in a.seeds.split(",")):
+                        k = _key(r, m, it, dt, seed)
+                        if k in store["runs"]:
+                            continue
+                        rec = measure(r, m, it, dt, seed, a.duration)
+                        store["runs"][k] = rec
+                        store["wall_s"] += rec["wall_s"]
+                        store["updated"] = time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime())
+                        out_json.write_text(json.dumps(store, indent=1))
+                        out_md.write_text(markdown(store["runs"], store))
+                        print(f"{k}: F_trapped {_mn([rec['F_trapped_N']])} mN, F_moving {_mn([rec['F_moving_N']])} mN, "
+                              f"{rec['wall_s']:.0f} s", file=sys.stderr, flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
