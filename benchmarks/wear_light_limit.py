@@ -105,8 +105,8 @@ def markdown(runs: dict, meta: dict) -> str:
              "the pad and is at rest, F_moving: where it touches and moves; climb: the quasi-static closed form "
              "(`engine_sim.wear.climb_force`) for a trapped grain; regime: `engine_sim.wear.wedge_regime`.", "",
              "| r (um) | regime (theta) | mass (kg) | its | step (s) | F_trapped (mN) | climb (mN) | F_moving (mN) | "
-             "mu_track m g (mN) | trapped / moving | energy resid. worst | wall s / sim s |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "mu_track m g (mN) | trapped fraction | moving fraction | energy resid. worst | wall s / sim s |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for (r, m, it, dt), rs in sorted(rows.items(), key=lambda kv: (kv[0][0], -kv[0][1], kv[0][2], -kv[0][3])):
         rs = sorted(rs, key=lambda x: x["seed"])
         a = rs[0]
@@ -114,7 +114,8 @@ def markdown(runs: dict, meta: dict) -> str:
             f"| {1e6 * r:.0f} | {a['regime']} ({a['theta_deg']:.1f} deg) | {m:g} | {it} | {dt:.3g} | "
             f"{_mn([x['F_trapped_N'] for x in rs])} | {1e3 * a['climb_N']:.2f} | {_mn([x['F_moving_N'] for x in rs])} | "
             f"{1e3 * a['mu_track_m_g_N']:.3g} | "
-            + " / ".join(f"{x['trapped_frac']:.3f}-{x['moving_frac']:.3f}" for x in rs)
+            + " / ".join(f"{x['trapped_frac']:.3f}" for x in rs) + " | "
+            + " / ".join(f"{x['moving_frac']:.3f}" for x in rs)
             + f" | {100 * max(abs(x['energy_balance_rel']) for x in rs):.2f} % | "
             f"{np.mean([x['wall_s'] / (x['duration_s'] + 0.2) for x in rs]):.2f} |")
     return "\n".join(lines) + "\n"
@@ -159,6 +160,7 @@ def main(argv=None) -> int:
                         out_md.write_text(markdown(store["runs"], store))
                         print(f"{k}: F_trapped {_mn([rec['F_trapped_N']])} mN, F_moving {_mn([rec['F_moving_N']])} mN, "
                               f"{rec['wall_s']:.0f} s", file=sys.stderr, flush=True)
+    out_md.write_text(markdown(store["runs"], store))  # also when every run was done before (a rewrite)
     return 0
 
 

@@ -2,10 +2,16 @@
 
     frictionnoise sweep scenarios/sweeps/wear_study_quick.toml --workers 1 -o /tmp/wear_study_quick
     python -m benchmarks.wear_study /tmp/wear_study_quick --wall S --command "..." [--out benchmarks/results/wear_study_quick]
+    python -m benchmarks.wear_study /tmp/wear_study --sweep scenarios/sweeps/wear_study.toml --workers 2 --wall S \
+        --command "..." --mass-folder /tmp/wear_study_mass --mass-sweep scenarios/sweeps/wear_study_mass.toml \
+        --out benchmarks/results/wear_study
 
 Reads the sweep's stored tasks (compare.sweep.load_results), computes the cells (compare.wear_study.cells) and writes
 PREFIX.md (the command, the wall time, the cell table, the answer in numbers, the projected wall time of the full
 study from the measured cost per simulated second), PREFIX.csv (one row per cell) and PREFIX.png (the figure).
+With ``--mass-folder`` (a sweep of the same cells at another grain mass), the change of gamma per decade of mass
+(compare.wear_study.mass_sensitivity) widens every cell's interval (compare.wear_study.widen), in the table and
+the answer.
 """
 from __future__ import annotations
 
@@ -19,16 +25,19 @@ import numpy as np
 
 from compare import plots
 from compare.sweep import expand, load_results, load_sweep
-from compare.wear_study import answer, cells, gamma_figure
+from compare.wear_study import answer, cells, gamma_figure, mass_sensitivity, widen
 
-_COLS = ("track", "size", "count", "n", "gamma", "gamma_err", "delta_gamma", "delta_gamma_err", "Cx_ratio_bands",
-         "fit_CF_grains", "fit_CF_friction", "trapped_frac", "moving_frac", "covered_fraction", "F_g_mean",
-         "B2_ratio_bands", "energy_resid_max", "energy_flagged", "left_interface", "wall_per_sim_s", "substeps")
+_COLS = ("track", "size", "count", "n", "gamma", "gamma_err", "delta_gamma", "delta_gamma_err", "gamma_err_total",
+         "delta_gamma_err_total", "Cx_ratio_bands", "fit_CF_grains", "fit_CF_friction", "trapped_frac", "moving_frac",
+         "covered_fraction", "F_g_mean", "F_g_trapped", "F_g_moving", "regime_fractions", "B2_ratio_bands",
+         "energy_resid_max", "energy_flagged", "left_interface", "wall_per_sim_s", "substeps")
 
 
 def _cell_text(v):
-    if isinstance(v, dict):
+    if isinstance(v, dict) and "exponent" in v:
         return f"{v['exponent']:.2f} +- {v['err']:.2f}"
+    if isinstance(v, dict):
+        return ", ".join(f"{k} {x:.2f}" for k, x in v.items())
     if isinstance(v, list):
         return ", ".join(f"{x:.2f}" for x in v)
     if isinstance(v, float):
@@ -40,7 +49,7 @@ def projected_wall(results, full_spec) -> float:
     """Seconds on one core for every task of ``full_spec``: each task's simulated time (duration + warm-up) times the
     wall seconds per simulated second measured in the quick study's cell of the same count and size (the count's
     mean when the cell was not run; counts in between interpolated linearly)."""
-    from compare.sweep import _build
+    from compare.sweep_spec import build_point
     per = {}
     for r in results:
         w = r.get("wear")
@@ -50,9 +59,17 @@ def projected_wall(results, full_spec) -> float:
     rate = np.array([np.mean(per[c]) for c in counts])
     total = 0.0
     for params, _ in expand(full_spec):
-        sc, _ = _build(full_spec, params)
-        total += (sc.run.duration + sc.run.warmup) * float(np.interp(sc.wear.count, counts, rate))
+        sc, run = build_point(full_spec, params)
+        total += (run.get("duration", sc.run.duration) + sc.run.warmup) * float(np.interp(sc.wear.count, counts, rate))
     return total
+
+
+def _grain_mass(results) -> float:
+    """The grains' mass (kg) of a sweep's tasks with grains (the grain step rule's lightest grain, one per sweep)."""
+    masses = {r["wear"]["grain_step"]["m_grain"] for r in results if r.get("wear", {}).get("count")}
+    if len(masses) != 1:
+        raise SystemExit(f"expected one grain mass in the sweep, found {sorted(masses)}")
+    return masses.pop()
 
 
 def main(argv=None):
@@ -63,10 +80,22 @@ def main(argv=None):
     ap.add_argument("--sweep", default="scenarios/sweeps/wear_study_quick.toml")
     ap.add_argument("--full", default="scenarios/sweeps/wear_study.toml")
     ap.add_argument("--out", default="benchmarks/results/wear_study_quick")
+    ap.add_argument("--workers", type=int, default=1, help="the sweep's worker processes (for the text)")
+    ap.add_argument("--mass-folder", default=None, help="a sweep of the same cells at another grain mass")
+    ap.add_argument("--mass-sweep", default="scenarios/sweeps/wear_study_mass.toml")
+    ap.add_argument("--mass-wall", type=float, default=None, help="that sweep's wall time (s)")
     a = ap.parse_args(argv)
     results = load_results(a.folder)
     rows = cells(results)
     spec, full = load_sweep(a.sweep), load_sweep(a.full)
+    sens = None
+    if a.mass_folder:
+        other = load_results(a.mass_folder)
+        m0 = _grain_mass(results)
+        m1 = _grain_mass(other)
+        sens = mass_sensitivity(rows, cells(other), decades=float(np.log10(m1 / m0)))
+        sens.update(mass_kg=m0, other_mass_kg=m1)
+        rows = widen(rows, sens)
     out = Path(a.out)
     buf = io.StringIO()
     w = csv.writer(buf)
@@ -78,7 +107,9 @@ def main(argv=None):
     proj = projected_wall(results, full)
     sim = sum("wear" in r for r in results)
     L = [f"# Wear study ({spec.name}): does debris steepen the spectrum? (issue 17, item 3)", "",
-         f"Command: `{a.command}`  ", f"Wall time: {a.wall:.0f} s for {sim} tasks on one worker (2 shared cores).  ",
+         f"Command: `{a.command}`  ",
+         f"Wall time: {a.wall:.0f} s ({a.wall / 3600:.2f} h) for {sim} tasks on {a.workers} worker"
+         f"{'s' if a.workers > 1 else ''} (2 cores).  ",
          f"Sweep: `{a.sweep}`: {spec.description.replace(chr(10), ' ')}", "",
          "gamma: Whittle fit of C_x over 3-30 v/a (v the law's speed, a = 1 mm: 15-150 rad/s), mean over seeds, +- the "
          "larger of the seed scatter's 95 % half-width (t quantile) and the per-seed 95 % intervals combined; rise: "
@@ -86,15 +117,33 @@ def main(argv=None):
          "paired ratio per band (3 log bands over 15-150 rad/s), geometric mean over seeds; C_F exponents: C_F ~ "
          "omega^-exponent over the same band (grains' summed force on the pads; the pads' whole friction force); "
          "covered: grains' summed diameters over the tracks' grain windows (30 x 7 mm); B2: the grains' measured C_F over "
-         "eq. (B2) built from the cell's own trap/move episodes, per band (1 = model II exact). Energy residuals above 1 % "
-         "are flagged.", "",
+         "eq. (B2) built from the cell's own trap/move episodes, per band (1 = model II exact); F_g_trapped / F_g_moving: "
+         "the grains' mean force on the pads while trapped / moving (N; only the trapped part has a light-grain limit, "
+         "benchmarks/results/wear_light_limit.md); regime_fractions: the cell's grains by engine_sim.wear.wedge_regime; "
+         "*_err_total: the 95 % half-width with one decade of grain mass added in quadrature (when measured). Energy "
+         "residuals above 1 % are flagged.", "",
          "| " + " | ".join(_COLS) + " |", "|" + "---|" * len(_COLS)]
     for r in rows:
         L.append("| " + " | ".join(_cell_text(r.get(c)) for c in _COLS) + " |")
-    L += ["", "## Answer (computed)", "", answer(rows).replace("&plusmn;", "+-"), "",
-          f"## Full study projection", "",
-          f"`{a.full}`: {len(expand(full))} tasks; at the cost per simulated second measured here per particle count, "
-          f"{proj:.0f} s on one core ({proj / 3600:.1f} h), about {proj / 7200:.1f} h on two free cores.", ""]
+    L += ["", "## Answer (computed)", "", answer(rows).replace("&plusmn;", "+-"), ""]
+    if sens is not None:
+        L += ["## Grain mass systematic (computed)", "",
+              f"`{a.mass_sweep}` ({a.mass_folder}{f', {a.mass_wall:.0f} s wall' if a.mass_wall else ''}): the same cells and "
+              f"seeds at {sens['other_mass_kg']:g} kg against {sens['mass_kg']:g} kg ({sens['decades']:+.0f} decade), paired "
+              "by seed; change of gamma per decade of grain mass, pooled per track, with its 95 % interval (seed scatter), "
+              "and the systematic half-width it implies for one decade (|change| + interval):", ""]
+        for track, t in sens["tracks"].items():
+            L.append(f"- {track}: {t['per_decade']:+.3f} +- {t['err']:.3f} per decade ({t['n']} pairs): systematic "
+                     f"+-{t['systematic']:.3f}")
+        L += ["", "| track | size | count | per seed (per decade) | mean |", "|---|---|---|---|---|"]
+        for c in sens["cells"]:
+            L.append(f"| {c['track']} | {c['size']} | {c['count']} | {', '.join(f'{x:+.2f}' for x in c['per_decade'])} | "
+                     f"{c['mean']:+.3f} |")
+        L.append("")
+    if a.full != a.sweep:
+        L += ["## Full study projection", "",
+              f"`{a.full}`: {len(expand(full))} tasks; at the cost per simulated second measured here per particle count, "
+              f"{proj:.0f} s on one core ({proj / 3600:.1f} h), about {proj / 7200:.1f} h on two free cores.", ""]
     out.with_suffix(".md").write_text("\n".join(L) + "\n")
     print(out.with_suffix(".md").read_text())
 
