@@ -111,6 +111,7 @@ def task_stats(tr, sc, band) -> dict:
         # grain's force falls with its mass; benchmarks/results/wear_light_limit.md)
         "F_g_trapped": float((tr.p_force * (tr.p_state == 1)).sum(axis=1).mean()),
         "F_g_moving": float((tr.p_force * (tr.p_state == 2)).sum(axis=1).mean()),
+        # at the mean patch friction; the patches' spread moves a grain between regimes (engine_sim.wear.regime_shares)
         "regime_fractions": {k: regimes.count(k) / len(regimes) for k in REGIMES},
         "trapped_frac": float(np.mean(tr.p_state == 1)), "moving_frac": float(np.mean(tr.p_state == 2)),
         # grains' summed diameters over the length of the tracks' windows they live in (behind + ahead of each pad)
@@ -205,7 +206,13 @@ def mass_sensitivity(rows: list, rows_other: list, decades: float) -> dict:
     substrate, radii and starting places). Per track: the pooled change of gamma per decade with its 95 % interval
     (seed scatter, t quantile) and the systematic half-width it implies for one decade, |change| + interval (the
     largest shift the pairs allow at 95 %); per cell: its own mean change. The particle-free twins carry no grains,
-    so a rise against them moves as gamma does."""
+    so a rise against them moves as gamma does. The pooled interval treats the pairs as independent, though the
+    cells of one seed share its substrate, and pools cells whose changes may differ: read it as the scale of the mass
+    effect, not its law. One decade is what was measured; the light limit lies further (a pushed grain's force needs
+    about 1e-7 kg to vanish, two decades below the study's 1e-5 kg), so the widened interval is a floor on the mass
+    uncertainty, not a bound."""
+    if not decades:
+        raise ValueError("mass_sensitivity: the two sweeps have the same grain mass (decades = 0)")
     other = {(r["count"], r["size"], r["track"]): r for r in rows_other if r["count"] > 0}
     out = {"decades": decades, "cells": [], "tracks": {}}
     for r in rows:

@@ -28,7 +28,7 @@ _COLS = ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "penetration", "power_in",
 _AF = 9  # floats per arbiter in the batch buffer: impulse (2), normal (2), point A 1 (2), point B 1 (2), distance 1
 # A grain's contact point lies on its circle (pymunk computes contacts from the positions the step ends with); one
 # farther than this fraction of the radius off it belongs to a stale arbiter (see _reduce)
-STALE_TOL = 0.01
+_STALE_TOL = 0.01
 
 
 @dataclass(frozen=True)
@@ -204,8 +204,8 @@ class Recorder:
 def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, sl, dm, k, out, pad_force, micro_force, n_contact, p_state,
             p_force):
     """One sample from the raw batch buffers (scene units): bodies [px, py, vx, vy, w] by id, arbiters
-    [a_id, b_id, count] x [Jx, Jy, nx, ny, pax, pay, d1] with J the impulse on body A; contact forces per sliding
-    body and per particle, penetrations, powers, mechanical energy. Bodies absent from the buffer are asleep (at
+    [a_id, b_id, count] x [Jx, Jy, nx, ny, pax, pay, pbx, pby, d1] with J the impulse on body A; contact forces per
+    sliding body and per particle, penetrations, powers, mechanical energy. Bodies absent from the buffer are asleep (at
     rest). sl: per sliding body (mass, c, b N_pad, v_c), the law's velocity part c v + b N_pad ln(1 + |v|/v_c)
     sign(v); the first pad_force.shape[1] are the pads whose forces are recorded; dm: masses of the drive's
     bodies."""
@@ -400,17 +400,19 @@ def _reduce(ids, fl, ai, af, tab, part, bs, pp, prm, sl, dm, k, out, pad_force, 
 
 @numba.njit(cache=True)
 def _stale(kinds, idx, af, a0, Q, part):
-    """True if this arbiter's contact data are not those of the bodies' present places, by more than STALE_TOL of a
+    """True if this arbiter's contact data are not those of the bodies' present places, by more than _STALE_TOL of a
     grain's radius: a fresh contact's grain point lies on the grain's circle, and its two points lie on one line
     along the normal (pymunk puts them on the surfaces, along the normal through the circle's centre). A cached
-    arbiter whose contact memory was reused fails the first; one whose grain was moved since fails the second."""
+    arbiter whose contact memory was reused fails the first; one whose grain was moved since fails the second, unless
+    the grain moved along that normal (straight into or off its track): both tests pass then, and the distance reads
+    the move. The run loop moves grains (recycling) only before a step, so that case needs a hand-made move."""
     tol = 0.0
     for s in range(2):
         if kinds[s] == 2:
             j = idx[s]
-            tol = max(tol, STALE_TOL * part[j, 2])
+            tol = max(tol, _STALE_TOL * part[j, 2])
             qx, qy = af[a0 + 4 + 2 * s], af[a0 + 5 + 2 * s]
-            if abs(np.hypot(qx - Q[j, 0], qy - Q[j, 1]) - part[j, 2]) > STALE_TOL * part[j, 2]:
+            if abs(np.hypot(qx - Q[j, 0], qy - Q[j, 1]) - part[j, 2]) > _STALE_TOL * part[j, 2]:
                 return True
     if tol == 0.0:  # no grain: pads and tracks never sleep, their arbiters are fresh
         return False

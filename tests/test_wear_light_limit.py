@@ -5,7 +5,7 @@ import math
 import pytest
 
 from benchmarks.wear_light_limit import measure
-from engine_sim.wear import climb_force, wedge_regime
+from engine_sim.wear import climb_force, regime_shares, wedge_regime
 
 R, MU_PAD, MU_TRACK = 300e-6, 0.2, 1.2  # the wear study's pad radius and grain frictions
 
@@ -29,30 +29,49 @@ def test_wedge_regime_changes_where_the_friction_cones_meet():
 
 
 def test_climb_force_exact_cases():
-    # frictionless: climbing and descending cancel, whatever the spring (the force is odd in psi, the weight even)
-    assert climb_force(50e-6, R, 0.0, 0.05, 833.0) == pytest.approx(0.0, abs=1e-12)
+    # frictionless: climbing and descending cancel, whatever the spring (the force is odd in psi, the load even)
+    assert climb_force(50e-6, R, 0.0, 0.05, 833.0) == pytest.approx(0.0, abs=1e-15)
     # a vanishing bump: the pad just slides over the grain, f = mu_pad x load (corrections of order (r / R))
     assert climb_force(1e-9, R, MU_PAD, 0.05, 833.0) == pytest.approx(MU_PAD * 0.05, rel=1e-3)
-    # the same integral over x instead of psi (x = (R + r) sin psi): a second quadrature of the same statics
+    # the closed form comes from the work (friction alone over a climb that ends where it began); the force balance
+    # integrated over x is a second route: f = load tan(beta - psi), dx = (R + r) cos psi dpsi
     from scipy.integrate import quad
 
-    r, load, kn = 50e-6, 0.0425, 833.0
-    x0 = (R + r) * math.sin(math.acos((R - r) / (R + r)))
+    load, kn, beta = 0.0425, 833.0, math.atan(MU_PAD)
+    for r in (25e-6, 50e-6, 140e-6, 190e-6):
+        psi0 = math.acos((R - r) / (R + r))
+        def integrand(p):
+            return (load + kn * ((R + r) * math.cos(p) + r - R)) * math.tan(beta - p) * math.cos(p)
 
-    def f(x):
-        s = x / (R + r)
-        c = math.sqrt(1 - s * s)
-        return (load + kn * ((R + r) * c + r - R)) * (MU_PAD * c - s) / (c + MU_PAD * s)
+        f = quad(integrand, -psi0, psi0)[0]
+        assert climb_force(r, R, MU_PAD, load, kn) == pytest.approx(f / (2 * math.sin(psi0)), rel=1e-9)
+    # beyond theta = atan(mu_pad) (r > 201.7 um here) the pad cannot slide up the grain: refused, not a number
+    with pytest.raises(ValueError, match="cannot climb"):
+        climb_force(205e-6, R, MU_PAD, load, kn)
 
-    assert climb_force(r, R, MU_PAD, load, kn) == pytest.approx(quad(f, -x0, x0)[0] / (2 * x0), rel=1e-6)
+
+def test_regime_shares_over_the_patches_friction():
+    # without a spread, the one regime of wedge_regime; with the study's (alpha = 1: mu_track 0.6-1.8) the shares of
+    # the uniform patch friction above 1 / tan(theta - cone) (trapped) and below 1 / tan(theta + cone) (pushed)
+    for r in (25e-6, 50e-6, 140e-6):
+        sh = regime_shares(r, R, MU_PAD, MU_TRACK, 0.0)
+        assert sh[wedge_regime(r, R, MU_PAD, MU_TRACK)[0]] == 1.0 and sum(sh.values()) == 1.0
+    theta, cone = math.asin((R - 25e-6) / (R + 25e-6)), math.atan(MU_PAD)
+    sh = regime_shares(25e-6, R, MU_PAD, MU_TRACK, 1.0)
+    assert sh["trapped"] == pytest.approx((1.8 - 1 / math.tan(theta - cone)) / 1.2, rel=1e-12)  # 0.709
+    assert sh["pushed"] == 0.0 and sum(sh.values()) == pytest.approx(1.0)
+    sh = regime_shares(140e-6, R, MU_PAD, MU_TRACK, 1.0)  # pushed on 80 % of the patches, wedged on the grippiest
+    assert sh["trapped"] == 0.0 and sh["pushed"] == pytest.approx(0.801, abs=1e-3)
 
 
 def test_a_trapped_grain_costs_the_pad_the_quasi_static_climb():
     # A 25 um grain (trapped regime) at the study's grain mass and step: the pad climbs over it every time it meets
     # it. The mean force over the trapped samples must read the climb's statics: measured +3.4 to +7.2 % over steps of
     # 2.5e-5 to 1.6e-6 s and masses of 1e-7 to 1e-3 kg (the statics leave out the pad's damping, inertia and the
-    # block's spring); 10 % bounds it. Pushed: a 140 um grain slides ahead with a force of order mu_track m g
-    # (measured 4.4 x; the statics give 1.3-1.9 x for a force along the cone's edges), far below any climb.
+    # block's spring); 10 % bounds it. Pushed: a 140 um grain slides ahead with a force of order mu_track m g: the
+    # statics give mu_track m g / (1 - mu_track tan a) for a push at a below the horizontal, 1.3-4.3 x across the pad's
+    # friction cone (measured 4.4 x: the steep edge); the bound of 10 is the measurement's, not the statics'
+    # (on the grippiest patches, mu > 1.56, the grain is wedged and the statics set no upper bound).
     trapped = measure(25e-6, 1e-5, 20, 1e-4, seed=0, duration=4.0)
     assert trapped["regime"] == "trapped" and trapped["trapped_frac"] > 0.05
     assert trapped["F_trapped_N"] == pytest.approx(trapped["climb_N"], rel=0.10)

@@ -147,7 +147,8 @@ def test_mass_sensitivity_pairs_seeds_and_widens_the_intervals():
         return r
 
     light = [row(0, "smooth", [4.0, 4.0, 4.0]), row(25, "smooth", [4.0, 4.2, 4.4], dg=0.2)]
-    heavy = [row(25, "smooth", [4.3, 4.5, 4.7])]  # every seed +0.3 at 10x the mass
+    heavy = [dict(row(25, "smooth", [4.7, 4.3, 4.5]), seeds=[2, 0, 1])]  # every seed +0.3 at 10x the mass, listed out
+    # of order: pairs are matched by seed, not by position
     s = mass_sensitivity(light, heavy, decades=1.0)
     t = s["tracks"]["smooth"]
     assert t["per_decade"] == pytest.approx(0.3) and t["err"] == pytest.approx(0.0, abs=1e-12) and t["n"] == 3
@@ -158,3 +159,5 @@ def test_mass_sensitivity_pairs_seeds_and_widens_the_intervals():
     assert w[25]["delta_gamma_err_total"] == pytest.approx(math.hypot(0.1, 0.3))
     # a lighter rerun (decades = -1) of the same change reads the same slope per decade with the opposite sign
     assert mass_sensitivity(light, heavy, decades=-1.0)["tracks"]["smooth"]["per_decade"] == pytest.approx(-0.3)
+    with pytest.raises(ValueError, match="same grain mass"):
+        mass_sensitivity(light, heavy, decades=0.0)
