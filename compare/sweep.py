@@ -57,7 +57,8 @@ def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
             if spec.analysis.get("wear"):  # the wear study's per-task statistics (issue 17)
                 from .wear_study import task_stats
                 extra["wear"] = task_stats(tr, obj, band)
-        spec_x = displacement_spectrum(tr.t, tr.x)
+        # a wear-study task's spectrum and fit on its own segments (the default ones leave a 3 s run's band unresolved)
+        spec_x = displacement_spectrum(tr.t, tr.x, nperseg=extra["wear"]["nperseg"] if "wear" in extra else None)
         if band is not None and band[1] < 2 * band[0]:
             band = None  # the model's own band has closed (e.g. v/a near omega_c): use the automatic one
         try:

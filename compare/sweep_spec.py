@@ -204,13 +204,30 @@ def load_sweep(path) -> SweepSpec:
     return spec
 
 
+def _without_grains(params: dict) -> str | None:
+    """For a grid point with ``wear.count = 0``, its parameters less those that mean nothing without grains (the
+    other ``wear.*`` fields and the wear study's ``study.size``), as a key; None for any other point."""
+    if params.get("wear.count", None) != 0:
+        return None
+    return json.dumps({k: v for k, v in params.items() if not (k.startswith("wear.") or k == "study.size")},
+                      sort_keys=True)
+
+
 def expand(spec: SweepSpec):
-    """[(params, seed)] over the grid's Cartesian product (seed from grid["seed"], default [0])."""
+    """[(params, seed)] over the grid's Cartesian product (seed from grid["seed"], default [0]). Points without
+    grains (``wear.count = 0``) that differ only in grain fields are one run, kept at its first occurrence: the
+    wear study's particle-free twin is the same scene for every size distribution (bitwise: the 24 twins of
+    wear_study.toml's first full run were 8 runs, each three times)."""
     keys = [k for k in spec.grid if k != "seed"]
     seeds = spec.grid.get("seed", [0])
-    out = []
+    out, seen = [], set()
     for combo in itertools.product(*(spec.grid[k] for k in keys)):
         params = {**spec.fixed, **dict(zip(keys, combo))}
+        twin = _without_grains(params)
+        if twin is not None:
+            if twin in seen:
+                continue
+            seen.add(twin)
         for s in seeds:
             out.append((params, int(s)))
     return out

@@ -61,12 +61,28 @@ def test_study_sweeps_load_with_the_issues_factors():
     full, quick = load_sweep(SWEEPS / "wear_study.toml"), load_sweep(SWEEPS / "wear_study_quick.toml")
     # the issue's counts less 10 and 200 (left out for the 2 h budget, runs at the 30 s floor), 3 sizes, 2 tracks,
     # 4 seeds (the issue's minimum)
-    assert len(expand(full)) == 5 * 3 * 2 * 4 and full.grid["wear.count"] == [0, 5, 25, 50, 100]
+    # the particle-free twin once per track and seed (not once per size: the same scene)
+    assert len(expand(full)) == (4 * 3 + 1) * 2 * 4 and full.grid["wear.count"] == [0, 5, 25, 50, 100]
     assert full.grid["seed"] == [0, 1, 2, 3] and set(full.grid["study.size"]) == {"narrow", "broad", "power"}
     assert full.fixed["duration"] >= 30 and full.analysis["wear"] and quick.analysis["wear"]
     mass = load_sweep(SWEEPS / "wear_study_mass.toml")  # the mass systematic: the same cells and seeds, 10x heavier
     assert mass.fixed["wear.min_mass"] == 1e-4 and set(mass.grid["wear.count"]) <= set(full.grid["wear.count"])
     assert mass.grid["seed"] == full.grid["seed"] and mass.fixed["duration"] == full.fixed["duration"]
+
+
+def test_particle_free_twin_runs_once_per_track_and_seed():
+    quick = load_sweep(SWEEPS / "wear_study_quick.toml")
+    pts = expand(quick)
+    twins = [(p["study.track"], s) for p, s in pts if p["wear.count"] == 0]
+    assert sorted(twins) == sorted({(t, s) for t in ("smooth", "cavities") for s in (0, 1)})  # each once
+    # kept at its first occurrence (the grid's first size), so a sweep folder written before keeps its cached twins
+    assert {p["study.size"] for p, _ in pts if p["wear.count"] == 0} == {quick.grid["study.size"][0]}
+    assert len(pts) == (2 * 3 + 1) * 2 * 2
+    # a grid without a wear count is left as it was
+    from compare.sweep import SweepSpec
+    spec = SweepSpec(name="v", target="scenario", fixed={}, grid={"drive.v": [1e-3, 2e-3], "seed": [0, 1]},
+                     analysis={}, scenario=str(SWEEPS / "pads_with_wear_study.toml"))
+    assert len(expand(spec)) == 4
 
 
 def test_bad_study_factor_in_a_sweep_is_one_line_naming_it(tmp_path):
@@ -161,3 +177,15 @@ def test_mass_sensitivity_pairs_seeds_and_widens_the_intervals():
     assert mass_sensitivity(light, heavy, decades=-1.0)["tracks"]["smooth"]["per_decade"] == pytest.approx(-0.3)
     with pytest.raises(ValueError, match="same grain mass"):
         mass_sensitivity(light, heavy, decades=0.0)
+
+
+def test_wear_task_fits_its_spectrum_on_the_wear_studys_segments():
+    # a 3 s task (the quick study's length): the pipeline's default segments left the band's bottom (15 rad/s)
+    # unresolved and every row of results.csv carried that error beside the wear fit that worked
+    from compare.sweep import SweepSpec, run_task
+
+    spec = SweepSpec(name="wear_cell", target="scenario", fixed={"duration": 3.0, "run.warmup": 0.5}, grid={},
+                     analysis={"wear": True}, scenario=str(SWEEPS / "pads_with_wear_study.toml"))
+    res = run_task(spec, {**spec.fixed, "wear.count": 0, "study.track": "smooth"}, 0)
+    assert "error" not in res and "error" not in res["fit"], res.get("error") or res["fit"]
+    assert res["fit"]["gamma"] == res["wear"]["fit_x"]["gamma"]
