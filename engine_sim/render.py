@@ -6,7 +6,8 @@ asperity caps), the pads or feet, their springs, the block, the drive's own bodi
 state (trapped: at rest on the substrate; moving), the time above the axes and a key below them. The parts say
 what to draw as named shapes in scene units, ``name -> (kind, data, style)`` with kind one of "points" (xy array),
 "segments" (list of point pairs), "polys" (list of vertex lists), "line" ((xs, ys)), "circle" ((centre, radius)),
-"rect" ((corner, width, height)), "text" ((position, string)); style is passed to matplotlib, and a shape whose
+"rect" ((corner, width, height)), "text" ((position, string)), "caption" (a string added to the time line above
+the axes, for a part's numbers that would cover the scene); style is passed to matplotlib, and a shape whose
 style has a "label" gets an entry in the key. The only matplotlib importer of engine_sim.
 """
 from __future__ import annotations
@@ -132,6 +133,9 @@ class SceneRenderer:
     def _shapes(panel, shapes: dict):
         """Create (first time) or update the artists of the parts' named shapes."""
         for name, (kind, data, style) in shapes.items():
+            if kind == "caption":
+                panel["caption"] = data
+                continue
             art = panel["artists"].get(name)
             if art is None:
                 art = panel["artists"][name] = _new_artist(panel["ax"], kind, data, style)
@@ -174,7 +178,8 @@ class SceneRenderer:
         if self._legend is None:
             self._key()
         v = s.block.velocity.x / U.VELOCITY * U.LENGTH  # mm/s
-        self.text.set_text(f"t = {s.time:.3f} s   x = {bx:.3f} mm   v = {v:.3f} mm/s")
+        caption = self.panels[0].get("caption")
+        self.text.set_text(f"t = {s.time:.3f} s   x = {bx:.3f} mm   v = {v:.3f} mm/s" + (f"   {caption}" if caption else ""))
         self.fig.canvas.draw()
         return np.asarray(self.fig.canvas.buffer_rgba())
 

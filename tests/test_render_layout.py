@@ -3,6 +3,7 @@ region, the key names what is drawn, and pads_multiscale shows the whole block a
 user's trial: 3 of 30 columns, tiny micro-pads, no key, the bottom track under the caption)."""
 import numpy as np
 import pytest
+from matplotlib.text import Text
 
 from engine_sim import Scene, load_scenario
 from engine_sim.render import SceneRenderer
@@ -15,7 +16,7 @@ def _rendered(name):
 
 
 @pytest.mark.parametrize("name", ["pads_multiscale", "pads_friction_patches", "pads_with_wear", "asperity_field",
-                                  "pads_rough_profile"])
+                                  "pads_rough_profile", "leonardo_slider"])
 def test_caption_and_key_lie_outside_the_scene_and_inside_the_figure(name):
     r, rend = _rendered(name)
     fig_bb = r.fig.bbox
@@ -25,6 +26,12 @@ def test_caption_and_key_lie_outside_the_scene_and_inside_the_figure(name):
         assert fig_bb.x0 <= bb.x0 and bb.x1 <= fig_bb.x1 and fig_bb.y0 <= bb.y0 and bb.y1 <= fig_bb.y1, art
         for pn in r.panels:
             assert not bb.overlaps(pn["ax"].get_window_extent(rend)), (art, pn["view"]["ylabel"])
+    # no part writes its numbers over the scene (Leonardo's "hanging mass" label had covered the tracks)
+    for pn in r.panels:
+        for shape, art in pn["artists"].items():
+            assert not (isinstance(art, Text) and art.get_text()), (shape, art.get_text())
+    if name == "leonardo_slider":
+        assert "hanging mass" in r.text.get_text()
     # axis labels (the colour bar's among them) are not cut off at the figure's edge
     for ax in r.fig.axes + [c for pn in r.panels for c in pn["ax"].child_axes]:
         bb = ax.get_tightbbox(rend)

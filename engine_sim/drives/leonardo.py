@@ -63,14 +63,12 @@ class Leonardo(Drive):
         px, py = hi - 2.0, y
         my = py - 30.0
         slack = self.spec.rope_length * U.LENGTH - (hang.position.x - bx)
-        label = f"hanging mass {hang.mass / U.MASS:.3g} kg\nrope slack {slack / U.LENGTH * 1e6:+.2f} um"
+        label = f"hanging mass {hang.mass / U.MASS:.3g} kg, rope slack {slack / U.LENGTH * 1e6:+.2f} um"
         return {
             "rope": ("line", ([bx + 2.5, px, px + 1.2, px + 1.2], [y, py + 1.2, py, my + 8.0]),
                      {"color": "0.15", "lw": 1.2, "zorder": 5}),
             "pulley": ("circle", ((px, py), 1.2), {"facecolor": "0.85", "edgecolor": "0.2", "zorder": 5}),
             "mass": ("rect", ((px + 1.2 - 1.5, my), 3.0, 8.0),
                      {"facecolor": "tab:brown", "edgecolor": "0.2", "alpha": 0.9, "zorder": 5}),
-            "label": ("text", ((px - 1.0, my + 4.0), label),
-                      {"fontsize": 8, "ha": "right", "va": "center", "zorder": 6,
-                       "bbox": {"facecolor": "white", "alpha": 0.8, "lw": 0}}),
+            "label": ("caption", label, {}),  # on the time line: drawn at the mass it covered the tracks
         }
