@@ -187,10 +187,15 @@ def test_paired_runs_fill_one_bar_and_logs_name_the_warm_up():
     assert lines[0].startswith("wear: 1.0/10.0 s simulated (10 %; run 1/2: 1 s warm-up + 4.0 s recorded; now recorded)")
     assert lines[-1].startswith("wear: 10.0/10.0 s simulated (100 %; run 2/2: ")
     assert len(lines) == 10 and bar.n == bar.total == 10.0
-    bar, update = _progress_bar("w", stream=io.StringIO(), warmup=1.0, duration=4.0, runs=2, tty=True)
+    tty = io.StringIO()
+    bar, update = _progress_bar("w", stream=tty, warmup=1.0, duration=4.0, runs=2, tty=True)
     with bar:
         assert bar.total == 10.0 and bar.postfix == ("0.0/10.0 s simulated (run 1/2: 1 s warm-up + 4.0 s recorded; "
                                                      "now warm-up, not recorded)")
+        update(2.0, 5.0)
+    # the bar's text: the count after the time, never opened by tqdm's ", " (it had read "| , 0.0/10.0 s ...")
+    drawn = tty.getvalue().replace("\r", "\n").splitlines()[-1]
+    assert "| ," not in drawn and ", 2.0/10.0 s simulated (run 1/2" in drawn, drawn
 
 
 def test_process_pool_returns_results_and_ends_its_workers_on_an_interrupt():
