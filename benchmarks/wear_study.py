@@ -25,7 +25,7 @@ import numpy as np
 
 from compare import plots
 from compare.sweep import expand, load_results, load_sweep
-from compare.wear_study import answer, cells, gamma_figure, mass_sensitivity, widen
+from compare.wear_study import answer, cells, gamma_figure, mass_sensitivity, mass_split, widen
 
 _COLS = ("track", "size", "count", "n", "gamma", "gamma_err", "delta_gamma", "delta_gamma_err", "gamma_err_total",
          "delta_gamma_err_total", "Cx_ratio_bands", "fit_CF_grains", "fit_CF_friction", "trapped_frac", "moving_frac",
@@ -72,6 +72,40 @@ def _grain_mass(results) -> float:
     return masses.pop()
 
 
+def _light_limit_lines(rows, split, sens) -> list:
+    """The light-grain limit read in the 30-pad scene: the moving part's share of the grains' force per cell at the
+    study's mass and, with a second mass, how each part moves with it (compare.wear_study.mass_split)."""
+    grains = [r for r in rows if r["count"] > 0 and "F_g_trapped" in r]
+    if not grains:
+        return []
+    L = ["## Light-grain limit in the 30-pad scene (computed)", "",
+         "Only the trapped part of the grains' force has a light limit (one pad: wear_light_limit.md); the moving "
+         "(pushed or wedged) part goes with the grains' mass. Share of the grains' mean force that is moving, at the "
+         "study's mass, per track: "
+         + "; ".join(f"{t}: {min(sh):.2f}-{max(sh):.2f} over {len(sh)} cells" for t in ("smooth", "cavities")
+                     if (sh := [r["F_g_moving"] / (r["F_g_moving"] + r["F_g_trapped"]) for r in grains
+                                if r["track"] == t and r["F_g_moving"] + r["F_g_trapped"] > 0])) + ".", ""]
+    if split:
+        m0, m1 = sens["mass_kg"], sens["other_mass_kg"]
+        L += [f"Paired by seed, {m1:g} kg against {m0:g} kg: the trapped and moving parts' ratios (geometric mean over "
+              "seeds), the moving share at each mass, the C_x band levels' ratio.", "",
+              f"| track | size | count | seeds | F trapped (mN) {m0:g} / {m1:g} | trapped ratio | F moving (mN) "
+              f"{m0:g} / {m1:g} | moving ratio | moving share {m0:g} / {m1:g} | C_x ratio per band |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
+        for r in split:
+            L.append(f"| {r['track']} | {r['size']} | {r['count']} | {len(r['seeds'])} | "
+                     f"{1e3 * r['F_trapped'][0]:.1f} / {1e3 * r['F_trapped'][1]:.1f} | {r['trapped_ratio']:.2f} | "
+                     f"{1e3 * r['F_moving'][0]:.1f} / {1e3 * r['F_moving'][1]:.1f} | {r['moving_ratio']:.2f} | "
+                     f"{r['moving_share'][0]:.2f} / {r['moving_share'][1]:.2f} | "
+                     f"{', '.join(f'{x:.2f}' for x in r['Cx_ratio_bands'])} |")
+        tr = np.array([x for r in split for x in r["trapped_ratio_per_seed"]])
+        mv = np.array([x for r in split for x in r["moving_ratio_per_seed"]])
+        L += ["", f"Pooled over {tr.size} paired runs: trapped ratio {np.exp(np.mean(np.log(tr))):.2f} (per run "
+              f"{tr.min():.2f}-{tr.max():.2f}), moving ratio {np.exp(np.nanmean(np.log(mv))):.2f} ({np.nanmin(mv):.2f}-"
+              f"{np.nanmax(mv):.2f}); a part proportional to the mass would read {m1 / m0:g}.", ""]
+    return L
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("folder", help="the sweep's output folder")
@@ -88,9 +122,10 @@ def main(argv=None):
     results = load_results(a.folder)
     rows = cells(results)
     spec, full = load_sweep(a.sweep), load_sweep(a.full)
-    sens = None
+    sens = split = None
     if a.mass_folder:
         other = load_results(a.mass_folder)
+        split = mass_split(results, other)
         m0 = _grain_mass(results)
         m1 = _grain_mass(other)
         sens = mass_sensitivity(rows, cells(other), decades=float(np.log10(m1 / m0)))
@@ -140,6 +175,7 @@ def main(argv=None):
             L.append(f"| {c['track']} | {c['size']} | {c['count']} | {', '.join(f'{x:+.2f}' for x in c['per_decade'])} | "
                      f"{c['mean']:+.3f} |")
         L.append("")
+    L += _light_limit_lines(rows, split, sens)
     if a.full != a.sweep:
         L += ["## Full study projection", "",
               f"`{a.full}`: {len(expand(full))} tasks; at the cost per simulated second measured here per particle count, "

@@ -22,7 +22,8 @@ import math
 
 import numpy as np
 
-__all__ = ["SIZES", "TRACKS", "expand_factors", "task_stats", "cells", "mass_sensitivity", "widen", "study_sections"]
+__all__ = ["SIZES", "TRACKS", "expand_factors", "task_stats", "cells", "mass_sensitivity", "mass_split", "widen",
+           "study_sections"]
 
 # Issue 17's size distributions: radii (m) in [20, 200] um; r_min = 20 um is the tunnelling limit at dt = 1e-4 s.
 SIZES = {
@@ -230,6 +231,48 @@ def mass_sensitivity(rows: list, rows_other: list, decades: float) -> dict:
             m, _, seed_part, _ = _mean_interval(d, [0.0] * len(d))
             out["tracks"][track] = {"per_decade": m, "err": seed_part, "n": len(d), "systematic": abs(m) + seed_part}
     return out
+
+
+def mass_split(results: list, results_other: list) -> list:
+    """The grains' force split by state at two grain masses, per cell (count, size, track), paired by seed: the mean
+    trapped and moving parts at each mass (N), their ratios other / this (geometric mean over the seeds; per seed
+    too), the moving part's share of the grains' force, and the C_x band levels' ratio. In the light limit the
+    moving part vanishes (a pushed or wedged grain's force goes with its mass) and the trapped part stays
+    (benchmarks/results/wear_light_limit.md, one pad): so the trapped part is this scene's light-limit estimate of
+    the grains' force, a trapped ratio near 1 says it holds in the 30-pad scene too, and the moving share is how
+    far the total sits above it."""
+    def by_seed(rs):
+        out = {}
+        for r in rs:
+            w = r.get("wear", {})
+            if w.get("count") and "F_g_trapped" in w:
+                c, size, track = _key(r)
+                out.setdefault((c, size, track), {})[r["seed"]] = w
+        return out
+
+    a, b = by_seed(results), by_seed(results_other)
+    rows = []
+    for key in sorted(set(a) & set(b), key=lambda k: (k[2], k[1], k[0])):
+        seeds = sorted(set(a[key]) & set(b[key]))
+        if not seeds:
+            continue
+        wa, wb = [a[key][s] for s in seeds], [b[key][s] for s in seeds]
+
+        def ratio(q):
+            per = [y[q] / x[q] if x[q] > 0 else float("nan") for x, y in zip(wa, wb)]
+            return per, float(np.exp(np.mean(np.log(per))))
+
+        tr_per, tr = ratio("F_g_trapped")
+        mv_per, mv = ratio("F_g_moving")
+        cx = np.exp(np.mean([np.log(np.asarray(y["Cx_bands"]) / np.asarray(x["Cx_bands"])) for x, y in zip(wa, wb)],
+                            axis=0))
+        share = [float(np.mean([w["F_g_moving"] / (w["F_g_moving"] + w["F_g_trapped"]) for w in ws])) for ws in (wa, wb)]
+        rows.append({"count": key[0], "size": key[1], "track": key[2], "seeds": seeds,
+                     "F_trapped": [float(np.mean([w["F_g_trapped"] for w in ws])) for ws in (wa, wb)],
+                     "F_moving": [float(np.mean([w["F_g_moving"] for w in ws])) for ws in (wa, wb)],
+                     "trapped_ratio": tr, "trapped_ratio_per_seed": tr_per, "moving_ratio": mv,
+                     "moving_ratio_per_seed": mv_per, "moving_share": share, "Cx_ratio_bands": cx.tolist()})
+    return rows
 
 
 def widen(rows: list, sens: dict) -> list:

@@ -189,3 +189,22 @@ def test_wear_task_fits_its_spectrum_on_the_wear_studys_segments():
     res = run_task(spec, {**spec.fixed, "wear.count": 0, "study.track": "smooth"}, 0)
     assert "error" not in res and "error" not in res["fit"], res.get("error") or res["fit"]
     assert res["fit"]["gamma"] == res["wear"]["fit_x"]["gamma"]
+
+
+def test_mass_split_pairs_seeds_and_reads_the_light_limit_parts():
+    from compare.wear_study import mass_split
+
+    def task(seed, trapped, moving, cx):
+        t = _task(25, "narrow", "smooth", seed, 4.0, 0.1, cx, [1.0] * 3, [1.0] * 3)
+        t["wear"].update(F_g_trapped=trapped, F_g_moving=moving)
+        return t
+
+    light = [task(0, 0.10, 0.05, [1.0, 1.0, 1.0]), task(1, 0.20, 0.10, [2.0, 2.0, 2.0]), task(2, 0.3, 0.3, [1, 1, 1])]
+    heavy = [task(1, 0.20, 1.00, [4.0, 2.0, 2.0]), task(0, 0.10, 0.50, [2.0, 1.0, 1.0])]  # a pushed part 10x: the
+    # moving force goes with the mass, the trapped one stays; seed 2 has no partner and is left out
+    (r,) = mass_split(light, heavy)
+    assert r["seeds"] == [0, 1] and (r["count"], r["size"], r["track"]) == (25, "narrow", "smooth")
+    assert r["trapped_ratio"] == pytest.approx(1.0) and r["moving_ratio"] == pytest.approx(10.0)
+    assert r["moving_share"] == pytest.approx([1 / 3, 5 / 6]) and r["Cx_ratio_bands"] == pytest.approx([2.0, 1.0, 1.0])
+    assert r["F_trapped"] == pytest.approx([0.15, 0.15]) and r["F_moving"] == pytest.approx([0.075, 0.75])
+    assert mass_split(light, []) == []
