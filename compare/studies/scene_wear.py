@@ -10,7 +10,7 @@ from ..fits import fit_power_law
 from ..html import esc, paragraphs, table
 from ..spectra import band_average, displacement_spectrum, force_series_spectrum
 from ..study import Figure, StudyResult
-from ._common import balances, timed, timing, whole_run
+from ._common import balances, require_band, timed, timing, whole_run
 
 
 def wear_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult:
@@ -33,6 +33,7 @@ def wear_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult
     v0 = float(t0.x[-1] / t0.t[-1])
     vw = float(tw.x[-1] / tw.t[-1])
     band = (3 * v0 / sc.substrate.a, 30 * v0 / sc.substrate.a)
+    require_band(specs["with"], band, T, float(tw.t[1] - tw.t[0]), 3 * sc.steady_velocity / sc.substrate.a)
     fits = {k: fit_power_law(s, band=band) for k, s in specs.items()}
     dg = fits["with"].gamma - fits["without"].gamma
     dg_err = math.hypot(fits["with"].gamma_err, fits["without"].gamma_err)

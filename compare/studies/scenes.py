@@ -15,7 +15,8 @@ from ..fits import fit_power_law
 from ..html import esc, paragraphs, table
 from ..spectra import displacement_spectrum, force_series_spectrum
 from ..study import Figure, Study, StudyResult
-from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, timed, timing, whole_run
+from ._common import (balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, timed, timing,
+                      whole_run)
 
 # relative wall cost, to hand the longest studies to workers first (measured in the quick report: the wear pair
 # 18 s, the rough profile 9 s, the asperity field 7 s, every other stage 0.5-3 s)
@@ -60,6 +61,8 @@ def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
     ex = model_I_parameters(tr, sc)
     w0 = ex["v"]["value"] / ex["a"]["value"]
     band = (3 * w0, 30 * w0)
+    a_sub = getattr(sc.substrate, "a", None)  # the patches' renewal length (a rough track's roll-off: a longer advice)
+    require_band(spec, band, T, float(tr.t[1] - tr.t[0]), 3 * sc.steady_velocity / a_sub if a_sub else None)
     fit = fit_power_law(spec, band=band)
     p = spring_block_params(ex)
     m1 = spring_block.simulate(p, T, tr.t[1] - tr.t[0], seed=seed)
