@@ -119,12 +119,12 @@ def main(argv=None):
     ap.add_argument("--mass-sweep", default="scenarios/sweeps/wear_study_mass.toml")
     ap.add_argument("--mass-wall", type=float, default=None, help="that sweep's wall time (s)")
     a = ap.parse_args(argv)
-    results = load_results(a.folder)
-    rows = cells(results)
     spec, full = load_sweep(a.sweep), load_sweep(a.full)
+    results = load_results(a.folder, spec)  # the grid's own tasks (a reused folder keeps an old grid's files)
+    rows = cells(results)
     sens = split = None
     if a.mass_folder:
-        other = load_results(a.mass_folder)
+        other = load_results(a.mass_folder, load_sweep(a.mass_sweep))
         split = mass_split(results, other)
         m0 = _grain_mass(results)
         m1 = _grain_mass(other)

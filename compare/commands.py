@@ -76,8 +76,10 @@ def cmd_sweep(args) -> int:
         except SchedulerError as e:
             raise UserError(str(e)) from None
     import json
-    failures = [json.loads(p.read_text()) for p in sorted((out / "failures").glob("*.json"))]
-    sections, summary = build_sweep_report(spec, load_results(out), failures)
+    from .sweep import expand, task_id
+    ids = {task_id(spec, params, seed) for params, seed in expand(spec)}
+    failures = [json.loads(p.read_text()) for p in sorted((out / "failures").glob("*.json")) if p.stem in ids]
+    sections, summary = build_sweep_report(spec, load_results(out, spec), failures)
     write_sweep_outputs(out, sections, summary)
     print(f"{spec.name}: {counts['done']}/{counts['total']} tasks done ({counts['ran']} run now, "
           f"{counts['failed']} failed); wrote {out / 'index.html'}")

@@ -186,8 +186,9 @@ def run_sweep(spec: SweepSpec, out_dir, *, scheduler: str | None = None, workers
             _close(client, cluster, interrupted=True)
             raise
         _close(client, cluster)
-    done = list((out / "tasks").glob("*.json"))
-    return {"done": len(done), "ran": ran, "failed": failed, "total": len(expand(spec))}
+    ids = {task_id(spec, params, seed) for params, seed in expand(spec)}
+    done = [p for p in (out / "tasks").glob("*.json") if p.stem in ids]
+    return {"done": len(done), "ran": ran, "failed": failed, "total": len(ids)}
 
 
 def _order_key(r: dict):
@@ -197,10 +198,17 @@ def _order_key(r: dict):
     return tuple(one(r["params"][k]) for k in sorted(r["params"])) + (one(r["seed"]),)
 
 
-def load_results(out_dir) -> list:
-    """The stored task results, sorted by their parameters (then seed), whatever order they completed in."""
-    rs = [json.loads(p.read_text()) for p in Path(out_dir, "tasks").glob("*.json")]
-    return sorted(rs, key=_order_key)
+def load_results(out_dir, spec: SweepSpec | None = None) -> list:
+    """The stored task results, sorted by their parameters (then seed), whatever order they completed in.
+
+    With ``spec``, only its grid's tasks: a folder reused after the grid changed keeps the old tasks' files (the
+    cache), which are not part of this sweep.
+    """
+    paths = Path(out_dir, "tasks").glob("*.json")
+    if spec is not None:
+        ids = {task_id(spec, params, seed) for params, seed in expand(spec)}
+        paths = [p for p in paths if p.stem in ids]
+    return sorted((json.loads(p.read_text()) for p in paths), key=_order_key)
 
 
 # ----------------------------------------------------------------------------- velocity analysis

@@ -158,6 +158,25 @@ def test_results_sorted_by_parameters(tmp_path):
     assert got == [(1e-4, 0), (1e-4, 1), (1e-3, 0), (3e-3, 0)]
 
 
+def test_a_narrowed_grid_reads_only_its_own_tasks(tmp_path):
+    """A folder reused after its grid lost a value keeps the old tasks' files (the cache); the sweep counts, reports
+    and loads only the grid's own (the wear study's folder had read '144/128 tasks done')."""
+    out = tmp_path / "out"
+    wide = _small(tmp_path, n_v=3, duration=20.0, seeds=(0,))
+    assert run_sweep(load_sweep(wide), out, serial=True)["done"] == 3
+    narrow = _small(tmp_path, n_v=2, duration=20.0, seeds=(0,))
+    spec = load_sweep(narrow)
+    r = subprocess.run([sys.executable, "-m", "compare.cli", "sweep", str(narrow), "--serial", "-o", str(out)],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert "2/2 tasks done (0 run now, 0 failed)" in r.stdout, r.stdout
+    assert len(list((out / "tasks").glob("*.json"))) == 3  # the old task's file stays: widening again reuses it
+    assert sorted(x["params"]["v"] for x in load_results(out, spec)) == [1e-4, 5e-4]
+    assert len(load_results(out)) == 3
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["n_results"] == 2 and [x["v"] for x in summary["results"]] == [1e-4, 5e-4]
+
+
 @pytest.mark.slow
 def test_real_cluster_survives_a_killed_worker(tmp_path):
     """A `dask scheduler` and two `dask worker` processes on 127.0.0.1; one worker is killed (SIGKILL) while the
