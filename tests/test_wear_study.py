@@ -207,3 +207,16 @@ def test_mass_split_pairs_seeds_and_reads_the_light_limit_parts():
     assert r["moving_share"] == pytest.approx([1 / 3, 5 / 6]) and r["Cx_ratio_bands"] == pytest.approx([2.0, 1.0, 1.0])
     assert r["F_trapped"] == pytest.approx([0.15, 0.15]) and r["F_moving"] == pytest.approx([0.075, 0.75])
     assert mass_split(light, []) == []
+
+
+def test_committed_full_study_is_the_shipped_grid():
+    """benchmarks/results/wear_study.csv holds one row per cell of wear_study.toml (and one particle-free twin per
+    track), each with the grid's seeds: the committed answer belongs to the sweep the README tells users to run."""
+    import csv
+
+    rows = list(csv.DictReader((SWEEPS.parents[1] / "benchmarks" / "results" / "wear_study.csv").open()))
+    spec = load_sweep(SWEEPS / "wear_study.toml")
+    grid = {(p["study.track"], p["study.size"] if p["wear.count"] else "-", str(p["wear.count"]))
+            for p, _ in expand(spec)}
+    assert {(r["track"], r["size"], r["count"]) for r in rows} == grid and len(rows) == len(grid)
+    assert {r["n"] for r in rows} == {str(len(spec.grid["seed"]))}
