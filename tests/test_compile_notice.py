@@ -6,7 +6,7 @@ import subprocess
 import sys
 import textwrap
 
-from compare.compile_notice import MESSAGE, cold_kernels, compile_notice
+from compare.cli.compile_notice import MESSAGE, cold_kernels, compile_notice
 
 _SRC = textwrap.dedent('''
     import numba
@@ -43,7 +43,7 @@ def test_a_compile_is_announced_once_on_a_terminal_and_not_on_a_cache_hit(tmp_pa
         import io, sys
         sys.path.insert(0, {str(tmp_path)!r})
         import fresh_kernels
-        from compare.compile_notice import cold_kernels, compile_notice
+        from compare.cli.compile_notice import cold_kernels, compile_notice
         print(cold_kernels([fresh_kernels]))
         buf = io.StringIO()
         with compile_notice(stream=buf, tty=True):

@@ -1,35 +1,14 @@
-"""What each `frictionnoise` subcommand does (the parser and the entry point are in :mod:`compare.cli`).
+"""What each `frictionnoise` subcommand does (the parser is :mod:`compare.cli.parser`, the entry point
+:mod:`compare.cli.main`).
 User errors raise :class:`UserError`: printed as one line, exit 2."""
 from __future__ import annotations
 
 import sys
 
-__all__ = ["UserError", "cmd_analyze", "cmd_compare", "cmd_render", "cmd_report", "cmd_run", "cmd_scenarios",
-           "cmd_sweep", "progress_bar"]
+from .options import UserError, check_seed, load_scenario_arg, output_dir, scenario_path, usable_cores
+from .progress import progress_bar
 
-
-class UserError(Exception):
-    """An error in the user's input: printed as one line, exit status 2."""
-
-
-# names that end like a file: `-o ms.npz` once made a folder named ms.npz (a new user's trial)
-_FILE_SUFFIXES = frozenset({".npz", ".npy", ".json", ".html", ".htm", ".png", ".gif", ".pdf", ".svg", ".pkl", ".csv",
-                            ".txt", ".toml", ".zip"})
-
-
-def _output_dir(arg, default, writes: str):
-    """The folder a command writes into (``-o DIR``, else ``default``). An ``-o`` name ending in a file suffix
-    is refused (unless that folder exists already): every command writes several files into a folder."""
-    from pathlib import Path
-
-    from .inputs import output_folder
-
-    if arg is not None:
-        suffix = Path(arg).suffix.lower()
-        if suffix in _FILE_SUFFIXES and not Path(arg).is_dir():
-            raise UserError(f"-o/--output {arg}: names a folder, not a {suffix} file (the command writes {writes} into "
-                            f"it); give a folder name without the {suffix} suffix")
-    return output_folder(arg or default)
+__all__ = ["cmd_analyze", "cmd_compare", "cmd_render", "cmd_report", "cmd_run", "cmd_scenarios", "cmd_sweep"]
 
 
 def cmd_scenarios(args) -> int:
@@ -47,8 +26,8 @@ def cmd_sweep(args) -> int:
 
     from tqdm import tqdm
 
-    from .sweep_report import build_sweep_report, write_sweep_outputs
-    from .sweep import SchedulerError, SweepError, load_results, load_sweep, run_sweep
+    from ..report.sweep_report import build_sweep_report, write_sweep_outputs
+    from ..sweep import SchedulerError, SweepError, load_results, load_sweep, run_sweep
 
     try:
         spec = load_sweep(args.sweep)
@@ -58,7 +37,7 @@ def cmd_sweep(args) -> int:
         raise UserError(f"--workers must be between 1 and 64 (got {args.workers})")
     if not 0 < args.connect_timeout <= 3600:
         raise UserError(f"--connect-timeout must be in (0, 3600] seconds (got {args.connect_timeout})")
-    out = _output_dir(args.output, f"sweep-{spec.name}", "index.html, summary.json and its task cache")
+    out = output_dir(args.output, f"sweep-{spec.name}", "index.html, summary.json and its task cache")
     if spec.target != "scenario":  # its tasks run the reduced models, in dask's processes
         from .compile_notice import announce_cold
 
@@ -76,7 +55,7 @@ def cmd_sweep(args) -> int:
         except SchedulerError as e:
             raise UserError(str(e)) from None
     import json
-    from .sweep import expand, task_id
+    from ..sweep import expand, task_id
     ids = {task_id(spec, params, seed) for params, seed in expand(spec)}
     failures = [json.loads(p.read_text()) for p in sorted((out / "failures").glob("*.json")) if p.stem in ids]
     sections, summary = build_sweep_report(spec, load_results(out, spec), failures)
@@ -93,12 +72,12 @@ def cmd_sweep(args) -> int:
 def cmd_analyze(args) -> int:
     from pathlib import Path
 
-    from .html import write_report
-    from .measured import DataFileError, read_measured, units_line
+    from ..report.html import write_report
+    from ..io.measured import DataFileError, read_measured, units_line
 
     import math
 
-    from .inputs import input_file, sniff
+    from ..io.inputs import input_file, sniff
 
     if sniff(input_file(args.data)) != "text":  # kind, emptiness, binary; the format is read by compare.measured
         raise UserError(f"{args.data}: binary data, not a CSV text file")
@@ -125,16 +104,16 @@ def cmd_analyze(args) -> int:
         raise UserError(str(e)) from None
     if data.warning:
         print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)
-    out = _output_dir(args.output, f"analyze-{Path(args.data).stem}", "index.html and summary.json")
+    out = output_dir(args.output, f"analyze-{Path(args.data).stem}", "index.html and summary.json")
     band = tuple(args.band) if args.band else None
     try:
         if force:
-            from .measured_report import analyze_force, build_force_report
+            from ..report.measured_report import analyze_force, build_force_report
 
             an = analyze_force(data, band=band, mass=args.mass, speed=args.speed, cut=args.cut, method=args.method)
             sections, summary = build_force_report(an)
         else:
-            from .measured_report import build_measured_report
+            from ..report.measured_report import build_measured_report
 
             sections, summary = build_measured_report(data, args.mass, band=band)
             summary["units"] = data.units
@@ -161,10 +140,10 @@ def cmd_analyze(args) -> int:
 
 def cmd_render(args) -> int:
 
-    from .outputs import atomic_folder
+    from ..io.outputs import atomic_folder
 
-    sc = _load_scenario(args.scenario)
-    _check_seed(args.seed)
+    sc = load_scenario_arg(args.scenario)
+    check_seed(args.seed)
     if not 1 <= args.frames <= 10_000:
         raise UserError(f"--frames must be between 1 and 10000 (got {args.frames})")
     if not 0 < args.duration < float("inf"):
@@ -172,7 +151,7 @@ def cmd_render(args) -> int:
     from engine_sim import Scene
     from engine_sim.render import SceneRenderer
 
-    out = _output_dir(args.output, f"render-{sc.name}",
+    out = output_dir(args.output, f"render-{sc.name}",
                       "frame_000.png, frame_001.png, ... and with --gif animation.gif")
     scene = Scene(sc, args.seed)
     renderer = SceneRenderer(scene)
@@ -198,92 +177,12 @@ def cmd_render(args) -> int:
     return 0
 
 
-def _check_seed(seed):
-    if seed is not None and not 0 <= seed < 2**63:
-        raise UserError(f"--seed must be a whole number from 0 to 2^63 - 1 (got {seed})")
-
-
-def _scenario_path(arg) -> str:
-    """A scenario argument as a path: an existing path as given (it wins over a shipped name of the same
-    spelling), else the shipped scenario of that name, else as given (the input layer then names the problem)."""
-    import os
-
-    from engine_sim import ScenarioError
-    from engine_sim.scenario import resolve_scenario
-
-    if os.path.lexists(arg):
-        return arg
-    try:
-        return str(resolve_scenario(arg))
-    except ScenarioError:
-        return arg
-
-
-def _load_scenario(path):
-    from engine_sim import ScenarioError, scenario_from_dict
-
-    from .inputs import read_toml
-
-    path = _scenario_path(path)
-    data = read_toml(path, "scenario TOML file")
-    try:
-        return scenario_from_dict(data, where=str(path))
-    except ScenarioError as e:
-        raise UserError(str(e)) from None
-
-
-def progress_bar(desc, stream=None, *, warmup: float = 0.0, duration: float | None = None, runs: int = 1, tty=None):
-    """A bar in simulated time on a terminal; otherwise (a log, CI) one line per tenth of the work with the
-    elapsed wall time. Its total is what will be simulated: ``runs`` x (``warmup``, simulated and not recorded,
-    + the recorded ``duration``), known before the first report; the label names the warm-up and the run.
-
-    Returns (bar, update); ``update(done, total)`` takes one run's seconds as ``engine_sim.run`` reports them
-    (total = its warm-up + its recorded samples); a run that starts again from zero is the next run."""
-    import time
-
-    from tqdm import tqdm
-
-    stream = stream or sys.stderr
-    tty = stream.isatty() if tty is None else tty
-    per_run = [warmup + duration if duration else 0.0]  # one run's simulated seconds, as far as known
-    state = {"run": 0, "last": -1.0, "next_tenth": 1}
-    bar = tqdm(total=runs * per_run[0] or 1.0, desc=desc, unit="s", file=stream, disable=not tty,
-               bar_format="{desc}: {percentage:3.0f}%|{bar}| [{elapsed}<{remaining}{postfix}]")  # tqdm puts ", "
-    # before a postfix: at the line's end it reads as tqdm's own (it had opened the text as "| , 0.0/4.0 s ...")
-    t0 = time.perf_counter()
-
-    def label(done_run):
-        which = f"run {state['run'] + 1}/{runs}: " if runs > 1 else ""
-        part = "warm-up, not recorded" if done_run < warmup * (1 - 1e-9) else "recorded"
-        return f"{which}{warmup:g} s warm-up + {per_run[0] - warmup:.1f} s recorded; now {part}"
-
-    if duration:
-        bar.set_postfix_str(f"0.0/{runs * per_run[0]:.1f} s simulated ({label(0.0)})")
-
-    def update(done, total):
-        if done < state["last"]:  # the next run began
-            state["run"] = min(state["run"] + 1, runs - 1)
-        state["last"] = done
-        per_run[0] = total
-        done_all, total_all = state["run"] * total + done, runs * total
-        bar.total = total_all
-        bar.n = done_all
-        bar.set_postfix_str(f"{done_all:.1f}/{total_all:.1f} s simulated ({label(done)})")
-        bar.refresh()
-        k = state["next_tenth"]
-        if not tty and total_all > 0 and done_all >= k * total_all / 10 * (1 - 1e-9):
-            state["next_tenth"] = int(10 * done_all / total_all * (1 + 1e-9)) + 1
-            print(f"{desc}: {done_all:.1f}/{total_all:.1f} s simulated ({100 * done_all / total_all:.0f} %; "
-                  f"{label(done)}), {time.perf_counter() - t0:.1f} s elapsed", file=stream, flush=True)
-    return bar, update
-
-
 def cmd_run(args) -> int:
-    sc = _load_scenario(args.scenario)
-    _check_seed(args.seed)
+    sc = load_scenario_arg(args.scenario)
+    check_seed(args.seed)
     if args.duration is not None and not 0 < args.duration < float("inf"):
         raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
-    out = _output_dir(args.output, f"run-{sc.name}", "trace.npz and trace.json")
+    out = output_dir(args.output, f"run-{sc.name}", "trace.npz and trace.json")
     if args.epoch is not None and not 0 < args.epoch < float("inf"):
         raise UserError(f"--epoch must be a positive number of seconds (got {args.epoch})")
     ck = None
@@ -305,7 +204,7 @@ def _run_into(args, sc, out, ck) -> int:
 
     from engine_sim.run import CheckpointError, TraceSizeError
 
-    from .traceio import save_trace
+    from ..io.traces import save_trace
 
     if ck is not None:
         out.mkdir(parents=True, exist_ok=True)
@@ -339,14 +238,14 @@ def _run_into(args, sc, out, ck) -> int:
 
 def cmd_compare(args) -> int:
 
-    from .html import write_report
-    from .report import build_scene_report
-    from .traceio import TraceFileError, load_trace
+    from ..report.html import write_report
+    from ..report.build import build_scene_report
+    from ..io.traces import TraceFileError, load_trace
 
-    from .inputs import input_file, sniff
+    from ..io.inputs import input_file, sniff
 
-    src = input_file(_scenario_path(args.source))
-    _check_seed(args.seed)
+    src = input_file(scenario_path(args.source))
+    check_seed(args.seed)
     kind = sniff(src)
     if kind == "binary":
         raise UserError(f"{src}: binary data, neither a scenario TOML file nor a trace .npz")
@@ -364,8 +263,8 @@ def cmd_compare(args) -> int:
         except (TraceFileError, ScenarioError) as e:
             raise UserError(str(e)) from None
     else:
-        sc = _load_scenario(src)
-    out = _output_dir(args.output, f"compare-{sc.name}", "index.html, summary.json and figures/")
+        sc = load_scenario_arg(src)
+    out = output_dir(args.output, f"compare-{sc.name}", "index.html, summary.json and figures/")
     note = None
     if trace is not None and trace.metadata.get("partial"):
         note = f"{src} is a partial trace (interrupted at t = {trace.t[-1]:.3f} s)"
@@ -395,25 +294,18 @@ def cmd_compare(args) -> int:
     return 0
 
 
-def _usable_cores(cap: int) -> int:
-    import os
-
-    n = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
-    return max(1, min(cap, n))
-
-
 def cmd_report(args) -> int:
 
-    from . import studies
-    from .html import write_report
+    from ..report import studies
+    from ..report.html import write_report
     from .progress import StageProgress
-    from .report import build_report
+    from ..report.build import build_report
 
-    out = _output_dir(args.output, "frictionnoise-report", "index.html, summary.json and figures/")
-    _check_seed(args.seed)
+    out = output_dir(args.output, "frictionnoise-report", "index.html, summary.json and figures/")
+    check_seed(args.seed)
     if args.workers is not None and args.workers < 1:
         raise UserError(f"--workers must be at least 1 (got {args.workers})")
-    workers = args.workers or _usable_cores(cap=4)
+    workers = args.workers or usable_cores(cap=4)
     chosen = studies.selected(args.quick)
     from contextlib import nullcontext
 

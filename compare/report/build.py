@@ -115,7 +115,7 @@ def build_scene_report(sc, trace=None, duration=None, seed=None, progress=None):
     extra = []
     if "micro" in describe(sc):  # micro-pads: model Ib beside model I, on the same trace (as the report does)
         from .studies.scene_multiscale import scene_against_model_Ib
-        from .studies.scenes import run_scene
+        from .studies._common import run_scene
 
         trace = run_scene(sc, False, header["seed"], trace, duration, progress)[0]
         extra = [scene_against_model_Ib(sc.name, sc, False, header["seed"], trace=trace)]

@@ -113,7 +113,7 @@ def json_text(obj, indent=2) -> str:
 
 def write_report(out_dir, results, summary: dict, title: str = "frictionnoise report") -> Path:
     """Write index.html, summary.json and figures/*.png into ``out_dir`` atomically."""
-    from .outputs import atomic_folder
+    from ..io.outputs import atomic_folder
 
     with atomic_folder(out_dir) as tmp:
         (tmp / "figures").mkdir()

@@ -18,10 +18,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .fits import PowerLawFit, fit_power_law
+from ..analysis.fits import PowerLawFit, fit_power_law
 from .html import esc, paragraphs, table
-from .measured import MeasuredData, units_line
-from .spectra import G_STANDARD, Spectrum, _rescaled, average_spectra, rms_from_spectrum, series_spectrum
+from ..io.measured import MeasuredData, units_line
+from ..analysis.spectra import G_STANDARD, Spectrum, _rescaled, average_spectra, rms_from_spectrum, series_spectrum
 from .study import Figure, StudyResult
 
 __all__ = ["Strokes", "ForceAnalysis", "find_strokes", "analyze_force", "build_force_report", "build_measured_report"]
@@ -319,7 +319,7 @@ def build_measured_report(data, mass: float, band=None, g: float = G_STANDARD):
     from reduced_models._version import package_version
 
     from . import plots
-    from .spectra import displacement_spectrum, force_spectrum, friction_coefficient_spectrum, rms_from_spectrum
+    from ..analysis.spectra import displacement_spectrum, force_spectrum, friction_coefficient_spectrum, rms_from_spectrum
 
     spec = displacement_spectrum(data.t, data.x)
     fit = fit_power_law(spec, band=band)

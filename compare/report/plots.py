@@ -12,16 +12,17 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from .fits import flag_mark
-from .spectra import Spectrum, log_bin
+from ..analysis.fits import flag_mark
+from ..analysis.spectra import Spectrum, log_bin
 
-__all__ = ["spectrum_figure", "save_figure", "figure_png_bytes", "episode_histogram_figure", "level_figure",
+__all__ = ["new_figure", "spectrum_figure", "save_figure", "figure_png_bytes", "episode_histogram_figure", "level_figure",
            "work_precision_figure"]
 
 _SLOPE_NAMES = {"x": r"$\gamma$", "F": r"$C_F$ slope", "mu": r"$C_\mu$ slope"}
 
 
-def _figure(w, h):
+def new_figure(w, h):
+    """A blank figure (w x h inches) on the Agg canvas, for a figure drawn outside this module."""
     fig = Figure(figsize=(w, h), dpi=110)
     FigureCanvasAgg(fig)
     return fig
@@ -55,7 +56,7 @@ def spectrum_figure(measured: list, theory: list = (), *, title: str = "", ylabe
     The y axis spans the measured data with a margin; a closed form that dips far below it (a zero of a sinc
     factor) is clipped rather than stretching the axis over tens of decades.
     """
-    fig = _figure(6.4, 4.6)
+    fig = new_figure(6.4, 4.6)
     ax = fig.add_subplot()
     colors = rcParams["axes.prop_cycle"].by_key()["color"]
     lo, hi = np.inf, -np.inf
@@ -110,7 +111,7 @@ def save_figure(fig, path: Path) -> bytes:
 
 def level_figure(v, C, exponent, err, omega_ref):
     """C_x at fixed omega against v, log-log, with the fitted power law."""
-    fig = _figure(5.4, 4.0)
+    fig = new_figure(5.4, 4.0)
     ax = fig.add_subplot()
     ax.loglog(v * 1e3, C, "o", label="runs")
     A = np.exp(np.mean(np.log(C) - exponent * np.log(v)))
@@ -128,7 +129,7 @@ def work_precision_figure(rows, floor: float = 1e-4):
     """Cost against error, log-log: every setting (red: Pareto front), the reference (error 0, drawn on the
     floor as a black star), each labelled at the first of four places beside its point that overlaps no other
     label and stays inside the figure."""
-    fig = _figure(6.0, 4.2)
+    fig = new_figure(6.0, 4.2)
     ax = fig.add_subplot()
     for r in rows:
         ref = r["pareto"] is None
@@ -164,7 +165,7 @@ def work_precision_figure(rows, floor: float = 1e-4):
 
 def episode_histogram_figure(ep: dict, title: str = ""):
     """Trap/release episode durations (log bins) and episode forces, by state."""
-    fig = _figure(8.0, 3.6)
+    fig = new_figure(8.0, 3.6)
     a1, a2 = fig.subplots(1, 2)
     tau = ep["tau"]
     bins = np.logspace(np.log10(max(tau.min(), 1e-4)), np.log10(tau.max() * 1.01), 30) if tau.size else 10

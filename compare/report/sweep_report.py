@@ -9,7 +9,7 @@ import numpy as np
 
 from reduced_models._version import package_version
 
-from .fits import flag_mark
+from ..analysis.fits import flag_mark
 from .html import esc, json_text, page, paragraphs, table
 from .study import Figure, StudyResult
 
@@ -19,8 +19,8 @@ __all__ = ["build_sweep_report", "write_sweep_outputs"]
 def build_sweep_report(spec, results: list, failures: list):
     """Results (StudyResult list) and summary of a sweep."""
     from . import plots
-    from .spectra import Spectrum
-    from .sweep import velocity_analysis
+    from ..analysis.spectra import Spectrum
+    from ..analysis.velocity import velocity_analysis
 
     keys = [k for k in spec.grid if k != "seed"]
     summary = {"version": package_version(), "sweep": spec.name, "target": spec.target, "grid": spec.grid,

@@ -3,7 +3,7 @@
 Sweep file (TOML)::
 
     name = "velocity_model1"
-    target = "model_I"            # model_I | model_II | model_III | scenario
+    target = "model_I"            # a model of reduced_models.MODELS (model_I, model_Ib, ...) or scenario
     scenario = "../pads_friction_patches.toml"   # for target = "scenario", relative to this file
     [fixed]                       # held fixed: model parameters, or run settings (duration, dt_out)
     duration = 300.0
@@ -14,7 +14,8 @@ Sweep file (TOML)::
     omega_ref = [70.0, 140.0]     # band (rad/s) for C_x at fixed omega against v
 
 This module reads and checks the file (:func:`load_sweep`), expands its grid (:func:`expand`) and builds one
-grid point's parameters (:func:`build_point`); :mod:`compare.sweep` runs the tasks.
+grid point's parameters (:func:`build_point`); :mod:`compare.sweep.tasks` runs them. The models are those
+registered in ``reduced_models.MODELS``: their parameter classes, default durations and output steps are read there.
 """
 from __future__ import annotations
 
@@ -25,9 +26,10 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["SweepSpec", "SweepError", "load_sweep", "expand", "task_id", "build_point", "RUN_KEYS"]
+__all__ = ["SweepSpec", "SweepError", "load_sweep", "expand", "task_id", "build_point", "RUN_KEYS", "SCENARIO",
+           "targets", "model_of"]
 
-_TARGETS = ("model_I", "model_II", "model_III", "scenario")
+SCENARIO = "scenario"  # the target that runs a scene; every other target is a registered model
 RUN_KEYS = {"duration", "dt_out"}
 
 
@@ -46,22 +48,25 @@ class SweepSpec:
     description: str = ""
 
 
-# a task's simulated duration when the sweep sets none (as in run_task)
-_DEFAULT_DURATION = {"model_I": lambda p: 300.0, "model_II": lambda p: 500.0, "model_III": lambda p: 2**18 * p.dt}
 _TOP = {"name": str, "description": str, "target": str, "scenario": str, "fixed": dict, "grid": dict,
         "analysis": dict}
 _MAX_DURATION = 1e5  # s of simulated time per task
 
 
-def _params_class(target):
-    if target == "model_I":
-        from reduced_models.spring_block import SpringBlockParams
-        return SpringBlockParams
-    if target == "model_III":
-        from reduced_models.asperity_force import AsperityForceParams
-        return AsperityForceParams
-    from reduced_models.wear_particle import WearParticleParams
-    return WearParticleParams
+def _models() -> dict:
+    from reduced_models import MODELS
+
+    return MODELS
+
+
+def targets() -> tuple:
+    """The valid sweep targets: the registered models, then ``scenario``."""
+    return (*_models(), SCENARIO)
+
+
+def model_of(spec: "SweepSpec"):
+    """The registered model module a model sweep runs."""
+    return _models()[spec.target]
 
 
 def _is_number(v) -> bool:
@@ -73,7 +78,7 @@ def _model_fields(target) -> dict:
     import dataclasses
 
     out = {}
-    for f in dataclasses.fields(_params_class(target)):
+    for f in dataclasses.fields(_models()[target].PARAMS):
         if not f.init or not f.repr:
             continue  # derived flags, not parameters
         # a field built by a factory (e.g. a distribution spec) is left to the model's own validation
@@ -118,7 +123,7 @@ def load_sweep(path) -> SweepSpec:
     """Read and validate a sweep file, every key and every grid point, before anything runs: unknown keys are
     named with the list of valid ones; types and ranges are checked per key (the models' own validation names
     the field for ranges)."""
-    from .inputs import InputError, read_toml
+    from ..io.inputs import InputError, read_toml
 
     path = Path(path)
     try:
@@ -132,13 +137,13 @@ def load_sweep(path) -> SweepSpec:
         if k in d and not isinstance(d[k], typ):
             raise SweepError(f"{path}: {k} must be a {'table' if typ is dict else 'string'} (got {d[k]!r})")
     target = d.get("target")
-    if target not in _TARGETS:
-        raise SweepError(f"{path}: target must be one of {', '.join(_TARGETS)} (got {target!r})")
+    if target not in targets():
+        raise SweepError(f"{path}: target must be one of {', '.join(targets())} (got {target!r})")
     grid, fixed, analysis = d.get("grid", {}), d.get("fixed", {}), d.get("analysis", {})
     if not grid or not all(isinstance(v, list) and v for v in grid.values()):
         raise SweepError(f"{path}: [grid] must hold non-empty lists of values")
     scen = d.get("scenario")
-    if target == "scenario":
+    if target == SCENARIO:
         if not scen:
             raise SweepError(f"{path}: target = 'scenario' needs scenario = <path>")
         scen = str((path.parent / scen).resolve())
@@ -146,7 +151,7 @@ def load_sweep(path) -> SweepSpec:
             raise SweepError(f"{path}: scenario {scen}: no such file")
     elif scen is not None:
         raise SweepError(f"{path}: scenario = ... applies only to target = 'scenario' (target is {target!r})")
-    if target != "scenario":
+    if target != SCENARIO:
         model = _model_fields(target)
         valid = sorted(model) + sorted(RUN_KEYS)
         for sec, table in (("fixed", fixed), ("grid", grid)):
@@ -176,7 +181,7 @@ def load_sweep(path) -> SweepSpec:
     seeds = grid.get("seed", [0])
     if not all(isinstance(x, int) and not isinstance(x, bool) and 0 <= x < 2**63 for x in seeds):
         raise SweepError(f"{path}: grid.seed must be a list of whole numbers >= 0 (got {seeds!r})")
-    bad = sorted(set(analysis) - {"omega_ref", "omega_max", "wear"})  # wear = true: compare/wear_study.py's statistics
+    bad = sorted(set(analysis) - {"omega_ref", "omega_max", "wear"})  # wear = true: the wear study's statistics
     if bad:
         raise SweepError(f"{path}: unknown key {bad[0]!r} in [analysis]; valid names: omega_max, omega_ref, wear")
     ref = analysis.get("omega_ref")
@@ -191,9 +196,10 @@ def load_sweep(path) -> SweepSpec:
     try:  # every grid point's parameters once (the models' and the scenario's own range checks)
         for params, _ in expand(spec):
             obj, run = build_point(spec, params)
-            if target in ("model_I", "model_II", "model_III"):
-                step = obj.dt if target == "model_III" else run.get("dt_out", 1e-3)
-                dur = run.get("duration", _DEFAULT_DURATION[target](obj))
+            if target != SCENARIO:
+                model = _models()[target]
+                step = run.get("dt_out", model.default_dt_out(obj))
+                dur = run.get("duration", model.default_duration(obj))
                 if not dur >= 2 * step:
                     raise SweepError(f"{path}: duration = {dur:g} s holds fewer than two steps of {step:.3g} s "
                                      f"(at {', '.join(f'{k} = {v}' for k, v in params.items())})")
@@ -242,18 +248,11 @@ def build_point(spec: SweepSpec, params: dict):
     """The model parameters (or scenario) and run settings of one grid point; raises on bad values."""
     model = {k: v for k, v in params.items() if k not in RUN_KEYS}
     run = {k: v for k, v in params.items() if k in RUN_KEYS}
-    if spec.target == "model_I":
-        from reduced_models.spring_block import SpringBlockParams
-        return SpringBlockParams(**model), run
-    if spec.target == "model_III":
-        from reduced_models.asperity_force import AsperityForceParams
-        return AsperityForceParams(**model), run
-    if spec.target == "model_II":
-        from reduced_models.wear_particle import WearParticleParams
-        return WearParticleParams(**model), run
+    if spec.target != SCENARIO:
+        return model_of(spec).PARAMS(**model), run
     from engine_sim.scenario import load_scenario, scenario_from_dict
     base = load_scenario(spec.scenario).to_dict()
-    from .wear_study import expand_factors  # the wear study's named factors (study.size, study.track)
+    from ..analysis.wear_study import expand_factors  # the wear study's named factors (study.size, study.track)
     for k, v in expand_factors(model).items():
         sec, _, key = k.partition(".")
         if not key or sec not in base or not isinstance(base[sec], dict):

@@ -7,9 +7,11 @@ import time
 import numpy as np
 
 from ..html import esc
-from ..spectra import band_average
+from ...analysis.balances import balances  # noqa: F401  (re-exported for the studies)
+from ...analysis.spectra import band_average
 
-__all__ = ["band_ratios", "ratio_rows", "log_err", "param_rows", "timed", "timing", "balances", "ratio_range"]
+__all__ = ["band_ratios", "ratio_rows", "log_err", "param_rows", "timed", "timing", "balances", "ratio_range",
+           "require_band", "whole_run", "run_scene"]
 
 
 def require_band(spec, band, T: float, dt_out: float, nominal_low: float | None = None,
@@ -83,8 +85,12 @@ def timing(model: str, run: str, wall, err) -> dict:
     return {"model": model, "run": run, "wall_s": num(wall), "mean_abs_log_ratio": num(err)}
 
 
-def balances(tr) -> dict:
-    """Energy and force balance of an engine trace, relative to the drive's work and force."""
-    resid = tr.work_drive[-1] + tr.work_recycle[-1] - tr.dissipated[-1] - tr.mech_energy[-1]
-    return {"energy_balance_rel": float(resid / tr.work_drive[-1]),
-            "force_balance_rel": float(np.mean(tr.F_t + tr.F_drag) / np.mean(tr.F_drive) - 1)}
+def run_scene(sc, quick, seed, trace, duration, progress):
+    """The scene's trace (run now unless given), its wall time and duration."""
+    if trace is None:
+        T = duration or (12.0 if quick else sc.run.duration)
+        tr, wall = timed(whole_run, sc.with_run(duration=T), seed=seed, progress=progress)
+    else:
+        tr, wall = trace, float(trace.metadata.get("wall_s", float("nan")))
+        T = float(tr.t[-1])
+    return tr, wall, T

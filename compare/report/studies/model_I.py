@@ -8,9 +8,9 @@ import numpy as np
 
 from reduced_models import spring_block
 
-from ..fits import fit_power_law, flag_mark
+from ...analysis.fits import fit_power_law, flag_mark
 from ..html import paragraphs, table
-from ..spectra import band_average, displacement_spectrum
+from ...analysis.spectra import band_average, displacement_spectrum
 from ..study import Figure, Study, StudyResult
 from ._common import band_ratios, log_err, ratio_range, ratio_rows, timed, timing
 

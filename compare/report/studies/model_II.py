@@ -8,9 +8,9 @@ import numpy as np
 
 from reduced_models import wear_particle
 
-from ..fits import fit_power_law
+from ...analysis.fits import fit_power_law
 from ..html import paragraphs, table
-from ..spectra import displacement_spectrum, force_series_spectrum
+from ...analysis.spectra import displacement_spectrum, force_series_spectrum
 from ..study import Figure, Study, StudyResult
 from ._common import band_ratios, log_err, ratio_range, ratio_rows, timed, timing
 

@@ -13,7 +13,6 @@ Three parts, each answered with numbers:
 from __future__ import annotations
 
 import html
-import io
 import math
 import time
 from dataclasses import replace
@@ -23,8 +22,8 @@ import numpy as np
 from reduced_models import multiscale as ms
 from reduced_models import spring_block as m1
 
-from ..fits import fit_power_law
-from ..spectra import band_average, displacement_spectrum, log_bin
+from ...analysis.fits import fit_power_law
+from ...analysis.spectra import band_average, displacement_spectrum, log_bin
 from ..study import Figure, Study, StudyResult
 
 __all__ = ["STUDY", "run", "measured_crossover", "strong_cases"]
@@ -70,19 +69,10 @@ def _band_ratios(spec, p, edges):
     return band_average(spec, edges) / band_average(spec, edges, ms.theory_spectrum(p, spec.omega))
 
 
-def _png(fig) -> bytes:
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-
-    FigureCanvasAgg(fig)
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=110)
-    return buf.getvalue()
-
-
 def _axes(n=1, width=6.4):
-    from matplotlib.figure import Figure as MplFigure
+    from .. import plots
 
-    fig = MplFigure(figsize=(width, 4.6))
+    fig = plots.new_figure(width, 4.6)
     axs = fig.subplots(1, n)
     return fig, np.atleast_1d(axs)
 
@@ -145,7 +135,7 @@ def _reference(quick, seed, out):
            f"seed the run reads {vs_I.min():.4f}-{vs_I.max():.4f} per band (closed forms: {vs_I_theory.min():.4f}-"
            f"{vs_I_theory.max():.4f}): the micro level's only visible effect is its share of the friction slope, "
            f"c = {p.m * p.eta1 + p.n_micro * p.m2 * p.eta3:.1f} instead of {p1.m * p1.eta1:.1f} N s/m per miniblock.")
-    return Figure("model_Ib_reference", _png(fig), cap)
+    return Figure("model_Ib_reference", _png_bytes(fig), cap)
 
 
 def _strong(quick, seed, out):
@@ -208,7 +198,7 @@ def _strong(quick, seed, out):
                for k, r in rows.items()) +
            f". Scaling: R 4x -> omega_x x{1 / scaling['omega_x_ratio_R_1000_over_250']:.2f} (predicted 2), v/a2 halved "
            f"-> x{scaling['omega_x_ratio_half_v_over_a2']:.2f} (predicted 0.5).")
-    return Figure("model_Ib_crossover", _png(fig), cap)
+    return Figure("model_Ib_crossover", _png_bytes(fig), cap)
 
 
 def _sensor(out):
@@ -261,7 +251,7 @@ def _sensor(out):
                                                   for k, v in rms.items()) +
            ". A wider-band sensor would see model I's roll-off (gamma 8 above omega_c, 6 above k0/(m eta0)), "
            "no micro signature: the micro contacts' own friction (omega3) filters their force before the block feels it.")
-    return Figure("model_Ib_sensor", _png(fig), cap)
+    return Figure("model_Ib_sensor", _png_bytes(fig), cap)
 
 
 def run(quick: bool, seed: int) -> StudyResult:
@@ -312,3 +302,9 @@ def run(quick: bool, seed: int) -> StudyResult:
 
 
 STUDY = Study(key="model_Ib", label="model Ib (multiscale)", run=run)
+
+
+def _png_bytes(fig) -> bytes:
+    from .. import plots
+
+    return plots.figure_png_bytes(fig)

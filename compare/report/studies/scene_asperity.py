@@ -8,17 +8,16 @@ import numpy as np
 
 from reduced_models import asperity_force
 
-from ..fits import fit_power_law
+from ...analysis.fits import fit_power_law
 from ..html import esc, paragraphs, table
-from ..spectra import band_average, displacement_spectrum, force_series_spectrum
+from ...analysis.spectra import band_average, displacement_spectrum, force_series_spectrum
 from ..study import Figure, StudyResult
-from ._common import balances, band_ratios, param_rows, ratio_rows, timing
+from ._common import balances, band_ratios, param_rows, ratio_rows, run_scene, timing
 
 
 def asperity_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult:
     from .. import plots
-    from ..extract import asperity_force_params, model_III_parameters
-    from .scenes import run_scene
+    from ...analysis.extract import asperity_force_params, model_III_parameters
 
     tr, wall, T = run_scene(sc, quick, seed, trace, duration, progress)
     nper = min(2**15, 1 << int(math.floor(math.log2(len(tr.t) / 1.5))))

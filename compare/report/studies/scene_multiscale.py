@@ -39,7 +39,7 @@ NAME = "pads_multiscale"
 def multiscale_parameters(trace, scenario=None) -> dict:
     """Model Ib's parameters of a ``pads_multiscale`` trace: model I's (``compare.extract``) plus the micro level,
     {name: {"value", "unit", "provenance", ...}} (module docstring). Raises ValueError naming what is missing."""
-    from ..extract import _friction_slope, model_I_parameters, scene_info
+    from ...analysis.extract import _friction_slope, model_I_parameters, scene_info
 
     info = scene_info(trace, scenario)
     micro = info.get("micro")
@@ -92,9 +92,9 @@ def scene_against_model_Ib(name, sc, quick, seed, trace=None) -> StudyResult:
     from reduced_models import spring_block as m1
 
     from .. import plots
-    from ..extract import spring_block_params
-    from ..fits import fit_power_law
-    from ..spectra import displacement_spectrum
+    from ...analysis.extract import spring_block_params
+    from ...analysis.fits import fit_power_law
+    from ...analysis.spectra import displacement_spectrum
     from ..study import Figure
     from ._common import band_ratios, ratio_range, ratio_rows, timed, whole_run
 

@@ -33,7 +33,7 @@ from reduced_models import spring_block as m1
 from reduced_models.multiscale_fit import RenewalLevel, fit_renewal_levels, rigid_micro_params
 
 from ..html import esc, paragraphs, table
-from ..spectra import band_average, displacement_spectrum, force_series_spectrum
+from ...analysis.spectra import band_average, displacement_spectrum, force_series_spectrum
 from ..study import Figure, Study, StudyResult
 from ._common import band_ratios, timed, timing, whole_run
 
@@ -70,7 +70,7 @@ def two_scale_comparison(tr, force_average_dt: float | None = None, sampled=None
     (s), and their spectrum is divided by the average's exact gain sinc^2(omega dt / 2); None: samples.
     ``sampled``: the same run with its pad forces sampled once per output step (what ``frictionnoise run`` records),
     for model I exactly as the report builds it; default ``tr``."""
-    from ..extract import model_I_parameters, spring_block_params
+    from ...analysis.extract import model_I_parameters, spring_block_params
 
     dt = float(tr.t[1] - tr.t[0])
     nper = min(2**12, 1 << int(math.floor(math.log2(len(tr.t) / 3))))

@@ -6,9 +6,9 @@ import math
 
 import numpy as np
 
-from ..fits import fit_power_law
+from ...analysis.fits import fit_power_law
 from ..html import esc, paragraphs, table
-from ..spectra import band_average, displacement_spectrum, force_series_spectrum
+from ...analysis.spectra import band_average, displacement_spectrum, force_series_spectrum
 from ..study import Figure, StudyResult
 from ._common import balances, require_band, timed, timing, whole_run
 
@@ -17,7 +17,7 @@ def wear_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult
     from engine_sim.timing import step_costs
 
     from .. import plots
-    from ..wear import duration_summary, episodes, model_II_from_episodes
+    from ...analysis.episodes import duration_summary, episodes, model_II_from_episodes
 
     T = duration or (8.0 if quick else sc.run.duration)
     if trace is not None:

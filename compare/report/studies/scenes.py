@@ -11,27 +11,15 @@ from functools import partial
 
 import numpy as np
 
-from ..fits import fit_power_law
+from ...analysis.fits import fit_power_law
 from ..html import esc, paragraphs, table
-from ..spectra import displacement_spectrum, force_series_spectrum
+from ...analysis.spectra import displacement_spectrum, force_series_spectrum
 from ..study import Figure, Study, StudyResult
-from ._common import (balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, timed, timing,
-                      whole_run)
+from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
 
 # relative wall cost, to hand the longest studies to workers first (measured in the quick report: the wear pair
 # 18 s, the rough profile 9 s, the asperity field 7 s, every other stage 0.5-3 s)
 _COST_HINT = {"pads_with_wear": 18.0, "pads_rough_profile": 9.0, "asperity_field": 7.0}
-
-
-def run_scene(sc, quick, seed, trace, duration, progress):
-    """The scene's trace (run now unless given), its wall time and duration."""
-    if trace is None:
-        T = duration or (12.0 if quick else sc.run.duration)
-        tr, wall = timed(whole_run, sc.with_run(duration=T), seed=seed, progress=progress)
-    else:
-        tr, wall = trace, float(trace.metadata.get("wall_s", float("nan")))
-        T = float(tr.t[-1])
-    return tr, wall, T
 
 
 def scene_result(name, sc, quick, seed, trace=None, duration=None, progress=None) -> StudyResult:
@@ -53,7 +41,7 @@ def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
     from reduced_models import spring_block
 
     from .. import plots
-    from ..extract import model_I_parameters, spring_block_params
+    from ...analysis.extract import model_I_parameters, spring_block_params
 
     tr, wall, T = run_scene(sc, quick, seed, trace, duration, progress)
     nper = min(2**12 if quick else 2**13, 1 << int(math.floor(math.log2(len(tr.t) / 3))))

@@ -13,7 +13,7 @@ def run(quick: bool, seed: int) -> StudyResult:
     from engine_sim import load_scenario, shipped_scenarios
 
     from .. import plots
-    from ..workprec import engine_work_precision
+    from ...analysis.work_precision import engine_work_precision
 
     sc = load_scenario(shipped_scenarios()["pads_friction_patches"])
     rows = engine_work_precision(sc, SETTINGS, duration=8.0)
