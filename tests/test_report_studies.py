@@ -221,7 +221,8 @@ def test_process_pool_returns_results_and_ends_its_workers_on_an_interrupt():
 
 
 def test_each_shipped_scene_goes_to_the_study_of_its_layout(monkeypatch):
-    # compare.studies.scenes: wear particles -> the paired runs and model II (scene_wear), sparse asperities -> model
+    # the parts name the model (compare.report.studies.scenes.fitting_part): wear particles -> the paired runs and
+    # model II (scene_wear), sparse asperities -> model
     # III (scene_asperity, 16 s quick runs), every other substrate -> model I. The studies' bodies run in the slow
     # tier (quick report, install test): a wear or asperity scene costs 4-7 s of CPU even when too short to fit.
     from compare.report.studies import scene_asperity, scene_wear, scenes

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from compare.analysis.assertions import SpectralAssertionError, assert_spectral_slope
+from compare.testing import SpectralAssertionError, assert_spectral_slope
 from tests.synthetic import power_law_series
 
 

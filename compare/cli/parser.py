@@ -61,11 +61,13 @@ def build_parser() -> argparse.ArgumentParser:
                           "they cost at most 5 %% of the stepping); part of the run's definition, like --seed")
     run.set_defaults(func=cmd_run)
 
-    cmp_ = add("compare", "report one scene (scenario TOML or trace .npz) against the reduced model that fits it")
-    cmp_.add_argument("source", help="scenario TOML file, shipped name, or trace .npz written by `frictionnoise run`")
+    cmp_ = add("compare", "report one scene (scenario TOML or trace .npz) against the reduced model that fits it, or "
+                          "one registered reduced model (model_I, model_Ib, ...) against its closed form")
+    cmp_.add_argument("source", help="scenario TOML file, shipped name, trace .npz written by `frictionnoise run`, or "
+                                     "the name of a registered reduced model")
     cmp_.add_argument("-o", "--output", default=None, metavar="DIR",
                       help="output folder for index.html, summary.json and figures/ (default: compare-<name>)")
-    cmp_.add_argument("--duration", type=float, default=None, help="simulated seconds when running a scenario")
+    cmp_.add_argument("--duration", type=float, default=None, help="simulated seconds when running a scenario or a model (default: its own)")
     cmp_.add_argument("--seed", type=int, default=None,
                       help="random seed of the scene run and of the reduced model's run (default: the scenario's)")
     cmp_.set_defaults(func=cmd_compare)

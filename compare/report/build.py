@@ -13,7 +13,7 @@ from reduced_models._version import package_version
 from .html import paragraphs, summary_of, table
 from .study import StudyResult
 
-__all__ = ["build_report", "build_scene_report", "run_studies"]
+__all__ = ["build_report", "build_scene_report", "build_model_report", "run_studies"]
 
 CONVENTIONS = "C(omega) two-sided in angular frequency, eq. (2); gamma_err = 95 % half-width"
 
@@ -124,4 +124,17 @@ def build_scene_report(sc, trace=None, duration=None, seed=None, progress=None):
         "Run", ["what", "run", "wall (s)", "mean |ln ratio| vs model I"],
         [_row(r) for r in res.timings]))
     results = [res, *extra, speed]
+    return results, summary_of(results, header)
+
+
+def build_model_report(name: str, seed: int = 0, duration: float | None = None):
+    """Results and summary for one registered reduced model against its closed form (``frictionnoise compare
+    MODEL``)."""
+    from .studies.model_check import model_result
+
+    header = {"version": package_version(), "quick": False, "seed": seed, "conventions": CONVENTIONS}
+    res = model_result(name, seed=seed, duration=duration)
+    speed = StudyResult("timings", "Speed", list(res.timings), html=table(
+        "Run", ["what", "run", "wall (s)", "mean |ln ratio| vs closed form"], [_row(r) for r in res.timings]))
+    results = [res, speed]
     return results, summary_of(results, header)

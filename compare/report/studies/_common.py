@@ -88,7 +88,7 @@ def timing(model: str, run: str, wall, err) -> dict:
 def run_scene(sc, quick, seed, trace, duration, progress):
     """The scene's trace (run now unless given), its wall time and duration."""
     if trace is None:
-        T = duration or (12.0 if quick else sc.run.duration)
+        T = duration or (sc.substrate_part.quick_duration if quick else sc.run.duration)
         tr, wall = timed(whole_run, sc.with_run(duration=T), seed=seed, progress=progress)
     else:
         tr, wall = trace, float(trace.metadata.get("wall_s", float("nan")))

@@ -19,7 +19,7 @@ def wear_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult
     from .. import plots
     from ...analysis.episodes import duration_summary, episodes, model_II_from_episodes
 
-    T = duration or (8.0 if quick else sc.run.duration)
+    T = duration or (sc.wear.quick_duration if quick else sc.run.duration)
     if trace is not None:
         tw, wall_w = trace, float(trace.metadata.get("wall_s", float("nan")))
         T = float(tw.t[-1])

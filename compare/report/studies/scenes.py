@@ -1,6 +1,7 @@
-"""Every shipped scene against the reduced model that fits its layout, built from the scene's own measured
-parameters: model I for pads on tracks (here), model III for a sole on sparse asperities
-(:mod:`.scene_asperity`), paired runs and model II for wear particles (:mod:`.scene_wear`).
+"""Every shipped scene against the reduced model that fits it, built from the scene's own measured parameters.
+The scene's parts name the model (``reduced_model``) and the quick run's length (``quick_duration``): model I for
+pads on tracks (here), model III for a sole on sparse asperities (:mod:`.scene_asperity`), paired runs and model II
+for wear particles (:mod:`.scene_wear`).
 
 One study per shipped scenario (``STUDIES``); :func:`scene_result` also serves ``frictionnoise compare``.
 """
@@ -22,19 +23,28 @@ from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ra
 _COST_HINT = {"pads_with_wear": 18.0, "pads_rough_profile": 9.0, "asperity_field": 7.0}
 
 
+def fitting_part(sc):
+    """The scene's part that names the reduced model fitting it (``reduced_model``, a key of
+    ``reduced_models.MODELS``) and the recorded seconds of a quick comparison (``quick_duration``): its wear
+    particles when it has any, else its substrate."""
+    return next(part for part in (sc.wear, sc.substrate_part) if part.reduced_model)
+
+
+# each reduced model's comparison with a scene: (module of this package, function), looked up when called
+COMPARISONS = {"model_I": ("scenes", "_model_I_result"), "model_II": ("scene_wear", "wear_result"),
+               "model_III": ("scene_asperity", "asperity_result")}
+
+
 def scene_result(name, sc, quick, seed, trace=None, duration=None, progress=None) -> StudyResult:
-    """One scenario against the reduced model that fits its layout (runs it unless given a trace)."""
-    if sc.wear.count > 0:
-        from .scene_wear import wear_result
-        return wear_result(name, sc, quick, seed, trace, duration, progress)
-    if sc.substrate.kind == "asperities":
-        from .scene_asperity import asperity_result
-        # its corner 2 pi v / w lies near 4 rad/s: resolving below it takes 8 s segments
-        return asperity_result(name, sc, quick, seed, trace, duration or (16.0 if quick else None), progress)
-    if sc.substrate.kind in ("self_affine", "line_scan"):
-        # quick: 8 s, not 12: streaming its short segments makes it ~1 wall s per simulated s (4x the patches)
-        duration = duration or (8.0 if quick else None)
-    return _model_I_result(name, sc, quick, seed, trace, duration, progress)
+    """One scenario against the reduced model its parts name (runs it unless given a trace)."""
+    from importlib import import_module
+
+    part = fitting_part(sc)
+    if part.reduced_model not in COMPARISONS:
+        raise ValueError(f"scene {name}: no comparison with {part.reduced_model} (comparisons: {', '.join(COMPARISONS)})")
+    module, function = COMPARISONS[part.reduced_model]
+    compare = getattr(import_module(f".{module}", __package__), function)
+    return compare(name, sc, quick, seed, trace, duration or (part.quick_duration if quick else None), progress)
 
 
 def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult:
@@ -94,7 +104,7 @@ def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
         "Models II and III do not apply to this scene: it has no wear particles, and its contacts are spring-mounted "
         "pads rather than a rigid flat block on sparse asperities.",
     ]
-    if sc.drive.kind == "leonardo":
+    if sc.drive_part.extra_mass > 0:  # a drive with a body of its own on a rope (Leonardo's slider)
         parts.append(
             f"Leonardo's slider: model I uses M = block + hanging mass = {ex['M']['value']:.4g} kg (the rope taut). Above "
             f"the bare block's resonance on its pads, sqrt(N k0 / M_block) = {math.sqrt(ex['N']['value'] * sc.pads.k0 / sc.block.M):.0f} "
