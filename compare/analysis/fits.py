@@ -246,6 +246,45 @@ def _curvature_score(lnw: np.ndarray, P: np.ndarray, gamma: float, lnA: float, c
     return score / sqq, score / math.sqrt(sqq / count)
 
 
+def _given_band(spectrum: Spectrum, band, bins_per_decade: int):
+    """(lo, hi, log bins, ln omega, ln C, var, first bin, last bin) of a band the caller gives (rad/s)."""
+    lo, hi = check_band(spectrum, band)
+    b, lnw, lnC, var = _binned(spectrum, bins_per_decade)
+    keep = (b.omega >= lo) & (b.omega <= hi)
+    if keep.sum() < 3:
+        raise ValueError(f"band ({lo:.4g}, {hi:.4g}) rad/s holds fewer than 3 log bins; widen it")
+    return lo, hi, b, lnw, lnC, var, int(np.argmax(keep)), int(len(keep) - 1 - np.argmax(keep[::-1]))
+
+
+def _automatic_band(spectrum: Spectrum, bins_per_decade: int, min_decades: float, notes: list):
+    """(lo, hi, log bins, ln omega, ln C, var, first bin, last bin) of the straightest band of ``min_decades``
+    between 4 frequency steps and a sixteenth of the Nyquist frequency (rad/s); what it had to give up goes to
+    ``notes``."""
+    raw_step = spectrum.omega[0] if np.all(spectrum.n_avg == 1) else spectrum.omega_min
+    dt = spectrum.provenance.get("dt")
+    top = math.pi / dt / 16 if dt else spectrum.omega_max
+    lo, hi = 4 * raw_step, min(top, spectrum.omega_max)
+    if hi <= lo * 1.5:
+        raise ValueError(
+            f"too few resolved frequencies for an automatic band ({lo:.4g}-{hi:.4g} rad/s); "
+            "use a longer record or a shorter nperseg"
+        )
+    b, lnw, lnC, var = _binned(spectrum, bins_per_decade)
+    inside = (b.omega >= lo) & (b.omega <= hi)
+    idx = np.flatnonzero(inside)
+    avail = (lnw[idx[-1]] - lnw[idx[0]]) / math.log(10) if len(idx) > 1 else 0.0
+    if len(idx) < 4:
+        raise ValueError("too few log bins for an automatic band; pass band= explicitly")
+    md = min(min_decades, avail)
+    if md < min_decades:
+        notes.append(f"only {avail:.2f} decades resolved; fitted over all of them")
+    ii, jj, ok = _auto_band(lnw[idx], lnC[idx], var[idx], b.n_avg[idx].astype(float), md)
+    if not ok:
+        notes.append("no band of the requested width is a straight power law within its scatter; "
+                     "reporting the straightest one")
+    return lo, hi, b, lnw, lnC, var, int(idx[ii]), int(idx[jj])
+
+
 def fit_power_law(spectrum: Spectrum, band=None, *, bins_per_decade: int = 10,
                   min_decades: float = 1.0, method: str | None = None) -> PowerLawFit:
     """Fit C(omega) = A omega^-gamma over ``band`` (rad/s), or over an automatically chosen band.
@@ -269,38 +308,10 @@ def fit_power_law(spectrum: Spectrum, band=None, *, bins_per_decade: int = 10,
         raise ValueError("the Whittle fit needs the raw periodogram, which this spectrum does not carry "
                          "(made from binned or stored data); use method='lsq'")
     if band is not None:
-        lo, hi = check_band(spectrum, band)
-        b, lnw, lnC, var = _binned(spectrum, bins_per_decade)
-        keep = (b.omega >= lo) & (b.omega <= hi)
-        if keep.sum() < 3:
-            raise ValueError(f"band ({lo:.4g}, {hi:.4g}) rad/s holds fewer than 3 log bins; widen it")
-        i, j = int(np.argmax(keep)), int(len(keep) - 1 - np.argmax(keep[::-1]))
-        auto = False
+        lo, hi, b, lnw, lnC, var, i, j = _given_band(spectrum, band, bins_per_decade)
     else:
-        raw_step = spectrum.omega[0] if np.all(spectrum.n_avg == 1) else spectrum.omega_min
-        dt = spectrum.provenance.get("dt")
-        top = math.pi / dt / 16 if dt else spectrum.omega_max
-        lo, hi = 4 * raw_step, min(top, spectrum.omega_max)
-        if hi <= lo * 1.5:
-            raise ValueError(
-                f"too few resolved frequencies for an automatic band ({lo:.4g}-{hi:.4g} rad/s); "
-                "use a longer record or a shorter nperseg"
-            )
-        b, lnw, lnC, var = _binned(spectrum, bins_per_decade)
-        inside = (b.omega >= lo) & (b.omega <= hi)
-        idx = np.flatnonzero(inside)
-        avail = (lnw[idx[-1]] - lnw[idx[0]]) / math.log(10) if len(idx) > 1 else 0.0
-        if len(idx) < 4:
-            raise ValueError("too few log bins for an automatic band; pass band= explicitly")
-        md = min(min_decades, avail)
-        if md < min_decades:
-            notes.append(f"only {avail:.2f} decades resolved; fitted over all of them")
-        ii, jj, ok = _auto_band(lnw[idx], lnC[idx], var[idx], b.n_avg[idx].astype(float), md)
-        if not ok:
-            notes.append("no band of the requested width is a straight power law within its scatter; "
-                         "reporting the straightest one")
-        i, j = int(idx[ii]), int(idx[jj])
-        auto = True
+        lo, hi, b, lnw, lnC, var, i, j = _automatic_band(spectrum, bins_per_decade, min_decades, notes)
+    auto = band is None
     sl = slice(i, j + 1)
     npts = j - i + 1
     # Least squares on the binned ordinates (also the chi-square that both methods report).

@@ -105,6 +105,58 @@ class Spectrum:
 
 
 # ----------------------------------------------------------------------------- validation
+def _detrended(t, y, detrend: str, quantity: str, name: str, steps: list):
+    """(z, v): ``y`` less its fitted line y0 + v t ("linear"), its mean ("constant", v = 0) or as is ("none");
+    what was removed goes to ``steps``."""
+    if detrend == "linear":
+        v, y0 = _line_fit(t - t[0], y)
+        z = y - (y0 + v * (t - t[0]))
+        rate_unit = {"x": "m/s", "F": "N/s", "mu": "1/s"}.get(quantity, "per s")
+        steps.append(f"removed fitted line {name}0 + v t, v = {v:.6g} {rate_unit}")
+    elif detrend == "constant":
+        v = 0.0
+        z = y - y.mean()
+        steps.append(f"removed mean {y.mean():.6g}")
+    elif detrend == "none":
+        v = 0.0
+        z = y
+    else:
+        raise ValueError(f"detrend must be 'linear', 'constant' or 'none' (got {detrend!r})")
+    return z, v
+
+
+def _prewhitening_order(prewhiten, z, dt: float, steps: list):
+    """(k, pilot gamma or None, automatic): the number of differences taken before the Welch estimate, given
+    (0-6) or chosen from a pilot slope of ``z`` ("auto")."""
+    auto = prewhiten == "auto"
+    pilot = None
+    if auto:
+        pilot = _pilot_gamma(z, dt)
+        k = _auto_order(pilot)
+        steps.append(f"pilot slope gamma ~ {pilot:.2f} -> pre-whitening order {k}")
+    else:
+        try:
+            k = int(prewhiten)
+        except (TypeError, ValueError):
+            raise ValueError(f"prewhiten must be a non-negative integer or 'auto' (got {prewhiten!r})") from None
+        if not 0 <= k <= 6:
+            raise ValueError(f"prewhiten must be between 0 and 6 (got {k})")
+    return k, pilot, auto
+
+
+def _welch_recoloured(z, dt: float, nperseg: int, k: int):
+    """(z differenced k times, segment length, segments, omega, C): the Welch estimate of the differenced series
+    in the eq. (2) convention, divided by the difference filter's gain."""
+    zk = np.diff(z, n=k) / dt**k if k else z
+    nps = min(nperseg, len(zk))
+    f, S, n_segments = _welch(zk, dt, nps)
+    omega = 2.0 * np.pi * f
+    C = S / (4.0 * np.pi)
+    if k:
+        C = C / _difference_gain(omega, dt, k)
+    return zk, nps, n_segments, omega, C
+
+
 def series_spectrum(
     t,
     y,
@@ -143,47 +195,10 @@ def series_spectrum(
         raise ValueError(f"only {n} samples, fewer than one segment (nperseg = {nperseg})")
 
     steps = []
-    if detrend == "linear":
-        v, y0 = _line_fit(t - t[0], y)
-        z = y - (y0 + v * (t - t[0]))
-        rate_unit = {"x": "m/s", "F": "N/s", "mu": "1/s"}.get(quantity, "per s")
-        steps.append(f"removed fitted line {name}0 + v t, v = {v:.6g} {rate_unit}")
-    elif detrend == "constant":
-        v = 0.0
-        z = y - y.mean()
-        steps.append(f"removed mean {y.mean():.6g}")
-    elif detrend == "none":
-        v = 0.0
-        z = y
-    else:
-        raise ValueError(f"detrend must be 'linear', 'constant' or 'none' (got {detrend!r})")
-
-    auto = prewhiten == "auto"
-    pilot = None
-    if auto:
-        pilot = _pilot_gamma(z, dt)
-        k = _auto_order(pilot)
-        steps.append(f"pilot slope gamma ~ {pilot:.2f} -> pre-whitening order {k}")
-    else:
-        try:
-            k = int(prewhiten)
-        except (TypeError, ValueError):
-            raise ValueError(f"prewhiten must be a non-negative integer or 'auto' (got {prewhiten!r})") from None
-        if not 0 <= k <= 6:
-            raise ValueError(f"prewhiten must be between 0 and 6 (got {k})")
+    z, v = _detrended(t, y, detrend, quantity, name, steps)
+    k, pilot, auto = _prewhitening_order(prewhiten, z, dt, steps)
     nperseg0 = nperseg
-
-    def welch_recoloured(k):
-        zk = np.diff(z, n=k) / dt**k if k else z
-        nps = min(nperseg0, len(zk))
-        f, S, n_segments = _welch(zk, dt, nps)
-        omega = 2.0 * np.pi * f
-        C = S / (4.0 * np.pi)
-        if k:
-            C = C / _difference_gain(omega, dt, k)
-        return zk, nps, n_segments, omega, C
-
-    zk, nperseg, n_segments, omega, C = welch_recoloured(k)
+    zk, nperseg, n_segments, omega, C = _welch_recoloured(z, dt, nperseg0, k)
     if auto:
         # The pilot (a short Hann estimate of the velocity) can miss by one order near the k boundaries
         # (gamma 6 read as 7.1-7.4 in 10 % of 2^16-sample series), and an over-differenced series (a rising
@@ -196,7 +211,7 @@ def series_spectrum(
             if k2 != k:
                 steps.append(f"slope of the order-{k} estimate gamma ~ {refined:.2f} -> pre-whitening order {k2}")
                 k = k2
-                zk, nperseg, n_segments, omega, C = welch_recoloured(k)
+                zk, nperseg, n_segments, omega, C = _welch_recoloured(z, dt, nperseg0, k)
     if k:
         steps.append(f"differenced {k}x (divided by dt^{k})")
     steps.append(f"Welch: Hann window, nperseg = {nperseg}, 50 % overlap, {n_segments} segments")

@@ -3,6 +3,8 @@ substrate), the trap/release episodes, and model II (eq. B2) built from them aga
 from __future__ import annotations
 
 import math
+from operator import attrgetter
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -13,10 +15,11 @@ from ..study import Figure, StudyResult
 from ._common import balances, require_band, timed, timing, whole_run
 
 
-def wear_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult:
+def _paired(name, sc, quick, seed, trace, duration, progress) -> SimpleNamespace:
+    """The paired runs (with and without particles, same seed and substrate) and what is measured on them:
+    spectra, fits, per-band ratios, episodes, model II built from them, balances and the interleaved step cost."""
     from engine_sim.timing import step_costs
 
-    from .. import plots
     from ...analysis.episodes import duration_summary, episodes, model_II_from_episodes
 
     T = duration or (sc.wear.quick_duration if quick else sc.run.duration)
@@ -71,15 +74,18 @@ def wear_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult
         "us_per_step": tw.metadata["us_per_step"], "us_per_step_without": t0.metadata["us_per_step"],
         "cost_ratio_particles": cost_ratio, "cost_us_per_step_interleaved": [us_w, us_0],
     }
-    w = np.logspace(np.log10(sp.omega_min), np.log10(sp.omega_max), 200)
-    fig1 = plots.spectrum_figure([(specs["with"], f"with {sc.wear.count} particles"), (specs["without"], "without (same seed, substrate)")],
-                                 fits=[(fits["with"], "with "), (fits["without"], "without ")], band=band,
-                                 title=f"Scene {name}: paired runs, {T:g} s each")
-    fig2 = plots.spectrum_figure([(sp, "particles' summed force on the pads"), (fspec["with"], "friction contact force, with"),
-                                  (fspec["without"], "friction contact force, without")],
-                                 [(w, model_II_from_episodes(ep, float(tw.t[-1]), w), "model II (B2) from the measured episodes")],
-                                 ylabel=r"$C_F$ (N$^2$ s)", title="Force spectra and model II built from the episodes")
-    fig3 = plots.episode_histogram_figure(ep, "Trap/release episodes (all particles)")
+    return SimpleNamespace(T=T, tw=tw, t0=t0, wall_w=wall_w, wall_0=wall_0, specs=specs, fspec=fspec, fits=fits,
+                           band=band, dg=dg, dg_err=dg_err, level=level, levelF=levelF, ep=ep, dur=dur, sp=sp,
+                           r_b2=r_b2, fit_p=fit_p, r_dCF=r_dCF, wm=wm, states=states, us_w=us_w, us_0=us_0,
+                           cost_ratio=cost_ratio, band_rows=band_rows, v0=v0, vw=vw, d=d)
+
+
+def _text(name, sc, m) -> str:
+    """The section's prose and its per-band table."""
+    (T, tw, t0, wall_w, wall_0, fits, band, dg, dg_err, level, dur, r_b2, fit_p, r_dCF, wm, states, us_w, us_0,
+     cost_ratio, band_rows, v0, vw, d) = attrgetter(
+        "T", "tw", "t0", "wall_w", "wall_0", "fits", "band", "dg", "dg_err", "level", "dur", "r_b2", "fit_p", "r_dCF",
+        "wm", "states", "us_w", "us_0", "cost_ratio", "band_rows", "v0", "vw", "d")(m)
     tr_, mv_ = dur.get("trapped", {}), dur.get("moving", {})
     met = dg - dg_err >= 0.4
     text = paragraphs([
@@ -121,6 +127,26 @@ def wear_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult
                                            "particle force / B2", "(C_F with - without) / B2"],
                [[f"{b['band'][0]:.3g} - {b['band'][1]:.3g}", f"{b['C_x_ratio']:.3f}", f"{b['C_F_ratio']:.3f}",
                  f"{b['particle_force_over_B2']:.3f}", f"{b['delta_C_F_over_B2']:.3f}"] for b in band_rows])
+    return text
+
+
+def _figures(name, sc, m) -> tuple:
+    """The paired C_x spectra, the force spectra beside model II, and the episodes' histogram."""
+    from .. import plots
+    from ...analysis.episodes import model_II_from_episodes
+
+    (T, tw, specs, fspec, fits, band, dg, dg_err, level, ep, dur, sp, r_b2, fit_p) = attrgetter(
+        "T", "tw", "specs", "fspec", "fits", "band", "dg", "dg_err", "level", "ep", "dur", "sp", "r_b2", "fit_p")(m)
+    w = np.logspace(np.log10(sp.omega_min), np.log10(sp.omega_max), 200)
+    fig1 = plots.spectrum_figure([(specs["with"], f"with {sc.wear.count} particles"), (specs["without"], "without (same seed, substrate)")],
+                                 fits=[(fits["with"], "with "), (fits["without"], "without ")], band=band,
+                                 title=f"Scene {name}: paired runs, {T:g} s each")
+    fig2 = plots.spectrum_figure([(sp, "particles' summed force on the pads"), (fspec["with"], "friction contact force, with"),
+                                  (fspec["without"], "friction contact force, without")],
+                                 [(w, model_II_from_episodes(ep, float(tw.t[-1]), w), "model II (B2) from the measured episodes")],
+                                 ylabel=r"$C_F$ (N$^2$ s)", title="Force spectra and model II built from the episodes")
+    fig3 = plots.episode_histogram_figure(ep, "Trap/release episodes (all particles)")
+    tr_, mv_ = dur.get("trapped", {}), dur.get("moving", {})
     figures = (
         Figure(f"scene_{name}", plots.figure_png_bytes(fig1),
                f"Scene {name}: C_x with and without {sc.wear.count} particles (paired runs, {T:g} s each, same seed and "
@@ -137,6 +163,13 @@ def wear_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult
                f"{1e3 * mv_.get('tau_median', float('nan')):.1f} ms) and idle episodes: durations do not spread "
                "log-uniformly over decades."),
     )
-    return StudyResult(f"scenarios/{name}", f"Scene: {name}", d, figures, text,
+    return figures
+
+
+def wear_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult:
+    """A scene with wear particles against the same scene without them, and model II built from its episodes."""
+    m = _paired(name, sc, quick, seed, trace, duration, progress)
+    T, wall_w, wall_0 = m.T, m.wall_w, m.wall_0
+    return StudyResult(f"scenarios/{name}", f"Scene: {name}", m.d, _figures(name, sc, m), _text(name, sc, m),
                        (timing(f"scene {name} (paired)", f"2 x {T:g} s, dt = {sc.run.dt:g} s, {sc.run.iterations} iterations",
                                f"{wall_w + wall_0:.2f}", "n/a (paired comparison)"),))
