@@ -21,7 +21,8 @@ import math
 
 import numpy as np
 
-__all__ = ["model_I_parameters", "spring_block_params", "model_III_parameters", "asperity_force_params", "scene_info"]
+__all__ = ["model_I_parameters", "spring_block_params", "model_III_parameters", "asperity_force_params", "scene_info",
+           "friction_slope"]
 
 
 def _correlation_length(x: np.ndarray, f: np.ndarray, max_lag_distance: float) -> float:
@@ -53,7 +54,7 @@ def scene_info(trace, scenario=None) -> dict:
     return info
 
 
-def _friction_slope(law: dict, v: float) -> float:
+def friction_slope(law: dict, v: float) -> float:
     """dF/dv of the friction law per pad at speed v (N s/m): c, plus b N_pad / (v_c + v) for the log law."""
     extra = law["b"] * law["load_per_pad"] / (law["v_c"] + v) if law["law"] == "log" else 0.0
     return law["c"] + extra
@@ -71,7 +72,7 @@ def model_I_parameters(trace, scenario=None) -> dict:
     rms = float(np.mean(np.std(f, axis=0)))
     Lc = _correlation_length(trace.x, f, 10 * info["length_scale"])
     a = 12.0 / 7.0 * Lc
-    c_law = _friction_slope(info["friction_law"], v)
+    c_law = friction_slope(info["friction_law"], v)
     c_meas = float(np.mean(trace.F_drag) / (N_contact * v))
     M = info["effective_mass"]
     if M != info["block_mass"]:  # Leonardo's slider: the taut rope moves the hanging mass with the block
@@ -141,7 +142,7 @@ def model_III_parameters(trace, scenario=None) -> dict:
         "n_rel_std": {"value": float(np.std(trace.n_pairs) / N), "unit": "", "provenance": "relative std of the number of contacts"},
         "v": {"value": v, "unit": "m/s", "provenance": "block displacement / time"},
         "M": {"value": info["block_mass"], "unit": "kg", "provenance": "scenario"},
-        "omega_star": {"value": info["pads"]["N"] * _friction_slope(info["friction_law"], v) / info["block_mass"], "unit": "rad/s",
+        "omega_star": {"value": info["pads"]["N"] * friction_slope(info["friction_law"], v) / info["block_mass"], "unit": "rad/s",
                        "provenance": "N c / M: viscous response below, inertial above"},
     }
 

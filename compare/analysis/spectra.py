@@ -30,15 +30,23 @@ __all__ = [
     "friction_coefficient_spectrum",
     "rms_from_spectrum",
     "log_bin",
+    "rescaled",
     "band_average",
     "average_spectra",
     "G_STANDARD",
 ]
 
 from frictionnoise import G as G_STANDARD  # noqa: E402  (m/s^2, the paper's g, defined once)
-from ._estimators import (  # noqa: E402
-    _as_series, _auto_order, _default_nperseg, _difference_gain, _line_fit, _periodogram, _pilot_gamma, _welch,
-    _welch_dof,
+from .estimators import (  # noqa: E402
+    as_series as _as_series,
+    auto_order as _auto_order,
+    default_nperseg as _default_nperseg,
+    difference_gain as _difference_gain,
+    line_fit as _line_fit,
+    periodogram as _periodogram,
+    pilot_gamma as _pilot_gamma,
+    welch as _welch,
+    welch_dof as _welch_dof,
 )
 
 
@@ -264,7 +272,7 @@ def force_series_spectrum(t, F, *, prewhiten: int | str = "auto", nperseg: int |
                            nperseg=nperseg, name="F")
 
 
-def _rescaled(spec: Spectrum, factor, quantity: str, unit: str, step: str) -> Spectrum:
+def rescaled(spec: Spectrum, factor, quantity: str, unit: str, step: str) -> Spectrum:
     """Multiply C (and the raw periodogram) by ``factor(omega)``."""
     prov = dict(spec.provenance)
     prov["steps"] = list(prov.get("steps", [])) + [step]
@@ -279,7 +287,7 @@ def force_spectrum(spectrum: Spectrum, mass: float) -> Spectrum:
         raise ValueError(f"force_spectrum needs a displacement spectrum (got quantity {spectrum.quantity!r})")
     if not mass > 0:
         raise ValueError(f"mass must be positive (got {mass!r})")
-    return _rescaled(spectrum, lambda w: mass**2 * w**4, "F", "N^2 s",
+    return rescaled(spectrum, lambda w: mass**2 * w**4, "F", "N^2 s",
                      f"C_F = M^2 omega^4 C_x with M = {mass:g} kg  [eq. (3)]")
 
 
@@ -289,7 +297,7 @@ def friction_coefficient_spectrum(spectrum: Spectrum, g: float = G_STANDARD) -> 
         raise ValueError(
             f"friction_coefficient_spectrum needs a displacement spectrum (got quantity {spectrum.quantity!r})"
         )
-    return _rescaled(spectrum, lambda w: w**4 / g**2, "mu", "s",
+    return rescaled(spectrum, lambda w: w**4 / g**2, "mu", "s",
                      f"C_mu = omega^4 C_x / g^2 with g = {g:g} m/s^2  [section 2]")
 
 

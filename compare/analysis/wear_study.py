@@ -72,8 +72,8 @@ def _nperseg(n: int) -> int:
     """Welch segment length: the pipeline's default, raised to 2^floor(log2(n / 2)) up to 2048 samples, so a short
     run (3 s at 1 ms) resolves the band's bottom (3 v/a = 15 rad/s needs segments of 0.42 s or more). The gamma fit
     itself is Whittle's, on the raw periodogram, whatever the segment length."""
-    from ._estimators import _default_nperseg
-    return max(_default_nperseg(n), min(2048, 2 ** int(math.floor(math.log2(max(n, 2) / 2)))))
+    from .estimators import default_nperseg
+    return max(default_nperseg(n), min(2048, 2 ** int(math.floor(math.log2(max(n, 2) / 2)))))
 
 
 def task_stats(tr, sc, band) -> dict:

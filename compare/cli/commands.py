@@ -38,10 +38,6 @@ def cmd_sweep(args) -> int:
     if not 0 < args.connect_timeout <= 3600:
         raise UserError(f"--connect-timeout must be in (0, 3600] seconds (got {args.connect_timeout})")
     out = output_dir(args.output, f"sweep-{spec.name}", "index.html, summary.json and its task cache")
-    if spec.target != "scenario":  # its tasks run the reduced models, in dask's processes
-        from .compile_notice import announce_cold
-
-        announce_cold()
     bar = tqdm(total=0, desc=spec.name, unit="task", file=sys.stderr, disable=not sys.stderr.isatty())
 
     def progress(done, total):
@@ -342,16 +338,13 @@ def cmd_report(args) -> int:
         raise UserError(f"--workers must be at least 1 (got {args.workers})")
     workers = args.workers or usable_cores(cap=4)
     chosen = studies.selected(args.quick)
-    from contextlib import nullcontext
+    from .compile_notice import announcer, compile_notice
 
-    from .compile_notice import announce_cold, compile_notice
-
-    # kernels compiled in the pool's processes are announced here, beforehand, from numba's disk cache
-    said = workers > 1 and announce_cold()
-    with compile_notice() if not said else nullcontext(), \
-            StageProgress([s.label for s in chosen], desc="report") as progress:
+    # kernels compiled in this process (the studies that run alone) or in the pool's workers: one line, once
+    announce = announcer()
+    with compile_notice(announce=announce), StageProgress([s.label for s in chosen], desc="report") as progress:
         results, summary = build_report(quick=args.quick, seed=args.seed, progress=progress, workers=workers,
-                                        studies=chosen)
+                                        studies=chosen, on_compile=announce)
     path = write_report(out, results, summary)
     print(f"wrote {path / 'index.html'} ({summary['total_wall_s']:.1f} s)")
     from reduced_models import MODELS

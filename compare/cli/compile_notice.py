@@ -1,9 +1,10 @@
 """One line on a terminal before numba compiles the reduced models' kernels: the first run of a fresh install
 compiles them for seconds each (about 8 s for model I) with nothing else to say so.
 
-numba compiles only on a cache miss: :func:`compile_notice` listens for its "numba:compile" event (fired after
-the disk cache missed, never on a hit) in this process; :func:`cold_kernels` reads the disk cache's index for work
-that runs in other processes (the report's pool). On a stream that is not a terminal (logs, tests) nothing is
+numba compiles only on a cache miss: :func:`compile_notice` listens for its "numba:compile" event (numba's event
+API, fired after the disk cache missed, never on a hit) in this process; the report's worker processes listen for
+the same event and call :func:`announcer`'s callable in this process. A sweep's dask workers are not watched: a
+compile there delays the first tasks with no line. On a stream that is not a terminal (logs, tests) nothing is
 printed.
 """
 from __future__ import annotations
@@ -11,7 +12,7 @@ from __future__ import annotations
 import sys
 from contextlib import contextmanager
 
-__all__ = ["MESSAGE", "compile_notice", "cold_kernels", "announce_cold"]
+__all__ = ["MESSAGE", "compile_notice", "announcer"]
 
 MESSAGE = "compiling kernels (first run only) ..."
 
@@ -23,21 +24,18 @@ def _say(stream):
 
 
 @contextmanager
-def compile_notice(stream=None, tty: bool | None = None):
-    """Within the block, the first numba compile in this process prints :data:`MESSAGE` once, on a terminal."""
-    stream = stream if stream is not None else sys.stderr
-    if not (stream.isatty() if tty is None else tty):
+def compile_notice(stream=None, tty: bool | None = None, announce=None):
+    """Within the block, the first numba compile in this process prints :data:`MESSAGE` once, on a terminal.
+    ``announce`` (from :func:`announcer`) shares the once with other processes' compiles."""
+    announce = announce if announce is not None else announcer(stream, tty)
+    if announce is None:
         yield
         return
     from numba.core import event
 
     class _Listener(event.Listener):
-        said = False
-
         def on_start(self, ev):
-            if not self.said:
-                self.said = True
-                _say(stream)
+            announce()
 
         def on_end(self, ev):
             pass
@@ -46,31 +44,20 @@ def compile_notice(stream=None, tty: bool | None = None):
         yield
 
 
-def cold_kernels(modules=None) -> list:
-    """Names of the kernels (numba dispatchers compiled on their own, not inlined) of ``modules`` (default: the
-    reduced models') whose disk cache holds nothing valid for this source and numba, i.e. that the next run will
-    compile. Reads numba's cache index (not a public API): if that fails, reports none."""
-    try:
-        from numba.core.dispatcher import Dispatcher
-
-        if modules is None:
-            from reduced_models import _exact, _two_level, asperity_force, spring_block, wear_particle
-            modules = (_exact, _two_level, asperity_force, spring_block, wear_particle)
-        cold = []
-        for mod in modules:
-            for name, obj in vars(mod).items():
-                if isinstance(obj, Dispatcher) and obj.targetoptions.get("inline") in (None, "never") \
-                        and not obj.signatures and not obj._cache._cache_file._load_index():
-                    cold.append(f"{mod.__name__}.{name}")
-        return cold
-    except Exception:  # a numba whose cache internals differ: no notice rather than a wrong one
-        return []
-
-
-def announce_cold(stream=None, tty: bool | None = None) -> bool:
-    """Print :data:`MESSAGE` on a terminal if the next run will compile a kernel (see :func:`cold_kernels`)."""
+def announcer(stream=None, tty: bool | None = None):
+    """A callable that prints :data:`MESSAGE` once on a terminal (None off a terminal), for work that compiles in
+    other processes: the report's pool calls it when numba first compiles in a worker
+    (:func:`compare.report.pool.process_pool`)."""
     stream = stream if stream is not None else sys.stderr
-    if (stream.isatty() if tty is None else tty) and cold_kernels():
-        _say(stream)
-        return True
-    return False
+    if not (stream.isatty() if tty is None else tty):
+        return None
+    import threading
+
+    said, lock = [], threading.Lock()
+
+    def announce():  # from this process's thread or the pool's watcher thread
+        with lock:
+            if not said:
+                said.append(True)
+                _say(stream)
+    return announce

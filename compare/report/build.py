@@ -26,12 +26,13 @@ def _run_study(study, quick: bool, seed: int):
     return (list(out) if isinstance(out, (list, tuple)) else [out]), time.perf_counter() - t0
 
 
-def run_studies(studies, quick: bool, seed: int, workers: int = 1, progress=None) -> list:
+def run_studies(studies, quick: bool, seed: int, workers: int = 1, progress=None, on_compile=None) -> list:
     """Results of each study (a list of StudyResult per study), in the given order.
 
     With workers > 1 they run in that many spawned processes, longest first. ``progress(label, event, wall)`` is
     called with event "start" when a study starts (in a pool: when a worker takes it, from the pool's first-in
-    first-out order) and "done" when it has finished (wall: its own seconds; None at "start")."""
+    first-out order) and "done" when it has finished (wall: its own seconds; None at "start"). ``on_compile()`` is
+    called once when numba first compiles in a worker process (see :func:`compare.report.pool.process_pool`)."""
     progress = progress or (lambda label, event, wall=None: None)
     if workers <= 1 or len(studies) <= 1:
         out = []
@@ -45,7 +46,7 @@ def run_studies(studies, quick: bool, seed: int, workers: int = 1, progress=None
 
     from .pool import process_pool
 
-    with process_pool(workers) as pool:  # on Ctrl-C or an error its processes end at once
+    with process_pool(workers, on_compile) as pool:  # on Ctrl-C or an error its processes end at once
         order = sorted(range(len(studies)), key=lambda i: -studies[i].cost)
         futures = {pool.submit(_run_study, studies[i], quick, seed): i for i in order}
         queue = list(order)
@@ -75,13 +76,14 @@ def _speed(rows: list, title: str, note: str) -> StudyResult:
         [_row(r) for r in rows]))
 
 
-def build_report(quick: bool = False, seed: int = 0, progress=None, workers: int = 1, studies=None):
+def build_report(quick: bool = False, seed: int = 0, progress=None, workers: int = 1, studies=None,
+                 on_compile=None):
     """Run every study and gather the results. Returns (results, summary): a list of StudyResult in page order
     and the dict for summary.json.
 
     ``studies`` defaults to the registry's selection for ``quick``. ``workers`` > 1 runs them in that many
     processes (identical numbers: each study is seeded on its own); studies marked ``alone`` (they measure
-    speed) run afterwards in this process. ``progress`` as in :func:`run_studies`."""
+    speed) run afterwards in this process. ``progress`` and ``on_compile`` as in :func:`run_studies`."""
     from . import studies as registry
 
     studies = registry.selected(quick) if studies is None else list(studies)
@@ -90,7 +92,7 @@ def build_report(quick: bool = False, seed: int = 0, progress=None, workers: int
     t0 = time.perf_counter()
     pooled = [s for s in studies if not s.alone]
     alone = [s for s in studies if s.alone]
-    results = [r for rs in run_studies(pooled, quick, seed, workers, progress) for r in rs]
+    results = [r for rs in run_studies(pooled, quick, seed, workers, progress, on_compile) for r in rs]
     speed = _speed([t for r in results for t in r.timings], "Speed against error",
         "Wall time of each run in this report (after JIT warm-up) and its band-averaged |ln(simulation / exact "
         "theory)|, which for the exact reduced-model simulators is sampling noise; for the scenes it is the "

@@ -21,7 +21,7 @@ import numpy as np
 from ..analysis.fits import PowerLawFit, fit_power_law
 from .html import esc, paragraphs, table
 from ..io.measured import MeasuredData, units_line
-from ..analysis.spectra import G_STANDARD, Spectrum, _rescaled, average_spectra, rms_from_spectrum, series_spectrum
+from ..analysis.spectra import G_STANDARD, Spectrum, rescaled, average_spectra, rms_from_spectrum, series_spectrum
 from .study import Figure, StudyResult
 
 __all__ = ["Strokes", "ForceAnalysis", "find_strokes", "analyze_force", "build_force_report", "build_measured_report"]
@@ -236,7 +236,7 @@ def analyze_force(data: MeasuredData, *, band=None, mass: float | None = None, s
         notes.append("no normal-force column: C_mu not computed")
     C_x = fit_x = None
     if mass is not None:
-        C_x = _rescaled(C_F, lambda w: 1.0 / (mass**2 * w**4), "x", "m^2 s",
+        C_x = rescaled(C_F, lambda w: 1.0 / (mass**2 * w**4), "x", "m^2 s",
                         f"equivalent free-block C_x = C_F / (M^2 omega^4), M = {mass:g} kg  [eq. (3)]")
         fit_x = fit_power_law(C_x, band=band, method=method)
     C_q = None

@@ -39,7 +39,7 @@ NAME = "pads_multiscale"
 def multiscale_parameters(trace, scenario=None) -> dict:
     """Model Ib's parameters of a ``pads_multiscale`` trace: model I's (``compare.extract``) plus the micro level,
     {name: {"value", "unit", "provenance", ...}} (module docstring). Raises ValueError naming what is missing."""
-    from ...analysis.extract import _friction_slope, model_I_parameters, scene_info
+    from ...analysis.extract import friction_slope, model_I_parameters, scene_info
 
     info = scene_info(trace, scenario)
     micro = info.get("micro")
@@ -56,7 +56,7 @@ def multiscale_parameters(trace, scenario=None) -> dict:
     lv = renewal_statistics(trace.x, rec.sum(axis=1), N * n, max_lag_distance=10 * micro["length_scale"])
     v = ex["v"]["value"]
     m2 = float(micro["mass"])
-    c2 = _friction_slope(micro["friction_law"], v)
+    c2 = friction_slope(micro["friction_law"], v)
     return {**ex,
             "n_micro": {"value": n, "unit": "", "provenance": "scenario (micro-pads per pad)"},
             "m2": {"value": m2, "unit": "kg", "provenance": "scenario (micro-pad mass)"},

@@ -32,8 +32,8 @@ from reduced_models import multiscale as ms
 from reduced_models import spring_block as m1
 from reduced_models.multiscale_fit import RenewalLevel, fit_renewal_levels, rigid_micro_params
 
-from ..html import esc, paragraphs, table
-from ...analysis.spectra import band_average, displacement_spectrum, force_series_spectrum
+from ..html import paragraphs, table
+from ...analysis.spectra import displacement_spectrum, force_series_spectrum
 from ..study import Figure, Study, StudyResult
 from ._common import band_ratios, timed, timing, whole_run
 
@@ -138,7 +138,7 @@ def _figure(first, name, T):
                                  (w, m1.theory_spectrum(p1s, w), "model I, one-level spectral fit"),
                                  (w, ms.theory_spectrum(pb, w), "model Ib, two-scale fit")],
                                 title=f"{name}: model I against model Ib measured at two scales")
-    ff = plots._figure(6.4, 4.6)
+    ff = plots.new_figure(6.4, 4.6)
     ax = ff.add_subplot()
     ww = np.geomspace(fit_edges[0], fit_edges[-1], 300)
     m = (wf >= fit_edges[0]) & (wf <= fit_edges[-1])

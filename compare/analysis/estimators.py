@@ -1,6 +1,6 @@
 """The spectral estimator's pure helpers (series checks, Welch and periodogram on the pre-whitened series, the
-difference operator's exact gain, the pilot slope that sets the pre-whitening order); :mod:`compare.spectra`
-builds :class:`~compare.spectra.Spectrum` objects from them."""
+difference operator's exact gain, the pilot slope that sets the pre-whitening order); :mod:`compare.analysis.spectra`
+builds :class:`~compare.analysis.spectra.Spectrum` objects from them."""
 from __future__ import annotations
 
 import math
@@ -13,7 +13,7 @@ _MAX_PREWHITEN = 4
 _PILOT_SAMPLES = 1 << 20  # the pilot slope estimate looks at most at this many samples
 
 
-def _as_series(t, y, name: str) -> tuple[np.ndarray, np.ndarray, float]:
+def as_series(t, y, name: str) -> tuple[np.ndarray, np.ndarray, float]:
     """Check a sampled series and return (t, y, dt). Raises ValueError naming the problem."""
     t = np.asarray(t, dtype=float)
     y = np.asarray(y, dtype=float)
@@ -45,7 +45,7 @@ def _as_series(t, y, name: str) -> tuple[np.ndarray, np.ndarray, float]:
     return t, y, float(dt)
 
 
-def _line_fit(t: np.ndarray, y: np.ndarray) -> tuple[float, float]:
+def line_fit(t: np.ndarray, y: np.ndarray) -> tuple[float, float]:
     """Least-squares line y = y0 + v t in closed form (np.polyfit's SVD costs 40x more at 1e7 samples).
 
     Sums use numpy's pairwise summation, not np.dot: BLAS reductions depend on the thread count, and the
@@ -57,14 +57,14 @@ def _line_fit(t: np.ndarray, y: np.ndarray) -> tuple[float, float]:
     return v, float(ym - v * tm)
 
 
-def _default_nperseg(n: int) -> int:
+def default_nperseg(n: int) -> int:
     """About 16-32 half-overlapping segments, a power of two, at least 256 samples."""
     if n < 256:
         return n
     return int(min(n, max(256, 2 ** int(math.floor(math.log2(n / 16))))))
 
 
-def _welch_dof(n_segments: int) -> float:
+def welch_dof(n_segments: int) -> float:
     """Equivalent degrees of freedom of a Hann-window Welch estimate with 50 % overlap.
 
     Welch (1967): nu = 2K / (1 + 2 c^2) for K segments, c = 0.167 the Hann 50 %-overlap correlation.
@@ -75,12 +75,12 @@ def _welch_dof(n_segments: int) -> float:
 
 
 # ----------------------------------------------------------------------------- estimator core
-def _difference_gain(omega: np.ndarray, dt: float, k: int) -> np.ndarray:
+def difference_gain(omega: np.ndarray, dt: float, k: int) -> np.ndarray:
     """|H(omega)|^2 of the k-fold backward difference divided by dt^k: |2 sin(omega dt/2)/dt|^(2k)."""
     return np.abs(2.0 * np.sin(0.5 * omega * dt) / dt) ** (2 * k)
 
 
-def _welch(y: np.ndarray, dt: float, nperseg: int) -> tuple[np.ndarray, np.ndarray, int]:
+def welch(y: np.ndarray, dt: float, nperseg: int) -> tuple[np.ndarray, np.ndarray, int]:
     noverlap = nperseg // 2
     f, S = signal.welch(
         y, fs=1.0 / dt, window="hann", nperseg=nperseg, noverlap=noverlap, detrend="constant",
@@ -105,7 +105,7 @@ def _fast_length(n: int) -> int:
     return m if n - m <= 0.005 * n else n
 
 
-def _periodogram(y: np.ndarray, dt: float) -> tuple[float, np.ndarray]:
+def periodogram(y: np.ndarray, dt: float) -> tuple[float, np.ndarray]:
     """Raw periodogram of y (mean removed), eq. (2) convention: C_j = dt |Y_j|^2 / (2 pi n), j = 1..n/2-ish.
 
     Returns (d_omega, C) without the zero-frequency ordinate and without the Nyquist ordinate of an even n
@@ -121,7 +121,7 @@ def _periodogram(y: np.ndarray, dt: float) -> tuple[float, np.ndarray]:
     return 2.0 * np.pi / (n * dt), P
 
 
-def _pilot_gamma(z: np.ndarray, dt: float) -> float:
+def pilot_gamma(z: np.ndarray, dt: float) -> float:
     """First slope estimate: the once-differenced series' Hann Welch slope, plus 2.
 
     A Hann estimate of a spectrum no steeper than about omega^-5 is barely biased, and the velocity
@@ -130,7 +130,7 @@ def _pilot_gamma(z: np.ndarray, dt: float) -> float:
     zz = z[: min(len(z), _PILOT_SAMPLES)]
     y = np.diff(zz) / dt
     nper = min(len(y), max(64, 2 ** int(math.floor(math.log2(max(len(y) / 32, 64))))))
-    f, S, _ = _welch(y, dt, nper)
+    f, S, _ = welch(y, dt, nper)
     omega = 2 * np.pi * f
     keep = (omega >= 4 * omega[0]) & (omega <= omega[-1] / 4)
     if keep.sum() < 4:
@@ -140,6 +140,6 @@ def _pilot_gamma(z: np.ndarray, dt: float) -> float:
     return 2.0 - float(slope)
 
 
-def _auto_order(gamma: float) -> int:
+def auto_order(gamma: float) -> int:
     """Difference order leaving a differenced spectrum between about omega^-1 and omega^+1."""
     return int(np.clip(math.floor(gamma / 2.0 + 0.5), 0, _MAX_PREWHITEN))
