@@ -75,7 +75,7 @@ def cmd_analyze(args) -> int:
 
     from ..io.inputs import input_file, sniff
 
-    if sniff(input_file(args.data)) != "text":  # kind, emptiness, binary; the format is read by compare.measured
+    if sniff(input_file(args.data)) != "text":  # kind, emptiness, binary; the format is read by compare.io.measured
         raise UserError(f"{args.data}: binary data, not a CSV text file")
     force = args.force_col is not None
     if args.mass is not None and not (args.mass > 0 and math.isfinite(args.mass)):
@@ -305,7 +305,7 @@ def cmd_compare(args) -> int:
         with compile_notice():  # the reduced model's kernels compile on the first comparison after an install
             if trace is None:
                 # the recorded duration as the study sets it (--duration, else the scenario's); a wear scene runs
-                # twice, with and without its particles (compare.studies.scene_wear)
+                # twice, with and without its particles (compare.report.studies.scene_wear)
                 bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration,
                                            runs=2 if sc.wear.count > 0 else 1)
                 with bar:

@@ -69,7 +69,7 @@ def progress_bar(desc, stream=None, *, warmup: float = 0.0, duration: float | No
     state = {"run": 0, "last": -1.0, "next_tenth": 1}
     bar = tqdm(total=runs * per_run[0] or 1.0, desc=desc, unit="s", file=stream, disable=not tty,
                bar_format="{desc}: {percentage:3.0f}%|{bar}| [{elapsed}<{remaining}{postfix}]")  # tqdm puts ", "
-    # before a postfix: at the line's end it reads as tqdm's own (it had opened the text as "| , 0.0/4.0 s ...")
+    # before a postfix: at the line's end it reads as tqdm's own (in the middle it would open the text with ", ")
     t0 = time.perf_counter()
 
     def label(done_run):

@@ -1,7 +1,7 @@
-"""The `frictionnoise report` job: run the registered studies (``compare.studies.STUDIES``), in worker
-processes when asked, and gather their results; ``compare.html`` writes them.
+"""The `frictionnoise report` job: run the registered studies (``compare.report.studies.STUDIES``), in worker
+processes when asked, and gather their results; ``compare.report.html`` writes them.
 
-:func:`build_report` computes (no files); :func:`compare.html.write_report` writes index.html, summary.json and
+:func:`build_report` computes (no files); :func:`compare.report.html.write_report` writes index.html, summary.json and
 figures/ atomically.
 """
 from __future__ import annotations

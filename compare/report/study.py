@@ -2,12 +2,12 @@
 
 A study computes: it runs models or scenes, fits and compares, and returns a :class:`StudyResult` (its
 numbers for summary.json, its figures as PNG bytes, its prose and tables as an HTML fragment). It writes no
-files and prints nothing. The registry (``compare.studies.STUDIES``) lists the studies in page order; the
-report runs them (``compare.report``) and the writers turn their results into files (``compare.html``), as
+files and prints nothing. The registry (``compare.report.studies.STUDIES``) lists the studies in page order; the
+report runs them (``compare.report.build``) and the writers turn their results into files (``compare.report.html``), as
 emcee's sampler computes and its backends store.
 
-A new study is one module ``compare/studies/<name>.py`` defining ``STUDY = Study(...)`` and one line in
-``compare/studies/__init__.py``.
+A new study is one module ``compare/report/studies/<name>.py`` defining ``STUDY = Study(...)`` and one line in
+``compare/report/studies/__init__.py``.
 """
 from __future__ import annotations
 
@@ -39,7 +39,7 @@ class StudyResult:
     title : section heading; an empty title makes a numbers-only result (summary.json, no section).
     numbers : JSON-able; goes to summary.json[key].
     figures : tuple of :class:`Figure`.
-    html : prose and tables, an HTML fragment (no <html>/<body>); ``compare.html`` has helpers.
+    html : prose and tables, an HTML fragment (no <html>/<body>); ``compare.report.html`` has helpers.
     timings : rows for the report's speed table, dicts with "model", "run", "wall_s" (a string, as shown)
         and "mean_abs_log_ratio" (a string: the band-averaged |ln simulation / reference|, or why none).
     """

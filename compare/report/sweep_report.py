@@ -41,7 +41,7 @@ def build_sweep_report(spec, results: list, failures: list):
         text += table("Failed tasks (rerun the sweep to retry them)", ["parameters", "seed", "error"],
                       [[esc(json.dumps(f["params"])), str(f["seed"]), esc(f["error"])] for f in failures])
     out = [StudyResult("results", f"Sweep {spec.name} ({spec.target})", {}, html=text)]
-    if spec.analysis.get("wear"):  # issue 17: the wear study's cells, figure and answer (compare/wear_study.py)
+    if spec.analysis.get("wear"):  # the wear study's cells, figure and answer (compare/report/wear_study.py)
         from .wear_study import study_sections
         sections, summary["wear_study"] = study_sections(spec, results)
         out += sections

@@ -222,8 +222,8 @@ def _without_grains(params: dict) -> str | None:
 def expand(spec: SweepSpec):
     """[(params, seed)] over the grid's Cartesian product (seed from grid["seed"], default [0]). Points without
     grains (``wear.count = 0``) that differ only in grain fields are one run, kept at its first occurrence: the
-    wear study's particle-free twin is the same scene for every size distribution (bitwise: the 24 twins of
-    wear_study.toml's first full run were 8 runs, each three times)."""
+    wear study's particle-free twin is the same scene, bit for bit, for every size distribution (wear_study.toml's 24
+    twins are 8 runs)."""
     keys = [k for k in spec.grid if k != "seed"]
     seeds = spec.grid.get("seed", [0])
     out, seen = [], set()

@@ -1,4 +1,4 @@
-"""The report's studies, in page order. A study is one module defining ``STUDY`` (see ``compare.study``);
+"""The report's studies, in page order. A study is one module defining ``STUDY`` (see ``compare.report.study``);
 the scenes contribute one study per shipped scenario."""
 from __future__ import annotations
 

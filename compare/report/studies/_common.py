@@ -57,8 +57,8 @@ def param_rows(ex: dict) -> list:
 
 
 def whole_run(sc, seed=None, progress=None):
-    """``engine_sim.run`` for a study: a run that Ctrl-C cut short is not analysed (its partial trace once went on
-    into the spectra and ended as a misleading error); the interrupt goes on to the caller."""
+    """``engine_sim.run`` for a study: a run that Ctrl-C cut short is not analysed (its partial trace would go on
+    into the spectra and end as a misleading error); the interrupt goes on to the caller."""
     import engine_sim
 
     tr = engine_sim.run(sc, seed=seed, progress=progress)

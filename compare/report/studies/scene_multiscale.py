@@ -3,7 +3,7 @@ own measured parameters; and :func:`multiscale_parameters`, which builds them fr
 
 Procedure (:func:`multiscale_parameters`, stated in the report as here):
 
-- the macro level is model I's extraction (``compare.extract.model_I_parameters``: N, v, a from the pad forces'
+- the macro level is model I's extraction (``compare.analysis.extract.model_I_parameters``: N, v, a from the pad forces'
   correlation length, f_kin and alpha from their mean and rms, the law's slope c, k0, m, eta0 = c0 / m, M);
 - the micro level's layout comes from ``metadata["scene"]["micro"]``: n micro-pads per pad, m2 = their mass,
   k2 = the micro spring, eta2 = its damping / m2, a2 = the micro length scale, eta3 = the micro friction law's
@@ -37,7 +37,7 @@ NAME = "pads_multiscale"
 
 
 def multiscale_parameters(trace, scenario=None) -> dict:
-    """Model Ib's parameters of a ``pads_multiscale`` trace: model I's (``compare.extract``) plus the micro level,
+    """Model Ib's parameters of a ``pads_multiscale`` trace: model I's (``compare.analysis.extract``) plus the micro level,
     {name: {"value", "unit", "provenance", ...}} (module docstring). Raises ValueError naming what is missing."""
     from ...analysis.extract import friction_slope, model_I_parameters, scene_info
 

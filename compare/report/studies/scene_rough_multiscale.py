@@ -1,11 +1,11 @@
 """Study: does model Ib, measured from ``pads_rough_profile`` at two scales, read that scene's C_x better than
-model I? (issue 18.)
+model I?
 
 Procedure (stated in the report as here). Per seed, the scene runs ``T`` seconds, recorded every step and
 analysed at 1 ms with the pad forces averaged over each 1 ms (:func:`averaged_record`: a once-per-output-step
 sample of the contact force aliases contact jitter into the top bands); then
 
-1. model I as the report builds it (``compare.extract``): a = (12/7) x the pad forces' correlation length in
+1. model I as the report builds it (``compare.analysis.extract``): a = (12/7) x the pad forces' correlation length in
    sliding distance, alpha = sqrt(12) rms / f_kin, c from the law, k0, m, M from the scene (the "before"), from
    the pad forces sampled once per output step as the scenes study has them, and again from the averaged ones;
 2. the pad forces' spectrum (Welch, averaged over the pads) over 30 log bands from 4 frequency steps to half
