@@ -11,8 +11,8 @@ import time
 import numpy as np
 
 import engine_sim
-from compare.fits import fit_power_law
-from compare.spectra import displacement_spectrum
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import displacement_spectrum
 from engine_sim import Scene, load_scenario, shipped_scenarios
 from engine_sim.record import Recorder
 from engine_sim.run import _MAINTAIN_EVERY

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 import pymunk
@@ -78,6 +79,13 @@ class WearSpec:
     trapped_speed: float = 0.1
     ahead: float = 2e-3
     behind: float = 1e-3
+    quick_duration: ClassVar[float] = 8.0  # s recorded by each of a quick comparison's paired runs (with, without)
+
+    @property
+    def reduced_model(self) -> str | None:
+        """The key in ``reduced_models.MODELS`` of the model that fits a scene with these particles: model II (their
+        forces) when there are any; None without, when the substrate's model fits."""
+        return "model_II" if self.count > 0 else None
 
 
 def check_wear(sc) -> None:

@@ -443,3 +443,19 @@ def asymptotic_spectrum(params: MultiscaleParams, omega, regime: str) -> np.ndar
 def fit_band(params: MultiscaleParams, dt_out: float | None = None) -> tuple[float, float]:
     """The macro omega^-4 band as in model I: 10 v/a to omega_c / 10 (Units: rad/s)."""
     return 10 * params.v / params.a, regime_frequencies(params)["omega_c"] / 10
+
+
+# What the sweep, the report and `frictionnoise compare` read of this model through reduced_models.MODELS
+# (the protocol is described in reduced_models/__init__.py).
+PARAMS = MultiscaleParams
+SWEEP_SERIES = "x"  # a sweep task returns the spectrum of the block's displacement, C_x
+
+
+def default_duration(params: MultiscaleParams) -> float:
+    """Simulated seconds of a run when the caller sets none (Units: s)."""
+    return 300.0
+
+
+def default_dt_out(params: MultiscaleParams) -> float:
+    """Output step of a run when the caller sets none (Units: s)."""
+    return 1e-3

@@ -431,3 +431,19 @@ def rms_displacement(params: SpringBlockParams, L0) -> np.ndarray:
     """zeta_rms after sliding L0, eq. (A13): sqrt(7 / (72 pi^2) L0 a / N) (times alpha f_kin / (m eta1 v)),
     the paper's estimate with the low-frequency cut-off omega_0 = pi v / L0 (Units: m)."""
     return np.sqrt(displacement_variance(params, L0) / np.pi**2)
+
+
+# What the sweep, the report and `frictionnoise compare` read of this model through reduced_models.MODELS
+# (the protocol is described in reduced_models/__init__.py).
+PARAMS = SpringBlockParams
+SWEEP_SERIES = "x"  # a sweep task returns the spectrum of the block's displacement, C_x
+
+
+def default_duration(params: SpringBlockParams) -> float:
+    """Simulated seconds of a run when the caller sets none (Units: s)."""
+    return 300.0
+
+
+def default_dt_out(params: SpringBlockParams) -> float:
+    """Output step of a run when the caller sets none (Units: s)."""
+    return 1e-3

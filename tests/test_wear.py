@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 import engine_sim
-from compare.spectra import band_average, force_series_spectrum
-from compare.wear import duration_summary, episodes, model_II_from_episodes
+from compare.analysis.spectra import band_average, force_series_spectrum
+from compare.analysis.episodes import duration_summary, episodes, model_II_from_episodes
 from engine_sim import ScenarioError, load_scenario, scenario_from_dict, shipped_scenarios
 from engine_sim.scenario import WearSpec
 from engine_sim.wear import draw_radii, pad_friction_split

@@ -33,7 +33,8 @@ class Substrate:
     arrangement: the pad arrangement a scenario gets when its ``[pads]`` section names none (``engine_sim/arrangements``:
     "tracks", one track per pad, or "sole", one track under a flat block on feet, free vertically);
     hosts_wear: flat tracks where wear particles can rest; positive / non_negative / choices: field checks made by
-    the loader (names of Spec fields)."""
+    the loader (names of Spec fields); reduced_model: the key in ``reduced_models.MODELS`` of the model that fits
+    a scene on this substrate; quick_duration: the recorded seconds a quick comparison with that model needs (s)."""
 
     kind: ClassVar[str] = ""
     Spec: ClassVar[type] = SubstrateSpec
@@ -42,6 +43,8 @@ class Substrate:
     positive: ClassVar[frozenset] = frozenset({"a", "segment_radius"})
     non_negative: ClassVar[frozenset] = frozenset()
     choices: ClassVar[dict] = {}
+    reduced_model: ClassVar[str] = "model_I"  # pads renewing their force every a: model I
+    quick_duration: ClassVar[float] = 12.0
 
     def __init__(self, spec, scenario):
         self.spec, self.sc = spec, scenario

@@ -29,6 +29,8 @@ class Asperities(Substrate):
     Spec = AsperitiesSpec
     arrangement = "sole"
     positive = Substrate.positive | {"cell", "p", "bump_radius"}
+    reduced_model = "model_III"  # a flat block on sparse asperities
+    quick_duration = 16.0  # model III's corner 2 pi v / w lies near 4 rad/s: resolving below it takes 8 s segments
     non_negative = frozenset({"h_max"})
 
     @classmethod

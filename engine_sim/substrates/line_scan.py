@@ -105,6 +105,7 @@ class LineScan(Substrate):
     kind = "line_scan"
     Spec = LineScanSpec
     non_negative = frozenset({"dx"})
+    quick_duration = 8.0  # streaming its short segments costs about 1 wall s per simulated s
     choices = {"x_unit": tuple(_UNITS), "height_unit": tuple(_UNITS), "detrend": ("linear", "mean", "none"),
                "extend": ("mirror", "tile")}
 

@@ -35,6 +35,7 @@ class SelfAffine(Substrate):
     kind = "self_affine"
     Spec = SelfAffineSpec
     positive = Substrate.positive | {"lambda_r", "lambda_s", "rms_slope"}
+    quick_duration = 8.0  # streaming its short segments costs about 1 wall s per simulated s
 
     @classmethod
     def validate(cls, s, sc, where=""):
