@@ -76,7 +76,7 @@ def _check_trace_size(sc, n_out: int):
     """Refuse a run whose recorder buffers (per sample: 12 scalar channels, time, recycling work, one force per pad
     and two entries per wear particle) exceed half the memory available now: numpy's allocation error was a
     20-line traceback for `--duration 1e7`."""
-    n_p = sc.wear.count if getattr(sc, "wear", None) is not None else 0
+    n_p = sc.wear.count
     need = n_out * 8.0 * (14 + sc.pads.N + 1.125 * n_p)
     try:
         avail = os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
@@ -166,8 +166,8 @@ def _load_recorder_kernel(sc, seed):
     loads it (0.7 s from numba's cache, about 9 s compiling in a fresh clone), and a Ctrl-C landing in that load
     waited for it (1.3-9 s to the exit). A one-sample Recorder on a throwaway Scene, once per process (measured
     0.03 s for pads_friction_patches), outside the deferral, where a Ctrl-C interrupts at once."""
-    from .record import _reduce
-    if not _reduce.signatures:
+    from .reduction import reduce_sample
+    if not reduce_sample.signatures:
         Recorder(Scene(sc, seed), 1).sample()
 
 
@@ -286,9 +286,5 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     if partial:
         meta["interrupted_by"] = signal.Signals(intr.signum).name if intr.signum else "KeyboardInterrupt"
         meta["checkpoint_at_s"] = saved_k * sc.run.dt_out if (ck_path is not None and saved_k) else None
-    if scene.wear is not None:
-        w = scene.wear
-        meta["wear"] = {"count": w.count, "recycled": w.recycled, "left_interface": w.lost,
-                        "radii_m": (w.r / U.LENGTH).tolist(), "track": w.track.tolist(),
-                        "asleep_at_end": int(sum(b.is_sleeping for b in w.bodies))}
+    meta.update(scene.wear.run_metadata())
     return rec.trace(meta)

@@ -22,7 +22,7 @@ from .drives.force import ForceSpec
 from .laws import LAWS, FrictionSpec
 from .substrates import KINDS as SUBSTRATES, SubstrateSpec
 from .substrates.patches import PatchesSpec
-from .wear import WearSpec, check_wear
+from .wear import WearSpec, wear_part
 
 __all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", "SubstrateSpec", "DriveSpec",
            "WearSpec", "RunSpec", "load_scenario", "scenario_from_dict", "shipped_scenarios", "resolve_scenario",
@@ -84,6 +84,10 @@ class Scenario:
     @property
     def substrate_part(self):
         return SUBSTRATES[self.substrate.kind](self.substrate, self)
+
+    @property
+    def wear_part(self):
+        return wear_part(self.wear, self)
 
     # ------------------------------------------------------------------ derived quantities (SI)
     @property
@@ -248,16 +252,9 @@ def _check_consistency(sc: Scenario, where: str):
         sc.law_part.validate(sc.friction, sc)
         sc.drive_part.validate(sc.drive, sc)
         sc.substrate_part.validate(sc.substrate, sc, where)
+        sc.wear_part.validate(where)
     except ValueError as e:
         raise _err(where, str(e)) from None
-    if sc.wear.count > 0:
-        if not sc.substrate_part.hosts_wear or not sc.arrangement_part.hosts_wear:
-            raise _err(where, f"wear particles need flat pad tracks (substrate.kind 'patches', pads.arrangement "
-                              f"'tracks'; got {sc.substrate.kind!r}, {sc.pads.arrangement!r})")
-        try:
-            check_wear(sc)
-        except ValueError as e:
-            raise _err(where, str(e)) from None
 
 
 def resolve_scenario(name_or_path) -> Path:

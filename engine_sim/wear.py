@@ -25,7 +25,7 @@ import pymunk
 
 from . import units as U
 
-__all__ = ["WearSpec", "check_wear", "draw_radii", "grain_step", "pad_friction_split", "wedge_regime", "regime_shares",
+__all__ = ["WearSpec", "NoWear", "wear_part", "check_wear", "draw_radii", "grain_step", "pad_friction_split", "wedge_regime", "regime_shares",
            "climb_force", "Wear"]
 
 # No continuous collision detection in pymunk: a particle crosses a surface once v dt exceeds about 1.2 radii
@@ -230,11 +230,115 @@ def climb_force(r: float, R: float, mu_pad: float, load: float, k_normal: float)
     return mu / (2 * math.sin(psi0)) * (A * sec_int + B * cos_int)
 
 
-class Wear:
-    """The particles of a scene; built by :class:`~engine_sim.scene.Scene` when ``wear.count > 0``."""
+STATE_COLORS = np.array([[0.6, 0.6, 0.6, 1.0], [0.12, 0.47, 0.71, 1.0], [0.89, 0.10, 0.11, 1.0]])  # RGBA by state
+STATE_NAMES = ("idle", "trapped", "moving")
 
-    def __init__(self, scene, spec, rng: np.random.Generator, particle_friction: float):
-        self.scene, self.spec, self.rng = scene, spec, rng
+
+def wear_part(spec, scenario):
+    """The scene's grains part for a [wear] spec: :class:`Wear` when it asks for particles, else :class:`NoWear`."""
+    return Wear(spec, scenario) if spec.count else NoWear(spec, scenario)
+
+
+class NoWear:
+    """The grains part of a scene without wear particles: it builds nothing, records nothing and draws nothing. The
+    scene, the recorder, the renderer and the run ask it exactly what they ask :class:`Wear`."""
+
+    count = 0
+    bodies: tuple = ()
+    recycle_work = 0.0  # scene energy units
+
+    def __init__(self, spec, scenario):
+        self.spec, self.sc = spec, scenario
+
+    def validate(self, where: str = "") -> None:
+        """Raise ValueError (naming the field) if the scene cannot hold the particles."""
+
+    def friction_split(self, mu0: float) -> tuple[float, float]:
+        """(q_pad, particle friction): the pads' shape friction factor and the particles' (see
+        :func:`pad_friction_split`); without particles the pads carry the track's friction alone."""
+        return 1.0, 0.0
+
+    def build(self, scene, seed, particle_friction: float) -> None:
+        """Add the particles to ``scene.space`` (scene units), drawing from ``seed`` (a SeedSequence)."""
+
+    def maintain(self) -> None:
+        """Recycle particles that left their place (every few output steps)."""
+
+    def recorder_table(self) -> np.ndarray:
+        """Per particle: mass, moment (0 if locked), radius, asleep flag, last known x, y (scene units)."""
+        return np.zeros((0, 6))
+
+    def mark_sleeping(self, table: np.ndarray) -> None:
+        """Write each particle's asleep flag into column 3 of the recorder's table."""
+
+    def trace_metadata(self, stale: int) -> dict:
+        """Entries of the trace's metadata: the stale grain arbiters the recorder left out."""
+        return {}
+
+    def run_metadata(self) -> dict:
+        """Entries of the run's metadata: counts, radii and tracks of the particles."""
+        return {}
+
+    def view(self, scene, view: dict) -> dict:
+        """The renderer's view (``arrangements.Arrangement.view``) as the particles need it."""
+        return view
+
+    def observer(self, scene):
+        """What classifies the particles' states for the renderer (the recorder's classifier)."""
+        return _NoStates()
+
+    def key(self) -> list:
+        """(label, RGBA colour) entries of the renderer's key."""
+        return []
+
+    def draw(self, states) -> dict:
+        """Shapes to draw (``render.py``: name -> (kind, data, style)), scene units."""
+        return {}
+
+
+class _NoStates:
+    states = np.zeros(0, dtype=int)
+
+    def observe(self):
+        pass
+
+
+class _States:
+    """The particles' states (0 idle, 1 trapped, 2 moving) at the latest observed output step, from a recorder that
+    keeps only its latest sample: the trace's own classifier."""
+
+    def __init__(self, scene):
+        from .record import Recorder
+        self._rec = Recorder(scene, 1)
+
+    def observe(self):
+        self._rec.k = 0
+        self._rec.sample()
+
+    @property
+    def states(self) -> np.ndarray:
+        if self._rec.k == 0:
+            self.observe()
+        return self._rec.p_state[0].astype(int)
+
+
+class Wear(NoWear):
+    """The particles of a scene (``wear.count > 0``): built into the scene's space by :meth:`build`."""
+
+    def validate(self, where: str = "") -> None:
+        sc = self.sc
+        if not sc.substrate_part.hosts_wear or not sc.arrangement_part.hosts_wear:
+            raise ValueError(f"wear particles need flat pad tracks (substrate.kind 'patches', pads.arrangement "
+                             f"'tracks'; got {sc.substrate.kind!r}, {sc.pads.arrangement!r})")
+        check_wear(sc)
+
+    def friction_split(self, mu0: float) -> tuple[float, float]:
+        return pad_friction_split(mu0, self.spec.mu_pad, self.spec.mu_track)
+
+    def build(self, scene, seed, particle_friction: float) -> None:
+        spec = self.spec
+        self.scene, self.rng = scene, np.random.default_rng(seed)
+        rng = self.rng
         space = scene.space
         sc = scene.sc
         N = len(scene.pads)
@@ -266,6 +370,10 @@ class Wear:
             if not self._place(j, initial=True, tries=200):
                 raise ValueError(f"wear: no free place for particle {j} ahead of pad {self.track[j]} "
                                  f"(wear.ahead = {spec.ahead} m is too short for wear.count = {spec.count})")
+        # idle particles at rest sleep until a pad reaches them (pads and block never rest)
+        space.sleep_time_threshold = 20.0  # ms
+        # mm/ms = 2 mm/s: a resting grain gains g dt = 1e-3 mm/ms per step before its contact stops it
+        space.idle_speed_threshold = 2e-3
 
     @property
     def count(self) -> int:
@@ -316,6 +424,42 @@ class Wear:
             elif x < pad.position.x - self.behind or x > pad.position.x + 3 * self.ahead:
                 if self._place(j):
                     self.recycled += 1
+
+    def recorder_table(self) -> np.ndarray:
+        moment = np.where(np.isfinite(self.moment), self.moment, 0.0)  # locked grains: no rotational energy
+        n = self.count
+        table = np.column_stack([self.mass, moment, self.r, np.zeros(n), np.zeros(n), np.zeros(n)]).astype(float)
+        for j, b in enumerate(self.bodies):
+            table[j, 4:6] = b.position.x, b.position.y
+        return table
+
+    def mark_sleeping(self, table: np.ndarray) -> None:
+        for j, b in enumerate(self.bodies):
+            table[j, 3] = b.is_sleeping
+
+    def trace_metadata(self, stale: int) -> dict:
+        return {"stale_arbiters_skipped": stale}
+
+    def run_metadata(self) -> dict:
+        return {"wear": {"count": self.count, "recycled": self.recycled, "left_interface": self.lost,
+                         "radii_m": (self.r / U.LENGTH).tolist(), "track": self.track.tolist(),
+                         "asleep_at_end": int(sum(b.is_sleeping for b in self.bodies))}}
+
+    def view(self, scene, view: dict) -> dict:
+        """Grains of tens of um: the view zooms onto the first pad's track and draws the pads at their true size."""
+        surf = scene.track_surface[0]
+        return {**view, "window": 0.6 * self.spec.ahead, "ylim": (surf - 0.3, surf + 0.9),
+                "ylabel": "y (mm): the first pad's track", "block_top": view["block_top"], "true_size": True}
+
+    def observer(self, scene):
+        return _States(scene)
+
+    def key(self) -> list:
+        return [(f"grain {n}", c) for n, c in zip(STATE_NAMES, STATE_COLORS)]
+
+    def draw(self, states) -> dict:
+        xy, r = self.snapshot()
+        return {"grains": ("discs", (xy, 2 * r, STATE_COLORS[states]), {"zorder": 4})}
 
     def snapshot(self):
         """(positions (n, 2), radii) in scene units, for rendering. A grain's state (idle, trapped, moving) is the
