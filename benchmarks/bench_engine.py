@@ -15,20 +15,20 @@ from compare.fits import fit_power_law
 from compare.spectra import displacement_spectrum
 from engine_sim import Scene, load_scenario, shipped_scenarios
 from engine_sim.record import Recorder
-from engine_sim.run import _MAINTAIN_EVERY
+from engine_sim.run import MAINTAIN_EVERY
 
 
 def loop_ratio(sc, n_steps: int, repeat: int = 3):
     """Best-of-`repeat` microseconds per step of a bare space.step loop and of the project's loop.
 
-    Both run in chunks of _MAINTAIN_EVERY output steps on the same scene; the bare loop's substrate is
+    Both run in chunks of MAINTAIN_EVERY output steps on the same scene; the bare loop's substrate is
     maintained outside its timer (without it the pads run off their tracks and the steps get cheaper),
     the project's loop pays for its maintenance and its recording.
     """
     scene = Scene(sc)
     scene.advance(2000)
     n_sub = scene.n_sub
-    chunk = _MAINTAIN_EVERY
+    chunk = MAINTAIN_EVERY
     n_chunks = max(1, n_steps // (n_sub * chunk))
     rec = Recorder(scene, n_chunks * chunk * repeat + 1)
     rec.sample()

@@ -86,9 +86,9 @@ def test_checkpointing_does_not_change_the_bits(tmp_path):
 
 
 def test_checkpoint_interval_rounds_to_whole_epochs():
-    from engine_sim.run import _every
+    from engine_sim.checkpoint import checkpoint_interval as every
 
-    assert _every(1000, 1e-3, 2.4) == 2000 and _every(1000, 1e-3, 0.1) == 1000 and _every(1000, 1e-3, None) is None
+    assert every(1000, 1e-3, 2.4) == 2000 and every(1000, 1e-3, 0.1) == 1000 and every(1000, 1e-3, None) is None
 
 
 def test_default_epochs_keep_the_round_trip_cost_small():
