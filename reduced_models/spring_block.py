@@ -93,8 +93,17 @@ class SpringBlockParams:
     eta1_derived: bool = field(default=False, repr=False)
 
     def __post_init__(self):
+        self._check_fields()
+        self._settle_eta1()
+
+    def _check_fields(self):
+        """Model I's field checks (ValueError naming the field); model Ib's parameters run them too."""
         check_fields(self, integer=("N",), positive=("N", "v", "a", "k0", "M", "m", "F_drive"),
                      non_negative=("k1", "eta0", "eta_lat", "alpha", "F_kin"))
+
+    def _settle_eta1(self):
+        """eta1 from steady sliding, N (m eta1 v + f_kin) = F_drive, when not given (or derived before a replace);
+        a given eta1 must satisfy it."""
         if self.eta1 is None or self.eta1_derived:
             if not self.F_drive > self.F_kin:
                 raise ValueError(
