@@ -20,7 +20,7 @@ from .arrangements import ARRANGEMENTS, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSp
 from .drives import DRIVES, DriveSpec
 from .drives.force import ForceSpec
 from .laws import LAWS, FrictionSpec
-from .substrates import KINDS as SUBSTRATES, SubstrateSpec
+from .substrates import SUBSTRATES, SubstrateSpec
 from .substrates.patches import PatchesSpec
 from .wear import WearSpec, wear_part
 
