@@ -1,6 +1,6 @@
 """Engine scene cost: microseconds per step, simulated seconds per wall second, and the ratio of the
 project's loop (spring drive, recording at the output rate, substrate maintenance) to a bare
-`space.step` loop on the same space, measured in the same run (issue targets: ratio <= 1.15;
+`space.step` loop on the same space, measured in the same run (targets: ratio <= 1.15;
 pads_friction_patches gives C_x over two decades above v/a in <= 3 min).
 
     python -m benchmarks.bench_engine [--steps N] [--smoke]
@@ -67,7 +67,7 @@ def main(argv=None):
         sc = load_scenario(path)
         b, f = loop_ratio(sc, steps)
         print(f"| {name} | {b:.1f} | {f:.1f} | {f / b:.3f} | {sc.run.dt / (f * 1e-6):.2f} |")
-    # what the wear particles cost (issue target: 50 particles at most 2x the particle-free step)
+    # what the wear particles cost (target: 50 particles at most 2x the particle-free step)
     wear = load_scenario(shipped_scenarios()["pads_with_wear"])
     patches = load_scenario(shipped_scenarios()["pads_friction_patches"])
     print("\n| wear particles | loop us/step | vs. no particles, same settings | vs. pads_friction_patches |")

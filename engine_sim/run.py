@@ -37,8 +37,8 @@ _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 class _Interrupts:
     """SIGINT and SIGTERM deferred to the loop's consistent points (between output steps, where the loop's counter
     and the recorder's agree and no pymunk step or round trip is half done). A KeyboardInterrupt raised anywhere
-    else left a checkpoint whose counters disagreed by one sample; resuming from it wrote past the recorder's
-    buffers (heap corruption)."""
+    else could leave a checkpoint whose counters disagree by one sample, and resuming from it would write past the
+    recorder's buffers."""
 
     def __init__(self):
         self.signum = None
@@ -69,8 +69,8 @@ class TraceSizeError(ValueError):
 
 def _check_trace_size(sc, n_out: int):
     """Refuse a run whose recorder buffers (per sample: 12 scalar channels, time, recycling work, one force per pad
-    and two entries per wear particle) exceed half the memory available now: numpy's allocation error was a
-    20-line traceback for `--duration 1e7`."""
+    and two entries per wear particle) exceed half the memory available now, with one line that says what to do
+    rather than numpy's allocation error."""
     n_p = sc.wear.count
     need = n_out * 8.0 * (14 + sc.pads.N + 1.125 * n_p)
     try:
@@ -85,9 +85,9 @@ def _check_trace_size(sc, n_out: int):
 
 def _load_recorder_kernel(sc, seed):
     """Load (or compile) the recorder's numba kernel before signals are deferred: the first sample of a process
-    loads it (0.7 s from numba's cache, about 9 s compiling in a fresh clone), and a Ctrl-C landing in that load
-    waited for it (1.3-9 s to the exit). A one-sample Recorder on a throwaway Scene, once per process (measured
-    0.03 s for pads_friction_patches), outside the deferral, where a Ctrl-C interrupts at once."""
+    loads it (under a second from numba's cache, about 9 s compiling in a fresh clone), and a deferred Ctrl-C
+    would wait for that load. A one-sample Recorder on a throwaway Scene (a few hundredths of a second), once per
+    process, outside the deferral, where a Ctrl-C interrupts at once."""
     from .reduction import reduce_sample
     if not reduce_sample.signatures:
         Recorder(Scene(sc, seed), 1).sample()

@@ -195,7 +195,7 @@ def _section(where, sec, cls, raw, strict=True, default=None):
                             choices=tuple(registry))
         cls = registry[kind].Spec
         raw = {**raw, key: kind}
-        if not strict:  # traces written before issue 14 list every kind's fields
+        if not strict:  # a trace's metadata may list fields of every kind: keep this kind's
             other = {f.name for k in registry.values() for f in fields(k.Spec)}
             raw = {k: v for k, v in raw.items() if k in {f.name for f in fields(cls)} or k not in other}
     valid = {f.name: f.type for f in fields(cls)}
@@ -215,7 +215,7 @@ def _section(where, sec, cls, raw, strict=True, default=None):
 
 def scenario_from_dict(data: dict, where: str = "", strict: bool = True) -> Scenario:
     """Build and validate a Scenario from a TOML-like dict (SI units). ``strict=False`` (a trace's metadata) ignores
-    substrate fields that belong to other substrate kinds, as written by versions before issue 14."""
+    substrate fields that belong to other substrate kinds (older traces list every kind's fields)."""
     if not isinstance(data, dict):
         raise _err(where, "a scenario must be a table of sections")
     top_keys = {"name", "description", *_SECTIONS}

@@ -5,8 +5,8 @@ Each particle belongs to one pad's track and collides only with that pad, that t
 stays at rest on the track (trapped) or drags it along (moving); which happens depends on the particle's
 size, the contact angle and the two friction coefficients. By default a grain does not rotate (moment = inf),
 as angular debris does not roll: a free disc squeezed between a sliding pad and the track rolls at v / 2 and is
-never trapped. (A rotary damper to the ground was tried instead: it doubled the step cost and, stiff against
-the grains' tiny moments of inertia, let the contact solver squeeze particles through the track.)
+never trapped. (A rotary damper to the ground would stop the rolling too, but it doubles the step cost and, stiff
+against the grains' tiny moments of inertia, lets the contact solver squeeze particles through the track.)
 
 Confinement: particles left more than ``behind`` behind their pad, pushed more than 3 ``ahead`` ahead of it,
 or out of the interface (below the track surface or above the pad) are recycled to a random free place up to
@@ -34,7 +34,7 @@ __all__ = ["WearSpec", "NoWear", "wear_part", "check_wear", "draw_radii", "grain
 # the tracks' segment radius (50 um by default) adds to the margin.
 WEAR_SPEED_FACTOR = 10.0
 WEAR_TUNNEL_FRACTION = 0.25
-# The grain step rule (issue 17; benchmarks/results/wear_convergence.md): a grain of mass m_g squeezed by a pad feels
+# The grain step rule (benchmarks/results/wear_convergence.md): a grain of mass m_g squeezed by a pad feels
 # the pad's springs, omega_g = sqrt((k0 + k_normal) / m_g). Every grain run measured with omega_g dt <= 0.65 closed
 # the energy balance within 0.5 % (the clean branch); every one with omega_g dt >= 0.81 chattered (residual 2.4-8 %,
 # grains sunk into the track at 1e-6 kg), whatever the solver iterations. The step is cut into substeps so that
