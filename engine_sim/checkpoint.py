@@ -30,7 +30,7 @@ def recorder_state(rec, k) -> dict:
     """The recorder's state at sample k: rows below k of its buffers (by reference) and its small mutable parts."""
     if rec.k != k:
         raise RuntimeError(f"epoch at an inconsistent point (loop at sample {k}, recorder at {rec.k})")
-    return {"k": k, "x0": rec.x0, "part": rec._part.copy(), "arrays": {a: getattr(rec, a) for a in _REC_ARRAYS}}
+    return {"k": k, "x0": rec.x0, "part": rec.grain_table.copy(), "arrays": {a: getattr(rec, a) for a in _REC_ARRAYS}}
 
 
 def restore(scene_bytes: bytes, rs: dict, n_out: int):
@@ -48,7 +48,7 @@ def restore(scene_bytes: bytes, rs: dict, n_out: int):
             setattr(rec, a, src)  # live: keep the buffers
         else:
             dst[:k] = src[:k]
-    rec._part, rec.k, rec.x0 = rs["part"].copy(), k, rs["x0"]
+    rec.grain_table, rec.k, rec.x0 = rs["part"].copy(), k, rs["x0"]
     return scene, rec
 
 

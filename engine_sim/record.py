@@ -88,7 +88,8 @@ class Recorder:
         self.p_state = np.zeros((n_samples, n_p), dtype=np.int8)
         self.p_force = np.zeros((n_samples, n_p))
         self.recycle = np.zeros(n_samples)
-        self._part = scene.wear.recorder_table()  # per grain (reduction.G_*): mass, moment, radius, asleep, x, y
+        # per grain (reduction.G_*): mass, moment, radius, asleep, last place; carried across epochs (checkpoint.py)
+        self.grain_table = scene.wear.recorder_table()
         self.x0 = None
         self._tables()
 
@@ -147,9 +148,9 @@ class Recorder:
         if self.x0 is None:
             self.x0 = float(sc.block.position.x)
         self._prm[0:5] = (*self._drive_state(), self.x0)
-        sc.wear.mark_sleeping(self._part)
+        sc.wear.mark_sleeping(self.grain_table)
         self.recycle[k] = sc.wear.recycle_work
-        reduce_sample(ids, fl, ai, af, self._tab, self._part, self._bs, self._pp, self._prm, sc.slider_terms,
+        reduce_sample(ids, fl, ai, af, self._tab, self.grain_table, self._bs, self._pp, self._prm, sc.slider_terms,
                       self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact, self.p_state,
                       self.p_force)
         self.t[k] = sc.steps * sc.dt / U.TIME

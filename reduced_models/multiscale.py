@@ -53,7 +53,7 @@ from . import spring_block as _m1
 from ._exact import Modes, first_order, modal_decomposition
 from ._two_level import run_two_level, sort_windows
 from ._version import package_version
-from .trace import ModelTrace
+from .trace import ModelTrace, check_run
 
 __all__ = ["MultiscaleParams", "simulate", "theory_spectrum", "theory_components", "transfer_functions",
            "asymptotic_spectrum", "micro_macro_ratio", "crossover_frequency", "regime_frequencies", "RESPONSE",
@@ -225,7 +225,7 @@ def simulate(params: MultiscaleParams, duration: float, dt_out: float = 1e-3, se
         interval; ``events``: ``times``, ``index`` of the macro renewals, ``force_micro`` (F2 averaged per
         interval), ``n_micro_renewals``, and ``micro_times`` if ``micro_events``.
     """
-    _m1._check_run(duration, dt_out)
+    check_run(duration, dt_out)
     if params.n_micro == 0:
         tr = _m1.simulate(params.macro, duration, dt_out, seed=seed)
         meta = {**tr.metadata, "model": "Ib (multiscale), n = 0: model I", "params": params.to_dict()}
@@ -251,7 +251,7 @@ def _simulate_two_level(p: MultiscaleParams, duration, dt_out, seed, micro_event
     ilr = np.divide(1.0, md.lam_r, out=np.zeros_like(md.lam_r), where=md.lam_r != 0.0)
     lcr, lci, ilc = md.lam_c.real.copy(), md.lam_c.imag.copy(), 1.0 / md.lam_c
     x, F, F2 = np.empty(n), np.empty(n), np.empty(n)
-    n1_est = int(p.N * (p.v * duration * 1.5 / p.a + 2 * _m1._BLOCK_INTERVALS)) + 16
+    n1_est = int(p.N * (p.v * duration * 1.5 / p.a + 2 * _m1.BLOCK_INTERVALS)) + 16
     ev_time = np.empty(n1_est)
     ev_index = np.empty(n1_est, dtype=np.int64)
     n2_est = int(p.N * p.n_micro * (p.v * duration * 1.5 / p.a2 + 2 * _WINDOWS)) + 16 if micro_events else 1
@@ -269,7 +269,7 @@ def _simulate_two_level(p: MultiscaleParams, duration, dt_out, seed, micro_event
     reach = -np.inf  # the kernel stops 4 output steps before the nearer loaded boundary
     while k < n:
         while bound1 <= reach or bound1 == -np.inf:
-            new = _m1._renewal_block(p.macro, rng, b1)
+            new = _m1.renewal_block(p.macro, rng, b1)
             b1 += 1
             pos1, idx1, val1 = (np.concatenate([pos1[ptr1:], new[0]]), np.concatenate([idx1[ptr1:], new[1]]),
                                 np.concatenate([val1[ptr1:], new[2]]))
@@ -327,7 +327,7 @@ def transfer_functions(params: MultiscaleParams, omega):
     return -P0 / (Q0 * Q1t - P0 * P1), P2 / Q2
 
 
-def _force_spectrum(v, a, amp, omega, closure):
+def contact_force_spectrum(v, a, amp, omega, closure):
     """C_f of one contact's renewing force, eq. (A8) (Units: N^2 s); closure as in :func:`theory_spectrum`."""
     w = np.asarray(omega, dtype=float)
     tau0 = a / v
@@ -344,8 +344,8 @@ def theory_components(params: MultiscaleParams, omega, closure: str = "cumulant"
     """(macro, micro) parts of C_x: |Z~|^2 C_f1 / N and |Z~|^2 n |T2|^2 C_f2 / N (Units: m^2 s)."""
     p = params
     Z, T2 = transfer_functions(p, omega)
-    Cf1 = _force_spectrum(p.v, p.a, p.alpha * p.f_kin, omega, closure)
-    Cf2 = _force_spectrum(p.v, p.a2, p.alpha2 * p.f_kin2, omega, closure)
+    Cf1 = contact_force_spectrum(p.v, p.a, p.alpha * p.f_kin, omega, closure)
+    Cf2 = contact_force_spectrum(p.v, p.a2, p.alpha2 * p.f_kin2, omega, closure)
     return np.abs(Z) ** 2 * Cf1 / p.N, np.abs(Z) ** 2 * p.n_micro * np.abs(T2) ** 2 * Cf2 / p.N
 
 

@@ -92,7 +92,7 @@ def renewal_statistics(x, G, n_contacts: int, *, offset: float = 0.0, averaged_d
 
 def renewal_force_spectrum(omega, v: float, a: float, amplitude: float, closure: str = "cumulant") -> np.ndarray:
     """One contact's renewing-force spectrum, eq. (A8) (Units: N^2 s): ``reduced_models.multiscale``'s, public."""
-    return ms._force_spectrum(v, a, amplitude, omega, closure)
+    return ms.contact_force_spectrum(v, a, amplitude, omega, closure)
 
 
 def _band_means(omega, values, edges):

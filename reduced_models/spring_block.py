@@ -29,7 +29,7 @@ from frictionnoise.checks import check_fields, check_number
 from ._checkpoint import load_checkpoint as _load_checkpoint, save_checkpoint as _save_checkpoint
 from ._exact import Modes, first_order, modal_decomposition, run_renewals
 from ._version import package_version
-from .trace import ModelTrace
+from .trace import ModelTrace, check_run
 
 __all__ = [
     "SpringBlockParams", "simulate", "theory_spectrum", "theory_spectrum_coupled", "random_force_spectrum",
@@ -39,7 +39,7 @@ __all__ = [
 
 RESPONSE = "viscous"  # below omega_c the block follows Z = -1/(i omega m eta1), eq. (A6)
 
-_BLOCK_INTERVALS = 256  # renewal intervals generated per miniblock at a time (memory independent of length)
+BLOCK_INTERVALS = 256  # renewal intervals generated per miniblock at a time (memory independent of length)
 
 
 @dataclass(frozen=True)
@@ -214,9 +214,9 @@ def _modal(p: SpringBlockParams, contacts=False) -> Modes:
 
 
 # ----------------------------------------------------------------------------- simulator
-def _renewal_block(p: SpringBlockParams, rng: np.random.Generator, b: int):
+def renewal_block(p: SpringBlockParams, rng: np.random.Generator, b: int):
     """Renewal events for distance block b: one per miniblock in each interval [j a, (j+1) a)."""
-    nb = _BLOCK_INTERVALS
+    nb = BLOCK_INTERVALS
     j = np.arange(b * nb, (b + 1) * nb, dtype=float)
     r_pos = rng.random((p.N, nb))
     r_val = rng.random((p.N, nb))
@@ -261,7 +261,7 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float = 1e-3, s
         ``x`` the big block's displacement, ``force`` the summed random force sum_i f_i averaged over each
         output interval, ``events`` with ``times`` (s) and ``index`` (miniblock) of every renewal.
     """
-    _check_run(duration, dt_out)
+    check_run(duration, dt_out)
     n = int(round(duration / dt_out))
     md = _modal(params, contacts)
     n_rows = md.C_r.shape[0]
@@ -303,7 +303,7 @@ def _initial_state(p: SpringBlockParams, md: Modes, n: int, duration: float, see
     rng = np.random.default_rng(seed)
     forces = p.alpha * p.f_kin * (rng.random(p.N) - 0.5)
     n_rows = md.C_r.shape[0]
-    ev_time = np.empty(int(p.N * (p.v * duration * 1.5 / p.a + 2 * _BLOCK_INTERVALS)) + 16)
+    ev_time = np.empty(int(p.N * (p.v * duration * 1.5 / p.a + 2 * BLOCK_INTERVALS)) + 16)
     return {
         "rng": rng, "forces": forces, "qr": np.zeros(len(md.lam_r)), "qc": np.zeros(len(md.lam_c), dtype=np.complex128),
         "gr": md.B_r @ forces, "gc": md.B_c @ forces.astype(np.complex128), "x": np.empty(n), "f": np.empty(n),
@@ -316,7 +316,7 @@ def _initial_state(p: SpringBlockParams, md: Modes, n: int, duration: float, see
 def _next_block(p: SpringBlockParams, st: dict):
     """Append the next distance block of renewals to the loaded ones (dropping those passed) and make room for
     their events."""
-    new_pos, new_idx, new_val, st["boundary"] = _renewal_block(p, st["rng"], st["b"])
+    new_pos, new_idx, new_val, st["boundary"] = renewal_block(p, st["rng"], st["b"])
     st["b"] += 1
     ptr = st["ptr"]
     st["pos"] = np.concatenate([st["pos"][ptr:], new_pos])
@@ -354,16 +354,6 @@ def _advance(p: SpringBlockParams, md: Modes, st: dict, k_stop: int, dt_out: flo
         st["ev_index"][st["ev_count"]:new_count] = st["idx"][ptr:new_ptr]
         st["ev_count"], st["ptr"], st["k"] = new_count, new_ptr, k_new
         st["need_block"] = k_new < k_stop
-
-
-def _check_run(duration, dt_out):
-    """The run arguments every reduced model takes: a positive duration holding at least two output steps."""
-    if not (isinstance(duration, (int, float)) and duration > 0 and math.isfinite(duration)):
-        raise ValueError(f"duration must be a positive number of seconds (got {duration!r})")
-    if not (isinstance(dt_out, (int, float)) and dt_out > 0 and math.isfinite(dt_out)):
-        raise ValueError(f"dt_out must be a positive number of seconds (got {dt_out!r})")
-    if int(round(duration / dt_out)) < 2:
-        raise ValueError(f"duration {duration!r} s holds fewer than two output steps of {dt_out!r} s")
 
 
 # ----------------------------------------------------------------------------- theory
