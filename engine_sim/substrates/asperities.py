@@ -7,7 +7,7 @@ import numpy as np
 
 from .. import units as U
 from ..substrate import BumpTrack
-from . import Substrate, SubstrateSpec, register
+from . import SUBSTRATES, Substrate, SubstrateSpec
 
 
 @dataclass(frozen=True)
@@ -23,9 +23,9 @@ class AsperitiesSpec(SubstrateSpec):
     h_max: float = 0.02e-3
 
 
-@register
+@SUBSTRATES.register
 class Asperities(Substrate):
-    kind = "asperities"
+    name = "asperities"
     Spec = AsperitiesSpec
     arrangement = "sole"
     positive = Substrate.positive | {"cell", "p", "bump_radius"}

@@ -16,7 +16,7 @@ import numpy as np
 
 from .. import units as U
 from ..substrate import _StreamedTrack
-from . import Substrate, SubstrateSpec, register
+from . import SUBSTRATES, Substrate, SubstrateSpec
 from .self_affine import sliding_limit
 
 __all__ = ["LineScanSpec", "LineScan", "read_profile", "ProfileTrack"]
@@ -100,9 +100,9 @@ def _find(name: str, where: str) -> Path:
                      "shipped profiles (scenarios/profiles/)")
 
 
-@register
+@SUBSTRATES.register
 class LineScan(Substrate):
-    kind = "line_scan"
+    name = "line_scan"
     Spec = LineScanSpec
     non_negative = frozenset({"dx"})
     quick_duration = 8.0  # streaming its short segments costs about 1 wall s per simulated s
