@@ -27,7 +27,7 @@ def fitting_part(sc):
     """The scene's part that names the reduced model fitting it (``reduced_model``, a key of
     ``reduced_models.MODELS``) and the recorded seconds of a quick comparison (``quick_duration``): its wear
     particles when it has any, else its substrate."""
-    return next(part for part in (sc.wear, sc.substrate_part) if part.reduced_model)
+    return next(part for part in (sc.wear_part, sc.substrate_part) if part.reduced_model)
 
 
 # each reduced model's comparison with a scene: (module of this package, function), looked up when called
