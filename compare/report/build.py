@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import time
 
-from reduced_models._version import package_version
+from frictionnoise import package_version
 
 from .html import paragraphs, summary_of, table
 from .study import StudyResult
@@ -114,8 +114,7 @@ def build_scene_report(sc, trace=None, duration=None, seed=None, progress=None):
               "conventions": CONVENTIONS, "scenarios": {}}
     extra = []
     if sc.arrangement_part.also_fits:  # e.g. micro-pads: model Ib beside model I, on the same trace (as the report)
-        from .studies._common import run_scene
-        from .studies.scenes import beside_results
+        from .studies.scenes import beside_results, run_scene
 
         trace = run_scene(sc, False, header["seed"], trace, duration, progress)[0]
         extra = beside_results(sc, header["seed"], trace)
