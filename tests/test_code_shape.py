@@ -53,7 +53,7 @@ def test_module_and_function_lengths(path):
 @pytest.mark.parametrize("path", list(_modules()), ids=lambda p: str(p.relative_to(ROOT)))
 def test_no_private_name_crosses_a_module(path):
     """``from m import _x`` and ``m._x`` with ``m`` another project module are refused; a private module
-    (``_estimators``) may be imported by its own package's modules, never its private names."""
+    (``studies/_common.py``) may be imported only by its own package's modules."""
     tree = ast.parse(path.read_text())
     me = _name(path)
     bad, modules = [], {}
@@ -62,10 +62,17 @@ def test_no_private_name_crosses_a_module(path):
             src = _absolute(node, path)
             if not _project(src) or src == me:
                 continue
+            parts = src.split(".")
+            for k, part in enumerate(parts):
+                owner = ".".join(parts[:k])  # the package a private module belongs to
+                if part.startswith("_") and not part.startswith("__") and not me.startswith(owner + "."):
+                    bad.append(f"line {node.lineno}: from {src} import ... (a private module of {owner})")
             for a in node.names:
                 if a.name.startswith("_") and not a.name.startswith("__"):
                     if not (ROOT / Path(*src.split("."), f"{a.name}.py")).exists():  # a private name, not a module
                         bad.append(f"line {node.lineno}: from {src} import {a.name}")
+                    elif not me.startswith(src + "."):
+                        bad.append(f"line {node.lineno}: from {src} import {a.name} (a private module of {src})")
                 modules[a.asname or a.name] = f"{src}.{a.name}"
         elif isinstance(node, ast.Import):
             for a in node.names:

@@ -304,10 +304,12 @@ def cmd_compare(args) -> int:
     try:
         with compile_notice():  # the reduced model's kernels compile on the first comparison after an install
             if trace is None:
-                # the recorded duration as the study sets it (--duration, else the scenario's); a wear scene runs
-                # twice, with and without its particles (compare.report.studies.scene_wear)
+                # the recorded duration as the study sets it (--duration, else the scenario's), times the scene
+                # runs its comparison makes (a wear scene's: with and without its particles)
+                from ..report.studies.scenes import scene_runs
+
                 bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration,
-                                           runs=2 if sc.wear.count > 0 else 1)
+                                           runs=scene_runs(sc))
                 with bar:
                     sections, summary = build_scene_report(sc, duration=args.duration, seed=args.seed,
                                                            progress=update)

@@ -251,7 +251,7 @@ def analyze_force(data: MeasuredData, *, band=None, mass: float | None = None, s
 
 def build_force_report(an: ForceAnalysis):
     """Results (StudyResult list) and the JSON summary of a force analysis."""
-    from reduced_models._version import package_version
+    from frictionnoise import package_version
 
     from . import plots
 
@@ -316,7 +316,7 @@ def build_force_report(an: ForceAnalysis):
 
 def build_measured_report(data, mass: float, band=None, g: float = G_STANDARD):
     """Results (StudyResult list) and summary of measured x(t), with block mass ``mass`` (kg)."""
-    from reduced_models._version import package_version
+    from frictionnoise import package_version
 
     from . import plots
     from ..analysis.spectra import displacement_spectrum, force_spectrum, friction_coefficient_spectrum, rms_from_spectrum
