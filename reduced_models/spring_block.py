@@ -267,9 +267,8 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float = 1e-3, s
     n_rows = md.C_r.shape[0]
     every = n if not checkpoint_every else max(1, int(round(checkpoint_every / dt_out)))
     key_seed = seed if not n_rows else ("contacts", tuple(_contact_indices(params, contacts).tolist()), seed)
-    st = _load_checkpoint(checkpoint, params, n, dt_out, key_seed) if checkpoint else None
-    if st is None:
-        st = _initial_state(params, md, n, duration, seed)
+    st = (_load_checkpoint(checkpoint, params, n, dt_out, key_seed) if checkpoint else None) or _initial_state(
+        params, md, n, duration, seed)
     st.setdefault("xc", np.empty((0, n_rows)))
     st.setdefault("need_block", True)
     for k_stop in [*range((st["k"] // every + 1) * every, n, every), n]:  # the checkpoints, then the end
@@ -279,17 +278,11 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float = 1e-3, s
     x, ev_count = st["x"], st["ev_count"]
     if not np.all(np.isfinite(x)):
         raise FloatingPointError("model I produced non-finite positions; please report the parameters")
-    meta = {
-        "model": "I (spring-block)",
-        "params": params.to_dict(),
-        "seed": seed if isinstance(seed, (int, type(None))) else "Generator",
-        "duration": n * dt_out,
-        "dt_out": dt_out,
-        "method": ("exact modal propagation between renewals of the " + ("full (N+1)-body system" if contacts else
-                   "2-DOF system block + sum of miniblocks") + "; renewal times by Newton on the exact solution"),
-        "version": package_version(),
-        "n_renewals": ev_count,
-    }
+    meta = {"model": "I (spring-block)", "params": params.to_dict(), "duration": n * dt_out, "dt_out": dt_out,
+            "seed": seed if isinstance(seed, (int, type(None))) else "Generator", "version": package_version(),
+            "method": ("exact modal propagation between renewals of the " + ("full (N+1)-body system" if contacts else
+                       "2-DOF system block + sum of miniblocks") + "; renewal times by Newton on the exact solution"),
+            "n_renewals": ev_count}
     events = {"times": st["ev_time"][:ev_count].copy(), "index": st["ev_index"][:ev_count].copy()}
     if n_rows:
         events["contacts"] = st["xc"]
@@ -304,13 +297,11 @@ def _initial_state(p: SpringBlockParams, md: Modes, n: int, duration: float, see
     forces = p.alpha * p.f_kin * (rng.random(p.N) - 0.5)
     n_rows = md.C_r.shape[0]
     ev_time = np.empty(int(p.N * (p.v * duration * 1.5 / p.a + 2 * BLOCK_INTERVALS)) + 16)
-    return {
-        "rng": rng, "forces": forces, "qr": np.zeros(len(md.lam_r)), "qc": np.zeros(len(md.lam_c), dtype=np.complex128),
-        "gr": md.B_r @ forces, "gc": md.B_c @ forces.astype(np.complex128), "x": np.empty(n), "f": np.empty(n),
-        "xc": np.empty((n if n_rows else 0, n_rows)), "ev_time": ev_time,
-        "ev_index": np.empty(len(ev_time), dtype=np.int64), "ev_count": 0, "k": 0, "b": 0, "pos": np.empty(0),
-        "idx": np.empty(0, dtype=np.int64), "val": np.empty(0), "ptr": 0, "boundary": -np.inf, "need_block": True,
-    }
+    return {"rng": rng, "forces": forces, "qr": np.zeros(len(md.lam_r)), "qc": np.zeros(len(md.lam_c), dtype=complex),
+            "gr": md.B_r @ forces, "gc": md.B_c @ forces.astype(np.complex128), "x": np.empty(n), "f": np.empty(n),
+            "xc": np.empty((n if n_rows else 0, n_rows)), "ev_time": ev_time,
+            "ev_index": np.empty(len(ev_time), dtype=np.int64), "ev_count": 0, "k": 0, "b": 0, "pos": np.empty(0),
+            "idx": np.empty(0, dtype=np.int64), "val": np.empty(0), "ptr": 0, "boundary": -np.inf, "need_block": True}
 
 
 def _next_block(p: SpringBlockParams, st: dict):

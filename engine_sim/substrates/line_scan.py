@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import units as U
-from ..substrate import _StreamedTrack
+from ..substrate import StreamedTrack
 from . import SUBSTRATES, Substrate, SubstrateSpec
 from .self_affine import sliding_limit
 
@@ -139,7 +139,7 @@ class LineScan(Substrate):
                             shape_filter, rng, x_start)
 
 
-class ProfileTrack(_StreamedTrack):
+class ProfileTrack(StreamedTrack):
     """A fixed profile streamed as straight segments between its grid points (scene units), continued without end
     by mirroring or tiling, entered at a random index; consecutive segments linked with set_neighbors."""
 
