@@ -231,7 +231,7 @@ def _speed(D, fA, v, lin):
     return vi, fA / vi
 
 
-@numba.njit(cache=True, fastmath=True)
+@numba.njit(cache=True, fastmath=True, error_model="numpy")
 def _rhs(y, out, pars, vi, gi):
     """Time derivative of y = (z, u, s_i, D_i, q_i); vi, gi scratch for the contact speeds and slopes."""
     N = int(pars[0])
@@ -268,7 +268,7 @@ def _rhs(y, out, pars, vi, gi):
         out[2 + 2 * N + i] = dq
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _dense(y, ynew, k1, k3, k4, k5, k6, k7, h, th, j):
     th1 = 1.0 - th
     r2 = ynew[j] - y[j]
@@ -278,7 +278,7 @@ def _dense(y, ynew, k1, k3, k4, k5, k6, k7, h, th, j):
     return y[j] + th * (r2 + th1 * (r3 + th * (r4 + th1 * r5)))
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _renew(y, fr, i, new_f, pars, reset_q):
     """Contact i renews: its random force becomes new_f and (reset_q is finite) its state restarts at reset_q; the
     spring stretch and the block are continuous, so the direct-effect force D_i jumps to keep the contact's balance
@@ -310,7 +310,7 @@ def _renew(y, fr, i, new_f, pars, reset_q):
     fr[i] = new_f
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _run(y, fr, t, h, k_out, k_stop, dt_out, xs, fsum, pos, idx, val, ptr, n_pos, pars, tol, scale, reset_q,
          ev_time, ev_count, max_steps, counters):
     """Integrate until the output index reaches k_stop or the renewals loaded run out (ptr == n_pos). Writes x at
@@ -443,8 +443,8 @@ def simulate(params: AgeingParams, duration: float, dt_out: float = 1e-3, seed=N
         Simulated time and output step (Units: s).
     seed : int or numpy.random.Generator
     rtol : float
-        Local error tolerance per step, relative to the scales 1e-3 a (z), v (u), f_kin / k0 (s_i), f_n A (D_i),
-        1 (state).
+        Local error tolerance per step, relative to the scales 1e-3 a (z), max(v, the block's ringing speed after
+        one renewal) (u), f_kin / k0 (s_i), f_n A (D_i), 1 (state).
 
     Returns
     -------
@@ -475,7 +475,11 @@ def simulate(params: AgeingParams, duration: float, dt_out: float = 1e-3, seed=N
     f_first, fr = fr, np.zeros(N)
     for i in range(N):
         _renew(y, fr, i, f_first[i], pars, np.nan)
-    scale = np.concatenate([[1e-3 * p.a, p.v], np.full(N, p.f_kin / p.k0), np.full(N, p.f_n * p.A), np.ones(N)])
+    # error scales: the block's displacement 1e-3 a; its velocity the larger of v and the ringing speed of the block
+    # on its springs after one renewal, sqrt(N k0 / M) alpha f_kin / (N k0); stretches f_kin / k0; forces f_n A
+    ring = math.sqrt(N * p.k0 / p.M) * max(p.alpha, 1e-3) * p.f_kin / (N * p.k0)
+    scale = np.concatenate([[1e-3 * p.a, max(p.v, ring)], np.full(N, p.f_kin / p.k0), np.full(N, p.f_n * p.A),
+                            np.ones(N)])
     reset_q = np.nan if p.renewal_state is None else p.renewal_state * p.v / p.D_c
     xs = np.empty(n + 1)  # one sample beyond the last, so that the last force interval is integrated in full
     fsum = np.zeros(n + 1)

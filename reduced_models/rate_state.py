@@ -268,7 +268,7 @@ _D1, _D3, _D4 = -12715105075 / 11282082432, 87487479700 / 32700410799, -10690763
 _D5, _D6, _D7 = 701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _rhs(y, out, sigma, k, A, B, Dc, V0, eta, Vlp, law):
     """(dpsi/dt, dphi/dt, ddelta/dt) of the slider in log variables (module docstring)."""
     V = V0 * math.exp(y[0])
@@ -281,7 +281,7 @@ def _rhs(y, out, sigma, k, A, B, Dc, V0, eta, Vlp, law):
     out[2] = V
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _segment(y, t, t_end, h, k_out, n_out, dt_out, out, pars, law, tol, max_steps, counters):
     """Integrate from t to t_end (DOPRI5, dense output), writing y at every output time k dt_out in (t, t_end].
 
