@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 from scipy import stats
 
-from compare.spectra import band_average, displacement_spectrum
+from compare.analysis.spectra import band_average, displacement_spectrum
 from reduced_models import ageing as ag
 from reduced_models import rate_state as rs
 from reduced_models import spring_block as sb

@@ -4,7 +4,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from compare.spectra import band_average, displacement_spectrum
+from compare.analysis.spectra import band_average, displacement_spectrum
 from reduced_models import ageing as ag
 from reduced_models import spring_block as sb
 
@@ -62,6 +62,7 @@ def small_alpha_runs():
     return out
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law", ["ageing", "slip"])
 def test_simulation_matches_its_linear_response_per_band(small_alpha_runs, law):
     # 9 log bands over 0.5-250 rad/s. Statistical scatter of a band average: ~7 % in the lowest band (as model I's
