@@ -34,12 +34,13 @@ def _events(t, slip):
 
 
 def reference(p, duration, dt_out, V_init, method="DOP853", tol=1e-13):
-    code = rs.STATE_LAWS[p.law].code
-
-    def f(t, y):
-        out = np.empty(3)
-        rs._rhs.py_func(y, out, p.sigma, p.k, p.A, p.B, p.D_c, p.V0, p.eta, p.V_lp, code)
-        return out
+    def f(t, y):  # the slider's equations written again here, in (ln V/V0, ln V0 theta/D_c, slip)
+        V = p.V0 * math.exp(y[0])
+        if p.law == "ageing":
+            dphi = p.V0 / p.D_c * math.exp(-y[1]) - V / p.D_c
+        else:
+            dphi = -(V / p.D_c) * (y[0] + y[1])
+        return [(p.k * (p.V_lp - V) - p.sigma * p.B * dphi) / (p.sigma * p.A + p.eta * V), dphi, V]
 
     n = int(round(duration / dt_out))
     t_eval = np.arange(n) * dt_out

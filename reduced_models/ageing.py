@@ -208,15 +208,15 @@ def equivalent_model_I(params: AgeingParams):
 
 
 # ----------------------------------------------------------------------------- integrator (numba)
-_C = _rs  # Dormand-Prince coefficients live in rate_state
-_A21 = _C._A21
-_A31, _A32 = _C._A31, _C._A32
-_A41, _A42, _A43 = _C._A41, _C._A42, _C._A43
-_A51, _A52, _A53, _A54 = _C._A51, _C._A52, _C._A53, _C._A54
-_A61, _A62, _A63, _A64, _A65 = _C._A61, _C._A62, _C._A63, _C._A64, _C._A65
-_A71, _A73, _A74, _A75, _A76 = _C._A71, _C._A73, _C._A74, _C._A75, _C._A76
-_E1, _E3, _E4, _E5, _E6, _E7 = _C._E1, _C._E3, _C._E4, _C._E5, _C._E6, _C._E7
-_D1, _D3, _D4, _D5, _D6, _D7 = _C._D1, _C._D3, _C._D4, _C._D5, _C._D6, _C._D7
+_DP = _rs.DORMAND_PRINCE  # the Dormand-Prince 5(4) tableau, one copy
+_A21 = _DP["a21"]
+_A31, _A32 = _DP["a31"], _DP["a32"]
+_A41, _A42, _A43 = _DP["a41"], _DP["a42"], _DP["a43"]
+_A51, _A52, _A53, _A54 = _DP["a51"], _DP["a52"], _DP["a53"], _DP["a54"]
+_A61, _A62, _A63, _A64, _A65 = _DP["a61"], _DP["a62"], _DP["a63"], _DP["a64"], _DP["a65"]
+_A71, _A73, _A74, _A75, _A76 = _DP["a71"], _DP["a73"], _DP["a74"], _DP["a75"], _DP["a76"]
+_E1, _E3, _E4, _E5, _E6, _E7 = _DP["e1"], _DP["e3"], _DP["e4"], _DP["e5"], _DP["e6"], _DP["e7"]
+_D1, _D3, _D4, _D5, _D6, _D7 = _DP["d1"], _DP["d3"], _DP["d4"], _DP["d5"], _DP["d6"], _DP["d7"]
 
 # pars: 0 N, 1 v, 2 k0, 3 M, 4 c0, 5 F_drive, 6 f_n, 7 mu_v, 8 A, 9 B, 10 D_c, 11 law (0 ageing, 1 slip),
 #       12 linear_direct (0/1)

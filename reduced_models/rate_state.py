@@ -56,7 +56,7 @@ from ._version import package_version
 __all__ = [
     "SpringSliderParams", "SliderTrace", "STATE_LAWS", "simulate", "friction", "steady_state_mu",
     "steady_state_theta", "critical_stiffness", "onset_period", "onset_frequency", "rate_sensitivity",
-    "velocity_step_mu", "healing_per_decade", "characteristic_roots",
+    "velocity_step_mu", "healing_per_decade", "characteristic_roots", "DORMAND_PRINCE",
 ]
 
 
@@ -256,16 +256,26 @@ def healing_per_decade(params: SpringSliderParams) -> float:
 
 
 # ----------------------------------------------------------------------------- integrator (numba)
-_C2, _C3, _C4, _C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
-_A21 = 1 / 5
-_A31, _A32 = 3 / 40, 9 / 40
-_A41, _A42, _A43 = 44 / 45, -56 / 15, 32 / 9
-_A51, _A52, _A53, _A54 = 19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729
-_A61, _A62, _A63, _A64, _A65 = 9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656
-_A71, _A73, _A74, _A75, _A76 = 35 / 384, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84
-_E1, _E3, _E4, _E5, _E6, _E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40
-_D1, _D3, _D4 = -12715105075 / 11282082432, 87487479700 / 32700410799, -10690763975 / 1880347072
-_D5, _D6, _D7 = 701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423
+DORMAND_PRINCE = {
+    # Dormand & Prince 5(4): stage coefficients a_ij, the 5th-order weights (row 7), the error weights e_i = b_i - b*_i
+    # and the dense-output weights d_i of Hairer's contd5 (Hairer, Norsett & Wanner, Solving ODEs I, II.5-6)
+    "a21": 1 / 5, "a31": 3 / 40, "a32": 9 / 40, "a41": 44 / 45, "a42": -56 / 15, "a43": 32 / 9,
+    "a51": 19372 / 6561, "a52": -25360 / 2187, "a53": 64448 / 6561, "a54": -212 / 729,
+    "a61": 9017 / 3168, "a62": -355 / 33, "a63": 46732 / 5247, "a64": 49 / 176, "a65": -5103 / 18656,
+    "a71": 35 / 384, "a73": 500 / 1113, "a74": 125 / 192, "a75": -2187 / 6784, "a76": 11 / 84,
+    "e1": 71 / 57600, "e3": -71 / 16695, "e4": 71 / 1920, "e5": -17253 / 339200, "e6": 22 / 525, "e7": -1 / 40,
+    "d1": -12715105075 / 11282082432, "d3": 87487479700 / 32700410799, "d4": -10690763975 / 1880347072,
+    "d5": 701980252875 / 199316789632, "d6": -1453857185 / 822651844, "d7": 69997945 / 29380423,
+}
+_DP = DORMAND_PRINCE
+_A21 = _DP["a21"]
+_A31, _A32 = _DP["a31"], _DP["a32"]
+_A41, _A42, _A43 = _DP["a41"], _DP["a42"], _DP["a43"]
+_A51, _A52, _A53, _A54 = _DP["a51"], _DP["a52"], _DP["a53"], _DP["a54"]
+_A61, _A62, _A63, _A64, _A65 = _DP["a61"], _DP["a62"], _DP["a63"], _DP["a64"], _DP["a65"]
+_A71, _A73, _A74, _A75, _A76 = _DP["a71"], _DP["a73"], _DP["a74"], _DP["a75"], _DP["a76"]
+_E1, _E3, _E4, _E5, _E6, _E7 = _DP["e1"], _DP["e3"], _DP["e4"], _DP["e5"], _DP["e6"], _DP["e7"]
+_D1, _D3, _D4, _D5, _D6, _D7 = _DP["d1"], _DP["d3"], _DP["d4"], _DP["d5"], _DP["d6"], _DP["d7"]
 
 
 @numba.njit(cache=True, error_model="numpy")
