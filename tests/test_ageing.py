@@ -101,3 +101,22 @@ def test_force_channel_is_the_interval_mean_of_the_random_forces():
 def test_bad_parameters_name_the_field(field, value, message):
     with pytest.raises(ValueError, match=message):
         ag.AgeingParams(**{field: value})
+
+
+def test_continuous_ageing_steepens_the_velocity_dependence():
+    # eq. (A11) with the ageing slope: C_x ~ v^3 / |R|^2, R = A - B / (1 + i x), x = omega D_c / v, and
+    # |R|^2 = A^2 - (2 A B - B^2) / (1 + x^2) falls as v rises (x falls) whenever 0 < B < 2 A: the exponent
+    # d ln C_x / d ln v is 3 + (2AB - B^2) 2 x^2 / ((1 + x^2)^2 |R|^2) >= 3, never 5/3. Checked against that
+    # closed form to 1e-6 (central differences in ln v, step 1e-4) on a grid of B/A, D_c, v.
+    w = np.array([0.4, 5.0, 30.0])
+    for ratio in (0.0, 1 / 3, 2 / 3, 0.9):
+        A = 0.08 / (1 - ratio)
+        for Dc in (1e-5, 1e-4, 1e-3):
+            for v in (2e-6, 2e-5, 2e-4, 2e-3):
+                p = [ag.AgeingParams(v=v * f, A=A, B=A - 0.08, D_c=Dc) for f in (np.exp(-1e-4), np.exp(1e-4))]
+                slope = np.log(ag.asymptotic_spectrum(p[1], w) / ag.asymptotic_spectrum(p[0], w)) / 2e-4
+                x2 = (w * Dc / v) ** 2
+                B = A - 0.08
+                R2 = A**2 - (2 * A * B - B**2) / (1 + x2)
+                np.testing.assert_allclose(slope, 3 + (2 * A * B - B**2) * 2 * x2 / ((1 + x2) ** 2 * R2), rtol=1e-6)
+                assert np.all(slope >= 3 - 1e-9)
