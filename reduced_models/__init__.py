@@ -79,3 +79,5 @@ register("model_I", spring_block)
 register("model_Ib", multiscale)
 register("model_II", wear_particle)
 register("model_III", asperity_force)
+from . import ageing, rate_state  # noqa: E402  model I with ageing contacts; the rate-and-state law and spring-slider
+register("model_ageing", ageing)
