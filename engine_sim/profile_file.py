@@ -96,6 +96,14 @@ def _cells(line: str) -> list:
     return cells
 
 
+def _is_number(cell: str) -> bool:
+    try:
+        float(cell)
+    except ValueError:
+        return False
+    return True
+
+
 def _numbers(cells) -> tuple | None:
     if len(cells) < 2:
         return None
@@ -148,6 +156,10 @@ def _read_table(path: Path, text: str, encoding: str):
         if single:
             raise _fail(path, f"one point ({single[0][1][:40]!r}); a line scan needs at least {_MIN_POINTS}",
                         single[0][0])
+        ones = [i for i, _, c in preamble if len(c) == 1 and _is_number(c[0])]
+        if len(ones) >= _MIN_POINTS:
+            raise _fail(path, f"one column of numbers (from line {ones[0]}); a line scan needs two, positions and "
+                              "heights", ones[0])
         raise _fail(path, f"no rows of numbers (read as {encoding} text, {len(lines)} lines)")
     # names and values may hold spaces: the header and the preamble are split at the data's own delimiter
     delim = next((d for d in ",;\t" if d in lines[first - 1]), None)

@@ -76,6 +76,7 @@ def _one_line(e) -> str:
 
 BAD = {  # name: (data rows replacing the export's, the line named, what the message says)
     "no_numbers": (["Lateral,Profile,,", "none,recorded,,"], None, "no rows of numbers"),
+    "one_column": ([f"{10.0 + i}" for i in range(20)], 16, "one column of numbers"),
     "one_point": (["0.000,12.5,,"], 16, "one point"),
     "nan_height": ([f"{i * 0.156:.3f},{'NaN' if i == 5 else 10.0 + i},," for i in range(20)], 21,
                    "height nan is not a number"),

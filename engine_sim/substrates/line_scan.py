@@ -30,6 +30,7 @@ _UNITS = ("", "m", "mm", "um", "µm", "nm", "A", "Å")  # "": the unit the file 
 # pad's path changes by less than this are below what the scene resolves
 CONTACT_SLOP = 1e-7  # m
 _EVAL_POINTS = 1 << 17  # the spacing rule is judged on at most this many points of the profile (cost bound)
+_CLOSING_WORK = 4e8  # points x disc width above which a profile is first pooled to its bins' maxima (cost bound)
 
 
 @dataclass(frozen=True)
@@ -168,6 +169,14 @@ def _profile(path: str, stamp: tuple, x_unit: str, height_unit: str, dx: float, 
         note = f"{name}: profile on a {_um(step)} grid{how}"
         out.setflags(write=False)
         return TrackProfile(float(step), out, native, 0.0, note)
+    file_dx = native
+    width = 2 * _reach(radius, hg) / native  # points under the disc: the closing costs n x width
+    if hg.size * width > _CLOSING_WORK:  # a pad touches only peaks: keep each bin's highest point
+        b = int(np.ceil(hg.size * width / _CLOSING_WORK))
+        hg = np.maximum.reduceat(hg, np.arange(0, hg.size, b))
+        grid = grid[::b]
+        native *= b
+        how += f" (first pooled to the highest point of every {b} points, {_um(native)}: the pad touches only peaks)"
     closed = pad_closing(hg, native, radius, extend)
     filled = float(np.mean(closed - hg > 1e-3 * tol))
     n_eval = min(closed.size, _EVAL_POINTS)
@@ -184,12 +193,12 @@ def _profile(path: str, stamp: tuple, x_unit: str, height_unit: str, dx: float, 
             out = np.interp(grid[0] + dx * np.arange(int(np.floor((grid[-1] - grid[0]) / dx + 1e-9)) + 1), grid,
                             closed)
         moved = f"; the pad's path moves {_um(err)} rms" if k is not None else ""
-        what = f"resampled from {_um(native)} to {_um(step)} as substrate.dx asks{moved}"
+        what = f"resampled from {_um(file_dx)} to {_um(step)} as substrate.dx asks{moved}"
     else:
         k, err = _spacing_from_pad(closed[:n_eval], path_ref, native, radius, tol, cap, extend)
         step, out = k * native, closed[::k].copy()
         if k > 1:
-            what = (f"resampled from {_um(native)} to {_um(step)}: the pad cannot resolve shorter wavelengths (its "
+            what = (f"resampled from {_um(file_dx)} to {_um(step)}: the pad cannot resolve shorter wavelengths (its "
                     f"path moves {_um(err)} rms; substrate.path_tolerance {_um(tol)})")
         else:
             e2 = _path_error(closed[:n_eval], path_ref, 2, native, radius, margin, extend)
@@ -198,7 +207,7 @@ def _profile(path: str, stamp: tuple, x_unit: str, height_unit: str, dx: float, 
     note = (f"{name}: profile {what}{how}; the pad (radius {_um(radius)} with the track's thickness) bridges the "
             f"valleys under {100 * filled:.0f} % of the points")
     out.setflags(write=False)
-    return TrackProfile(float(step), out, native, err, note)
+    return TrackProfile(float(step), out, file_dx, err, note)
 
 
 def read_profile(spec: LineScanSpec, pad_radius: float = 0.0) -> TrackProfile:
