@@ -6,7 +6,6 @@ import pytest
 
 import engine_sim
 from engine_sim import ScenarioError, Scene, load_scenario, scenario_from_dict
-from engine_sim.profile_file import ProfileError
 from engine_sim.substrates.line_scan import LineScanSpec, ProfileTrack, pad_closing, pad_path, read_profile
 from tests.stylus_export import SPACING_UM, stylus_export
 

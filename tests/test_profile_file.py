@@ -1,7 +1,6 @@
 """Line scans as instruments write them (engine_sim.profile_file): a stylus-profilometer export with its preamble,
 latin-1 units and empty trailing columns, in every line-end convention; the same numbers as SurfaceTopography reads;
 and every bad profile refused in one line naming the file and the line."""
-import codecs
 
 import numpy as np
 import pytest
