@@ -195,6 +195,24 @@ def cmd_run(args) -> int:
         raise
 
 
+def _before_run(sc, args, resuming: bool):
+    """What the run says before it starts: what its parts did to their inputs (a measured profile resampled), and
+    its projected wall time when that exceeds a minute (engine_sim.forecast: a probe of about a second)."""
+    from engine_sim.forecast import LONG_RUN_S, forecast
+
+    from .compile_notice import compile_notice
+
+    for note in sc.substrate_part.notes():
+        print(f"frictionnoise: note: {note}", file=sys.stderr, flush=True)
+    if resuming:
+        return
+    with compile_notice():  # the probe records a sample: the recorder's kernel loads (or compiles) here
+        fc = forecast(sc, duration=args.duration, seed=args.seed)
+    if fc.wall_s > LONG_RUN_S:
+        print(f"frictionnoise: note: {fc.line()}; --duration shortens it, Ctrl-C stops it and keeps what was "
+              "recorded", file=sys.stderr, flush=True)
+
+
 def _run_into(args, sc, out, ck) -> int:
     import engine_sim
 
@@ -210,6 +228,7 @@ def _run_into(args, sc, out, ck) -> int:
             print(f"checkpoints every {every_s:g} s (whole epochs of {epoch_s:g} s)", file=sys.stderr)
     from .compile_notice import compile_notice
 
+    _before_run(sc, args, resuming=ck is not None and ck.exists())
     bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration)
     with bar, compile_notice():  # the recorder's and friction laws' kernels compile on a fresh install
         try:
