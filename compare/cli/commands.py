@@ -65,6 +65,19 @@ def cmd_sweep(args) -> int:
     return 0 if counts["failed"] == 0 else 1
 
 
+def _print_breaks(timeline, most: int = 10):
+    """The breaks of a record's time stamps, one line each (at most ``most``), and its uniform segments."""
+    if timeline is None or not timeline.events:
+        return
+    for e in timeline.events[:most]:
+        print(f"time stamps: {e.describe()}")
+    if len(timeline.events) > most:
+        print(f"time stamps: ... and {len(timeline.events) - most} more breaks (all in summary.json)")
+    used = timeline.usable()
+    print(f"time stamps: {len(timeline.segments)} uniform segments, {len(used)} of {min(s.n for s in used)}+ rows "
+          f"(steps {', '.join(f'{s.dt:.4g}' for s in used)} s)")
+
+
 def cmd_analyze(args) -> int:
     from pathlib import Path
 
@@ -95,11 +108,13 @@ def cmd_analyze(args) -> int:
     try:
         data = read_measured(args.data, time_col=args.time_col, x_col=args.x_col, force_col=args.force_col,
                              normal_col=args.normal_col, direction_col=args.direction_col, time_unit=args.time_unit,
-                             x_unit=args.x_unit, force_unit=args.force_unit, require_x=not force)
+                             x_unit=args.x_unit, force_unit=args.force_unit, require_x=not force,
+                             resample=args.resample)
     except DataFileError as e:
         raise UserError(str(e)) from None
     if data.warning:
         print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)
+    _print_breaks(data.timeline)
     out = output_dir(args.output, f"analyze-{Path(args.data).stem}", "index.html and summary.json")
     band = tuple(args.band) if args.band else None
     try:
