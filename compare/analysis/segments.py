@@ -144,8 +144,8 @@ def resample_record(t, columns: dict, timeline, dt: float):
     out = {key: np.interp(tu, tk, y[keep]) for key, y in filtered.items()}
     bridged = sum(e.size for e in timeline.events if e.kind == "gap")
     statement = (f"resampled onto a uniform {dt:.4g} s grid: {lowpassed} faster segment(s) low-passed first "
-                 f"(zero-phase Butterworth, order 8, at {f_cut:.4g} Hz = 0.8 of the new Nyquist frequency), then linear "
-                 f"interpolation; {bridged:.4g} s of gaps bridged by straight lines; {int((~keep).sum())} rows "
+                 f"(zero-phase Butterworth, order 8, at {f_cut:.4g} Hz = 0.8 of the new Nyquist frequency), then "
+                 f"linear interpolation; {bridged:.4g} s of gaps bridged by straight lines; {int((~keep).sum())} rows "
                  "whose "
                  "time did not advance dropped")
     return tu, out, statement

@@ -74,8 +74,8 @@ def _print_breaks(timeline, most: int = 10):
     if len(timeline.events) > most:
         print(f"time stamps: ... and {len(timeline.events) - most} more breaks (all in summary.json)")
     used = timeline.usable()
-    print(f"time stamps: {len(timeline.segments)} uniform segments, {len(used)} of {min(s.n for s in used)}+ rows "
-          f"(steps {', '.join(f'{s.dt:.4g}' for s in used)} s)")
+    print(f"time stamps: {len(timeline.segments)} uniform segments, {len(used)} long enough to analyse (steps "
+          f"{', '.join(f'{s.dt:.4g}' for s in used)} s)")
 
 
 def cmd_analyze(args) -> int:
