@@ -25,8 +25,9 @@ def test_forecast_line_and_arithmetic():
 @pytest.mark.timing
 def test_forecast_is_near_the_run():
     """The projection against the run it projects, one after the other in this process (the numba kernels loaded
-    by the first): within a factor 2 either way. Measured 0.6-3x under a load of 6 on 2 cores, where fixed costs
-    (kernel loading) and other processes' bursts dominate a 3 s run; the timing tier runs alone on one core."""
+    by the first): within a factor 3 either way, enough to tell a run of seconds from one of many minutes. Measured
+    run/forecast 1.15 under a load of 5 and 3.2 under a load of 10 on 2 cores, where other processes' bursts
+    lengthen the run more than the probe's median step; the timing tier runs alone on one core."""
     sc = load_scenario("line_scan_example")
     engine_sim.run(sc, duration=0.05)  # loads the kernels, reads the profile: the fixed costs of a fresh process
     f = forecast(sc, duration=3.0)
@@ -34,4 +35,4 @@ def test_forecast_is_near_the_run():
     engine_sim.run(sc, duration=3.0)
     wall = time.perf_counter() - t0
     print(f"forecast {f.wall_s:.1f} s, run {wall:.1f} s")
-    assert 0.5 < wall / f.wall_s < 2.0
+    assert 1 / 3 < wall / f.wall_s < 3.0
