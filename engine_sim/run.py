@@ -126,7 +126,7 @@ def _record(scene, rec, k: int, n_out: int, e_out: int, interrupts, checkpoint, 
             # moved between a step and a sample would report a bogus overlap
             if k % MAINTAIN_EVERY == 0:
                 scene.maintain()
-                if report is not None and k % (MAINTAIN_EVERY * 16) == 0:
+                if report is not None:  # every maintenance: a log's progress lines need fresh figures
                     report(k)
             if k + 1 < n_out:
                 scene.advance(n_sub)
