@@ -75,3 +75,18 @@ def test_unknown_model_is_named():
         fn.model("model_IV")
     with pytest.raises(KeyError, match="SpringBlockParams"):
         fn.simulate(object(), 1.0)
+
+
+def test_a_scene_runs_renders_and_round_trips(tmp_path):
+    tr = fn.run_scene("pads_friction_patches", duration=0.3, seed=0)
+    assert tr.t[1] - tr.t[0] == pytest.approx(1e-3)  # the scenario's dt_out, SI seconds
+    # the block slides at the friction law's steady speed, 5 mm/s (scenario comments), within the patch noise:
+    # 0.3 s is 1.5 renewal lengths, so allow 10 %
+    v = np.polyfit(tr.t, tr.x, 1)[0]
+    assert v == pytest.approx(5e-3, rel=0.1)
+    fn.save_trace(tr, tmp_path / "trace.npz")
+    back = fn.load_trace(tmp_path / "trace.npz")
+    np.testing.assert_array_equal(back.x, tr.x)  # bit for bit
+    frames = fn.render_scene("pads_friction_patches", tmp_path / "frames", frames=2, duration=0.01, dpi=40)
+    assert len(frames) == 2 and frames[0].ndim == 3
+    assert sorted(p.name for p in (tmp_path / "frames").iterdir()) == ["frame_000.png", "frame_001.png"]
