@@ -199,8 +199,8 @@ def theory_spectrum(params: AsperityForceParams, omega) -> np.ndarray:
 
 
 def theory_spectrum_sampled(params: AsperityForceParams, omega) -> np.ndarray:
-    """C_x of the trajectory sampled at the grid: for a piecewise-constant force, x_{k+1} - 2 x_k + x_{k-1}
-    = dt^2 (a_k + a_{k-1}) / 2, so |H|^2 = dt^4 cos^2(theta/2) / (16 sin^4(theta/2)) / M^2. Equals
+    """C_x of the trajectory sampled at the grid: for a piecewise-constant force, ``x_{k+1} - 2 x_k + x_{k-1}
+    = dt^2 (a_k + a_{k-1}) / 2``, so ``|H|^2 = dt^4 cos^2(theta/2) / (16 sin^4(theta/2)) / M^2``. Equals
     theory_spectrum to O(theta^2) (Units: m^2 s)."""
     w = np.asarray(omega, dtype=float)
     th = w * params.dt

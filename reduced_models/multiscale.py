@@ -1,5 +1,5 @@
 """Model Ib: the multiscale spring-block model the paper proposes (Xu, Zhou & Persson 2025, Fig. 1c and
-sections 10-11): model I (eqs. A1-A2) with n microblocks elastically tied to each miniblock.
+sections 10-11): model I (eqs. A1-A2) with n microblocks elastically tied to each miniblock::
 
     M x''     = F_drive - sum_i [k0 (x - x_i) + m eta0 (x' - x_i')]
     m x_i''   = -k0 (x_i - x) - m eta0 (x_i' - x') - m eta1 x_i' - f_kin - f_i(t)
@@ -27,14 +27,14 @@ Theory: the transfer-function route of Appendix A, one level down
 ------------------------------------------------------------------
 Fourier transform, per microblock (zeta_ij its deviation):  Q2 zeta_ij = P2 zeta_i - f_ij, with
 Q2 = -m2 w^2 + k2 + i w m2 (eta2 + eta3), P2 = k2 + i w m2 eta2. Per miniblock, (A3) gains the micro
-springs: (Q1 + n P2) zeta_i = P1 zeta + P2 sum_j zeta_ij - f_i. Eliminating zeta_ij,
+springs: (Q1 + n P2) zeta_i = P1 zeta + P2 sum_j zeta_ij - f_i. Eliminating zeta_ij::
 
     Q1~ zeta_i = P1 zeta - (f_i + T2 sum_j f_ij),    Q1~ = Q1 + n P2 (Q2 - P2) / Q2,   T2 = P2 / Q2,
 
 i.e. the miniblock carries, in series, the micro spring P2 and the microblock's own impedance
 Q2 - P2 = -m2 w^2 + i w m2 eta3 (n of them in parallel), and the micro forces reach it filtered by T2. (A4)
 is unchanged, so (A5) holds with Q1 -> Q1~: zeta = Z~ (1/N) sum_i (f_i + T2 sum_j f_ij), Z~ = -P0 / (Q0 Q1~
-- P0 P1). With all forces independent, (A10) becomes
+- P0 P1). With all forces independent, (A10) becomes::
 
     C_x(w) = |Z~(w)|^2 / N * [ C_f1(w) + n |T2(w)|^2 C_f2(w) ],
 
@@ -341,7 +341,7 @@ def contact_force_spectrum(v, a, amp, omega, closure):
 
 
 def theory_components(params: MultiscaleParams, omega, closure: str = "cumulant"):
-    """(macro, micro) parts of C_x: |Z~|^2 C_f1 / N and |Z~|^2 n |T2|^2 C_f2 / N (Units: m^2 s)."""
+    """(macro, micro) parts of C_x: ``|Z~|^2 C_f1 / N`` and ``|Z~|^2 n |T2|^2 C_f2 / N`` (Units: m^2 s)."""
     p = params
     Z, T2 = transfer_functions(p, omega)
     Cf1 = contact_force_spectrum(p.v, p.a, p.alpha * p.f_kin, omega, closure)
@@ -350,7 +350,7 @@ def theory_components(params: MultiscaleParams, omega, closure: str = "cumulant"
 
 
 def theory_spectrum(params: MultiscaleParams, omega, closure: str = "cumulant") -> np.ndarray:
-    """C_x(omega) = |Z~|^2 / N [C_f1 + n |T2|^2 C_f2], the generalisation of eq. (A10) (Units: m^2 s), at the
+    """C_x(omega) = ``|Z~|^2 / N [C_f1 + n |T2|^2 C_f2]``, the generalisation of eq. (A10) (Units: m^2 s), at the
     angular frequencies omega (Units: rad/s; omega = 2 pi f). ``closure``: how eq. (A8) averages <cos omega tau> over
     the renewal interval tau = tau0 (1 + r - r') (tau0 = a / v, r and r' uniform), at both levels: "cumulant"
     (default, the paper's) a Gaussian of tau's mean and variance, exp(-s^2 omega^2 / 2) cos(omega tau0), s^2 =
@@ -400,6 +400,7 @@ def asymptotic_spectrum(params: MultiscaleParams, omega, regime: str) -> np.ndar
     - "micro_low": omega << v/a2, omega_c: 7 n a2 (alpha2 f_kin2)^2 / (144 pi N v c^2 omega^2), gamma = 2;
     - "micro_white": v/a2 << omega << omega3, omega_c: n alpha2^2 v f_kin2^2 / (12 pi N a2 c^2 omega^4), 4;
     - "micro_filtered": omega3, v/a2 << omega << omega_c: "micro_white" * (omega3 / omega)^2, gamma = 6.
+
     (Units: m^2 s)."""
     p = params
     w = np.asarray(omega, dtype=float)

@@ -370,14 +370,14 @@ def transfer_function(params: SpringBlockParams, omega) -> np.ndarray:
 
 
 def theory_spectrum(params: SpringBlockParams, omega) -> np.ndarray:
-    """C_x(omega) = |Z|^2 C_f / N, eq. (A10), full Z of (A5) and C_f of (A8) (Units: m^2 s); omega is the angular
+    """C_x(omega) = ``|Z|^2 C_f / N``, eq. (A10), full Z of (A5) and C_f of (A8) (Units: m^2 s); omega is the angular
     frequency (Units: rad/s). C_f uses the paper's cumulant closure of <cos omega tau>
     (:func:`reduced_models.multiscale.theory_spectrum` offers the exact one)."""
     return np.abs(transfer_function(params, omega)) ** 2 * random_force_spectrum(params, omega) / params.N
 
 
 def theory_spectrum_coupled(params: SpringBlockParams, omega) -> np.ndarray:
-    """C_x(omega) with the lateral coupling k1, eta_lat included: sum_i |Z_i|^2 C_f, Z_i from the full
+    """C_x(omega) with the lateral coupling k1, eta_lat included: ``sum_i |Z_i|^2 C_f``, Z_i from the full
     (N+1)-body dynamic stiffness (the generalisation of eq. A10 to non-identical miniblocks)."""
     Mm, D, K = _second_order(params)
     w = np.atleast_1d(np.asarray(omega, dtype=float))

@@ -15,8 +15,11 @@ Two force modes:
   signal); its exact spectrum is a Lorentzian with tau_c = tau_A tau_B / (tau_A + tau_B). Over a
   log-uniform spread of times it gives the same 1/f level as (B2) but corners shifted by up to 2x.
 
-Eq. (B2): C_F(omega) = (N/pi) Int dtau dtau' P_A(tau) P_B(tau') / (omega^2 (tau + tau'))
-            [c_A^2 (1 - <cos omega tau_A>) + c_B^2 (1 - <cos omega tau_B>)];
+Eq. (B2)::
+
+    C_F(omega) = (N/pi) Int dtau dtau' P_A(tau) P_B(tau') / (omega^2 (tau + tau'))
+                 [c_A^2 (1 - <cos omega tau_A>) + c_B^2 (1 - <cos omega tau_B>)];
+
 with P c^2 ~ tau^-beta and tau^-beta', C_F ~ omega^(beta + beta' - 3); log-uniform times (beta = beta' = 1)
 give 1/f force noise and C_x ~ omega^-5.
 """
