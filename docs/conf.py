@@ -63,3 +63,5 @@ html_theme_options = {
     "footer_end": ["sphinx-version"],
 }
 html_last_updated_fmt = None
+# the theme reads the colour mode from localStorage or this default; without one a first visit logs a console error
+html_context = {"default_mode": "auto"}
