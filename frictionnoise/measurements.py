@@ -9,8 +9,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from compare.fits import PowerLawFit, fit_power_law
-from compare.measured import MeasuredData, read_measured
-from compare.measured_report import ForceAnalysis, analyze_force
+from compare.io.measured import MeasuredData, read_measured
+from compare.report.measured_report import ForceAnalysis, analyze_force
 from compare.spectra import (Spectrum, displacement_spectrum, force_spectrum, friction_coefficient_spectrum,
                              rms_from_spectrum)
 

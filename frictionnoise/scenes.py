@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from compare.traceio import load_trace, save_trace
+from compare.io.traces import load_trace, save_trace
 from engine_sim import EngineTrace, Scenario, load_scenario
 from engine_sim import run as _run
 
@@ -138,12 +138,12 @@ def compare_scene(which, *, trace=None, duration: float | None = None, seed: int
         scene's exponent and its 95 % half-width), ``band`` (rad/s), the per-band ratios of the scene's C_x to
         the model's and the extracted model parameters.
     """
-    from compare.report import build_scene_report
+    from compare.report.build import build_scene_report
 
     sc = scenario(which)
     results, summary = build_scene_report(sc, trace=trace, duration=duration, seed=seed)
     if out is not None:
-        from compare.html import write_report
+        from compare.report.html import write_report
 
         write_report(Path(out), results, summary)
     return summary["scenarios"][sc.name]
