@@ -335,12 +335,21 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
 
     Parameters
     ----------
+    path : str or pathlib.Path
+        The text file (CSV, ;- or tab-separated; preamble, units row, decimal commas and latin-1 are read).
     time_col, x_col, force_col, normal_col, direction_col : str, optional
         Column names (the full header text or its name without the unit: ``"F"`` finds ``F [N]``). Defaults:
         time is the first column; with ``require_x`` and no ``force_col``, displacement is the second.
     time_unit, x_unit, force_unit : str, optional
         Units, required when neither the header nor a units row names them (see :data:`TIME_UNITS`,
         :data:`X_UNITS`, :data:`FORCE_UNITS`). ``normal_col`` uses the force unit rules.
+    require_x : bool, optional
+        Whether a displacement column is required (False for force data).
+
+    Returns
+    -------
+    MeasuredData
+        The record on a uniform time grid in SI units (s, m, N), with the units read and where from.
     """
     path = Path(path)
     src = str(path)
