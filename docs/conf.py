@@ -11,7 +11,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))  # the source tree, also for the notebook kernels (below)
 os.environ["PYTHONPATH"] = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH")) if p)
-os.environ.setdefault("MPLBACKEND", "Agg")
+# the tutorials' kernels draw inline (CI exports MPLBACKEND=Agg, under which a notebook shows no figure)
+os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
 
 from frictionnoise import package_version  # noqa: E402
 
