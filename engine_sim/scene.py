@@ -124,6 +124,12 @@ class Scene:
         self.arrangement.maintain(self)
 
     def advance(self, n: int):
-        """n pymunk steps, as the friction law steps them (the linear law: no Python inside a step)."""
+        """n pymunk steps, as the friction law steps them (the linear law: no Python inside a step).
+
+        Parameters
+        ----------
+        n : int
+            Number of steps of ``dt`` (s) each.
+        """
         self.law.advance(self, n)
         self.steps += n

@@ -357,6 +357,8 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
 
     Parameters
     ----------
+    path : str or pathlib.Path
+        The text file (CSV, ;- or tab-separated; preamble, units row, decimal commas and latin-1 are read).
     time_col, x_col, force_col, normal_col, direction_col : str, optional
         Column names (the full header text or its name without the unit: ``"F"`` finds ``F [N]``). Defaults:
         time is the first column; with ``require_x`` and no ``force_col``, displacement is the second.
@@ -367,6 +369,14 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
         A uniform step (s) to put the whole record on, behind a stated anti-alias filter, when its time stamps
         break (rate changes, gaps, repeated or backward stamps); without it such a record is returned as written,
         ``segmented``, with its ``timeline``.
+    require_x : bool, optional
+        Whether a displacement column is required (False for force data).
+
+    Returns
+    -------
+    MeasuredData
+        The record in SI units (s, m, N), with the units read and where from: on a uniform time grid, or as
+        written with its ``timeline`` of breaks when the stamps break and ``resample`` is None.
     """
     if resample is not None and not (resample > 0 and math.isfinite(resample)):
         raise DataFileError(f"the resampling step must be a positive number of seconds (got {resample!r})")

@@ -174,6 +174,14 @@ class ForceAnalysis:
     notes: list = field(default_factory=list)
 
     def summary(self) -> dict:
+        """The analysis as JSON-able numbers (the report's summary.json).
+
+        Returns
+        -------
+        dict
+            Source, units, strokes, the force exponent with its 95 % interval and band (rad/s), F_rms (N), and
+            the C_mu, equivalent-C_x and distance-domain entries when present.
+        """
         st = self.strokes
         s = {
             "source": self.data.source, "units": self.data.units, "layout": self.data.layout,
@@ -213,8 +221,30 @@ def analyze_force(data: MeasuredData, *, band=None, mass: float | None = None, s
 
     ``mass`` (kg) adds the equivalent C_x = C_F / (M^2 omega^4) of a free block (eq. 3); ``speed`` (m/s)
     adds the distance-domain spectrum C_F(q) = v C_F(omega = q v) (q in rad/m) and the stroke length; a
-    normal-force column adds C_mu of mu(t) = F(t) / N(t). ``method`` is the fit method (see
-    :func:`compare.fits.fit_power_law`); ``cut`` the seconds removed at each end of a stroke.
+    normal-force column adds C_mu of mu(t) = F(t) / N(t).
+
+    Parameters
+    ----------
+    data : MeasuredData
+        A record with a friction-force column (and optionally normal force, position or direction).
+    band : tuple of float, optional
+        Fit band (Units: rad/s); default automatic.
+    mass : float, optional
+        Block mass M (Units: kg).
+    speed : float, optional
+        Imposed sliding speed (Units: m/s).
+    cut : float, optional
+        Seconds removed at each end of a stroke (Units: s); default 10 % of the median stroke.
+    method : {"whittle", "lsq"}, optional
+        Fit method (see :func:`compare.fits.fit_power_law`).
+    prewhiten, nperseg
+        As in :func:`compare.spectra.series_spectrum`.
+
+    Returns
+    -------
+    ForceAnalysis
+        The strokes, C_F (N^2 s) and its fit, and C_mu (s), the equivalent C_x (m^2 s) and C_F(q) (N^2 m) when
+        their inputs were given.
     """
     if data.F is None:
         raise ValueError("the record holds no friction-force column")
