@@ -15,11 +15,12 @@ from .trace import ModelTrace
 __all__ = ["WINDOWS", "CROSSING_TOL", "second_order", "modal", "micro_windows", "simulate_two_level"]
 
 WINDOWS = 256  # renewal windows generated at a time per level (memory independent of the run's length)
-CROSSING_TOL = 1e-6  # renewal crossings located to 1e-6 a2 (a different uniform draw at the 20th bit; the motion between them stays exact)
+# renewal crossings located to 1e-6 a2 (a different uniform draw at the 20th bit; the motion between them stays exact)
+CROSSING_TOL = 1e-6
 
 
 def second_order(p):
-    """Mass, damping and stiffness of the closed (zeta, S, U) system (module docstring)."""
+    """Mass, damping and stiffness of the closed (zeta, S, U) system (:mod:`reduced_models.multiscale`)."""
     n = p.n_micro
     Md = np.array([p.M, p.m, p.m2])
     K = np.array([[p.N * p.k0, -p.k0, 0.0],

@@ -28,7 +28,8 @@ from frictionnoise.checks import check_fields, check_number
 
 from ._checkpoint import load_checkpoint as _load_checkpoint, save_checkpoint as _save_checkpoint
 from ._version import package_version
-from .spring_block_kernel import BLOCK_INTERVALS, contact_indices, initial_state, modal, renewal_block, run, second_order
+from .spring_block_kernel import BLOCK_INTERVALS, renewal_block  # noqa: F401  (model I's renewal draws, public here)
+from .spring_block_kernel import contact_indices, initial_state, modal, run, second_order
 from .trace import ModelTrace, check_run
 
 __all__ = [
