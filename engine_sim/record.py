@@ -24,7 +24,7 @@ from . import units as U
 __all__ = ["EngineTrace", "Recorder"]
 
 _COLS = ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "penetration", "power_in", "power_out", "mech", "pairs",
-         "p_pen", "stale")
+         "p_pen", "stale", "vib_disp", "vib_power")  # the last two written by the vibration part, not by _reduce
 _AF = 9  # floats per arbiter in the batch buffer: impulse (2), normal (2), point A 1 (2), point B 1 (2), distance 1
 # A grain's contact point lies on its circle (pymunk computes contacts from the positions the step ends with); one
 # farther than this fraction of the radius off it belongs to a stale arbiter (see _reduce)
@@ -68,6 +68,10 @@ class EngineTrace:
     particle_penetration: np.ndarray
     micro_force: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
     metadata: dict = field(default_factory=dict)
+    # [vibration] (engine_sim/vibration.py): s(t) of the shaken part [m] (0 without vibration) and the work it
+    # did [J] (the inertial force on every body in the substrate's frame, or the shaker's force on the block)
+    vibration: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    work_vibration: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
 
 class Recorder:
@@ -170,6 +174,9 @@ class Recorder:
         _reduce(ids, fl, ai, af, self._tab, self._part, self._bs, self._pp, self._prm, sc.slider_terms,
                 self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact, self.p_state,
                 self.p_force)
+        vib = getattr(sc, "vibration", None)
+        self.out[k, 13:15] = (0.0, 0.0) if vib is None else vib.record(
+            sc, ids, fl, self._tab, sc.slider_terms, self._part, self._drive_mass)
         self.t[k] = sc.steps * sc.dt / U.TIME
         self.k += 1
 
@@ -197,6 +204,7 @@ class Recorder:
             work_recycle=(self.recycle[:n] - self.recycle[0]) / U.ENERGY,
             p_state=self.p_state[:n], p_force=self.p_force[:n] / U.FORCE,
             particle_penetration=o["p_pen"] / U.LENGTH, micro_force=self.micro_force[:n] / U.FORCE, metadata=metadata,
+            vibration=o["vib_disp"] / U.LENGTH, work_vibration=cum(o["vib_power"]),
         )
 
 

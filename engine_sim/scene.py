@@ -49,6 +49,7 @@ def describe(sc: Scenario) -> dict:
         "pads": {"N": p.N, "mass": p.mass, "k0": p.k0, "c0": p.c0, "foot_length": p.foot_length},
         "contact_width": arr.contact_width(), "substrate": sc.to_dict()["substrate"], **arr.describe(),
         "grain_step": grain_step(sc),
+        **({} if sc.vibration is None else {"vibration": sc.vibration_part.describe()}),
     }
 
 
@@ -109,6 +110,10 @@ class Scene:
             # idle particles at rest sleep until a pad reaches them (pads and block never rest)
             space.sleep_time_threshold = 20.0  # ms
             space.idle_speed_threshold = 2e-3  # mm/ms = 2 mm/s: a resting grain gains g dt = 1e-3 mm/ms per step before its contact stops it
+        # an imposed vibration, built last: it shifts every body's velocity into the substrate's frame
+        self.vibration = sc.vibration_part  # None without a [vibration] section (engine_sim/vibration.py)
+        if self.vibration is not None:
+            self.vibration.build(self)
         self.maintain()
         self.steps = 0
 
@@ -131,5 +136,5 @@ class Scene:
 
     def advance(self, n: int):
         """n pymunk steps, as the friction law steps them (the linear law: no Python inside a step)."""
-        self.law.advance(self, n)
+        (self.law if self.vibration is None else self.vibration).advance(self, n)
         self.steps += n
