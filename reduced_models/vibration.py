@@ -33,7 +33,7 @@ import numpy as np
 
 __all__ = ["arcsin_ratio", "mean_sign", "velocity_controlled_friction", "effective_slope", "force_controlled_mean",
            "slip_fraction", "force_controlled_slope", "in_band_factor", "steady_speed", "lift_off_amplitude",
-           "contact_fraction_normal"]
+           "contact_fraction_normal", "backward_slip", "minimum_amplitude", "compliant_mean_ratio"]
 
 
 def arcsin_ratio(xi) -> np.ndarray:
@@ -190,3 +190,54 @@ def contact_fraction_normal(gamma) -> np.ndarray:
     with np.errstate(divide="ignore"):
         inv = np.where(gamma > 1.0, 1.0 / np.where(gamma > 1.0, gamma, 1.0), 1.0)
     return np.where(gamma <= 1.0, 1.0, 0.5 + np.arcsin(inv) / np.pi)
+
+
+def backward_slip(xi) -> np.ndarray:
+    """Distance the substrate moves back past a slider held at V in each cycle, over A:
+    ``2 (sqrt(1 - xi^2) - xi arccos xi)`` for ``xi < 1``, else 0 (the integral of ``A omega cos - V`` over the
+    part of the cycle where it is positive)."""
+    xi = np.minimum(np.asarray(xi, dtype=float), 1.0)
+    return 2.0 * (np.sqrt(1.0 - xi**2) - xi * np.arccos(xi))
+
+
+def minimum_amplitude(xi, deflection: float) -> np.ndarray:
+    """The smallest amplitude at which a compliant contact slides backwards at all (Units: m): a contact behind a
+    spring, which slides only once the spring carries its Coulomb force (``deflection = mu N / k``), needs the
+    backward slip of a cycle to exceed the spring's travel from one sliding state to the other, ``2 deflection``:
+    ``A_min = deflection / (sqrt(1 - xi^2) - xi arccos xi)``. Below it the contact only sticks and slides forward,
+    and its mean friction falls by the spring's elastic swing alone, a fraction of order A / deflection
+    (:func:`compliant_mean_ratio`); far above it the arcsin law holds (Popov and co-workers' minimum amplitude of
+    contact compliance)."""
+    return 2.0 * deflection / backward_slip(xi)
+
+
+def compliant_mean_ratio(xi, a_over_d, steps: int = 4096, cycles: int = 4) -> np.ndarray:
+    """Mean friction over its unshaken value for a massless contact on a spring (a Jenkins element: spring k in
+    series with a Coulomb slider of force mu N) dragged at V over a substrate oscillating as ``A sin(omega t)``.
+
+    The spring's stretch z follows the relative displacement ``u = V t - A sin(omega t)`` through the play
+    operator, ``z <- clip(z + du, -d, d)`` with ``d = mu N / k``, and the friction is ``k z``: in units of d,
+    ``u / d = (A / d) (xi theta - sin theta)``. The mean of ``z / d`` over the last cycle of ``cycles``
+    (``steps`` per cycle; periodic after the first). Tends to ``(2/pi) arcsin(xi)`` as ``A / d -> inf`` (the
+    departure goes as d / A) and to 1 as ``A / d -> 0``.
+
+    Parameters
+    ----------
+    xi : float
+        V / (A omega).
+    a_over_d : float
+        Amplitude over the contact's deflection mu N / k (dimensionless).
+    """
+    th = 2 * np.pi * np.arange(1, cycles * steps + 1) / steps
+    du = np.diff(np.concatenate([[0.0], float(a_over_d) * (float(xi) * th - np.sin(th))]))
+    z = _play(du)
+    return float(np.mean(z[-steps:]))
+
+
+def _play(du):
+    z = np.empty(len(du))
+    zc = 1.0  # steady sliding: the spring carries the Coulomb force
+    for i, d in enumerate(du):
+        zc = min(1.0, max(-1.0, zc + d))
+        z[i] = zc
+    return z

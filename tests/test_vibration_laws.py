@@ -4,7 +4,7 @@ import pytest
 
 from reduced_models.vibration import (
     arcsin_ratio, contact_fraction_normal, effective_slope, force_controlled_mean, force_controlled_slope,
-    in_band_factor, lift_off_amplitude, mean_sign, slip_fraction, steady_speed, velocity_controlled_friction,
+    in_band_factor, lift_off_amplitude, backward_slip, compliant_mean_ratio, minimum_amplitude, mean_sign, slip_fraction, steady_speed, velocity_controlled_friction,
 )
 
 # a cycle sampled at 2^20 equally spaced phases (midpoints): the mean of a function with a few jumps per cycle
@@ -106,3 +106,24 @@ def test_lift_off_and_contact_fraction():
     for gi, fr in zip(g, contact_fraction_normal(g)):
         exact = _cycle_mean(lambda th: (1 + gi * np.sin(th) > 0).astype(float))
         assert fr == pytest.approx(exact, abs=1e-5)
+
+
+@pytest.mark.parametrize("xi", [0.1, 0.5, 0.9])
+def test_backward_slip_and_the_compliant_contact(xi):
+    A = 1.0
+    exact = _cycle_mean(lambda th: np.maximum(A * np.cos(th) - xi * A, 0.0)) * 2 * np.pi  # integral over a cycle
+    assert float(backward_slip(xi)) == pytest.approx(exact, abs=1e-5)
+    # stiff limit: the Jenkins element tends to the arcsin law; the departure goes as d / A (the spring's travel
+    # 2 d per reversal out of the cycle's): at A / d = 1e4, within 1e-3
+    assert compliant_mean_ratio(xi, 1e4) == pytest.approx(float(arcsin_ratio(xi)), abs=1e-3)
+    # soft limit: A << d, the contact only sticks and slides forward; the spring's swing (backward slip
+    # ~ 2 A) lowers the mean by a fraction of order A / d: at A / d = 1e-3, within 3e-3 of 1
+    assert compliant_mean_ratio(xi, 1e-3) == pytest.approx(1.0, abs=3e-3)
+    # the minimum amplitude: just below it the stretch never reaches -d (no backward sliding), just above it does
+    a_min = float(minimum_amplitude(xi, 1.0))
+    th = 2 * np.pi * np.arange(1, 4 * 4096 + 1) / 4096
+    for fac, reverses in ((0.98, False), (1.02, True)):
+        u = fac * a_min * (xi * th - np.sin(th))
+        from reduced_models.vibration import _play
+        z = _play(np.diff(np.concatenate([[0.0], u])))
+        assert (z[-4096:].min() <= -1.0 + 1e-12) == reverses

@@ -101,10 +101,11 @@ def test_zero_amplitude_is_the_unshaken_twin_bit_for_bit():
 def test_energy_balance_and_recorded_displacement():
     # pads_friction_patches shaken along x (0.2 mm at 10 Hz, A omega = 12.6 mm/s): drive + vibration work =
     # dissipation + mechanical energy within 1e-3 of the drive's work (measured 2.7e-5); the recorded s(t) is
-    # A sin(omega t) at the samples' absolute times (the warm-up's included)
+    # A sin(omega t) at the samples' absolute times (the warm-up's included). Epochs of 0.25 s: the scene passes
+    # through 3 pickle round trips (the phase is the step count; the gravity written back after every advance)
     A, f = 2e-4, 10.0
     sc = _patches({"amplitude": A, "frequency": f}, duration=1.0, warmup=0.5)
-    tr = engine_sim.run(sc)
+    tr = engine_sim.run(sc, epoch=0.25)
     W = tr.work_drive[-1]
     resid = W + tr.work_vibration[-1] + tr.work_recycle[-1] - tr.dissipated[-1] - tr.mech_energy[-1]
     assert abs(resid / W) < 1e-3
