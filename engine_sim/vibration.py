@@ -76,6 +76,9 @@ class Vibration:
         if spec.amplitude > 0 and sc.drive_part.extra_mass > 0:
             raise ValueError("vibration.target: a drive that moves a mass of its own (the hanging mass of Leonardo's "
                              "slider) is not supported under vibration")
+        if spec.amplitude > 0 and spec.target == "block" and type(sc.law_part).advance is not _plain_advance():
+            raise ValueError(f"vibration.target = 'block' needs a friction law that writes no body forces (the "
+                             f"{sc.friction.law!r} law writes every body's force each step, over the shaker's)")
         if spec.amplitude > 0 and spec.target == "block" and spec.direction == "normal" and sc.arrangement_part.guided:
             raise ValueError("vibration.direction = 'normal' with target 'block' needs a block free vertically; the "
                              f"arrangement {sc.pads.arrangement!r} guides it (its guide would take the force)")

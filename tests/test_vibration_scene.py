@@ -65,9 +65,14 @@ def test_frequency_limit_is_20_steps_per_period():
         _patches({"amplitude": 1e-5, "frequency": 501.0})
 
 
-def test_block_normal_needs_a_free_block():
+def test_block_normal_needs_a_free_block_and_the_shaker_a_law_without_forces():
     with pytest.raises(ScenarioError, match="vibration.direction"):
         _patches({"target": "block", "direction": "normal", "amplitude": 1e-5, "frequency": 10.0})
+    d = {**PATCHES, "friction": {"law": "log"}, "vibration": {"target": "block", "amplitude": 1e-5, "frequency": 10.0}}
+    with pytest.raises(ScenarioError, match="vibration.target"):
+        scenario_from_dict(d)
+    d["vibration"]["target"] = "substrate"  # the substrate's inertial acceleration is gravity: any law
+    scenario_from_dict(d)
 
 
 @pytest.mark.parametrize("section,needle", [
