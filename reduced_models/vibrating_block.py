@@ -36,7 +36,7 @@ N F(V) = F_drive (the constant force drive speeds up as the mean friction falls)
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numba
 import numpy as np
@@ -47,20 +47,20 @@ from ._version import package_version
 from .spring_block import SpringBlockParams, _check_run
 from .trace import ModelTrace
 
-__all__ = ["VibratingBlockParams", "simulate", "averaged_law", "steady_state", "theory_spectrum", "RESPONSE",
-           "fit_band"]
+__all__ = ["VibratingBlockParams", "PARAMS", "simulate", "averaged_law", "steady_state", "theory_spectrum",
+           "RESPONSE", "SWEEP_SERIES", "fit_band", "default_duration", "default_dt_out"]
 
 RESPONSE = "viscous"  # as model I below its crossover, with the effective slope in place of m eta1
+SWEEP_SERIES = "x"  # a sweep's task returns C_x of the block's displacement
 
 
 @dataclass(frozen=True)
-class VibratingBlockParams:
-    """Model I with a substrate vibrating along the sliding direction, SI units.
+class VibratingBlockParams(SpringBlockParams):
+    """Model I's parameters (:class:`SpringBlockParams`, the paper's reference case by default) and the substrate's
+    vibration along the sliding direction, SI units.
 
     Attributes
     ----------
-    base : SpringBlockParams
-        Model I's parameters (the paper's reference case by default).
     amplitude : float
         Substrate displacement amplitude A (Units: m), >= 0; 0 is model I.
     omega_v : float
@@ -69,14 +69,12 @@ class VibratingBlockParams:
         Time steps per vibration period (the step is h = 2 pi / (omega_v steps_per_period)), >= 16.
     """
 
-    base: SpringBlockParams = field(default_factory=SpringBlockParams)
     amplitude: float = 0.0
     omega_v: float = 3000.0
     steps_per_period: int = 64
 
     def __post_init__(self):
-        if not isinstance(self.base, SpringBlockParams):
-            raise ValueError(f"base must be SpringBlockParams (got {type(self.base).__name__})")
+        super().__post_init__()
         check_number("amplitude", self.amplitude, non_negative=True)
         check_number("omega_v", self.omega_v, positive=True)
         n = check_number("steps_per_period", self.steps_per_period, positive=True, integer=True)
@@ -89,13 +87,10 @@ class VibratingBlockParams:
         """The time step (Units: s)."""
         return 2.0 * math.pi / (self.omega_v * self.steps_per_period)
 
-    def to_dict(self) -> dict:
-        return {"base": self.base.to_dict(), "amplitude": self.amplitude, "omega_v": self.omega_v,
-                "steps_per_period": self.steps_per_period}
 
-
+PARAMS = VibratingBlockParams
 def _scalars(p: VibratingBlockParams) -> np.ndarray:
-    b = p.base
+    b = p
     return np.array([b.M, b.m, b.k0, b.k1, b.eta0, b.eta1, b.eta_lat, b.f_kin, b.F_drive, p.amplitude, p.omega_v,
                      p.h, b.a])
 
@@ -257,7 +252,7 @@ def _mean_field(prm, N, F, n_cycles, n_avg):
 
 def _cycles(params: VibratingBlockParams) -> int:
     """Periods to run to a periodic state: 12 decay times of the slowest mode, k0 / (m eta1), at least 40."""
-    b = params.base
+    b = params
     rate = min(b.k0 / (b.m * (b.eta1 + b.eta0)), b.eta1)
     return max(40, int(12.0 / (rate * 2 * math.pi / params.omega_v)) + 1)
 
@@ -298,7 +293,7 @@ def simulate(params: VibratingBlockParams, duration: float, dt_out: float = 5e-4
     _check_run(duration, dt_out)
     if not (warmup >= 0 and math.isfinite(warmup)):
         raise ValueError(f"warmup must be a finite number of seconds >= 0 (got {warmup!r})")
-    b, h = params.base, params.h
+    b, h = params, params.h
     n_sub = max(1, int(round(dt_out / h)))
     n_warm = int(math.ceil(warmup / (n_sub * h)))
     n = int(round(duration / (n_sub * h)))
@@ -376,7 +371,7 @@ def steady_state(params: VibratingBlockParams, rel_step: float = 1e-3) -> tuple[
     """(V, s1): the mean speed under F_drive and the effective slope s1 = (1/N) dF_drive/dV of the contacts' mean
     friction law there (Units: m/s, N s/m), from the periodic steady state of the block and N identical
     miniblocks (``_mean_field``); s1 by a central difference of F_drive by +-``rel_step``."""
-    b = params.base
+    b = params
     prm = _scalars(params)
     n_cycles = _cycles(params)
     n_avg = max(1, n_cycles // 4)
@@ -401,7 +396,7 @@ def theory_spectrum(params: VibratingBlockParams, omega, state: tuple[float, flo
     """C_x(omega) below the vibration: eq. (A10) with the effective slope s1 in place of m eta1 and the renewal
     rate V / a of the new mean speed, C_x = |Z_s1|^2 C_f(V) / N (Units: m^2 s); the line at omega_v and its
     harmonics are not included. ``state``: (V, s1) from :func:`steady_state` (computed if not given)."""
-    b = params.base
+    b = params
     V, s1 = steady_state(params) if state is None else state
     w = np.asarray(omega, dtype=float)
     tau0 = b.a / V
@@ -410,7 +405,17 @@ def theory_spectrum(params: VibratingBlockParams, omega, state: tuple[float, flo
     return np.abs(_transfer(b, s1, w)) ** 2 * Cf / b.N
 
 
+def default_duration(params: VibratingBlockParams) -> float:
+    """200 s: the omega^-4 band from 10 rad/s up, about 2 s of CPU (Units: s)."""
+    return 200.0
+
+
+def default_dt_out(params: VibratingBlockParams) -> float:
+    """An output step that keeps the line at omega_v below the Nyquist frequency, at most 1 ms (Units: s)."""
+    return min(1e-3, 0.5 * math.pi / params.omega_v)
+
+
 def fit_band(params: VibratingBlockParams, dt_out: float | None = None) -> tuple[float, float]:
     """Model I's omega^-4 band (10 v/a to omega_c / 10, Units: rad/s), at the unshaken speed."""
-    from .spring_block import fit_band as _fb
-    return _fb(params.base, dt_out)
+    from .spring_block import fit_band as model_I_band
+    return model_I_band(params, dt_out)

@@ -48,6 +48,10 @@ def test_validation():
         VibratingBlockParams(omega_v=float("nan"))
     with pytest.raises(ValueError, match="steps_per_period"):
         VibratingBlockParams(steps_per_period=8)
+    with pytest.raises(ValueError, match="alpha"):  # model I's own fields and checks
+        VibratingBlockParams(alpha=-1.0)
+    p = VibratingBlockParams(amplitude=1e-5)
+    assert p.eta1 == REF.eta1 and p.to_dict()["amplitude"] == 1e-5
 
 
 def test_without_vibration_it_is_model_I():
