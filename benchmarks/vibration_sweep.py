@@ -21,7 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-from reduced_models.vibration import effective_slope, in_band_factor, minimum_amplitude, steady_speed
+from reduced_models.vibration import (compliant_mean_ratio, effective_slope, in_band_factor, minimum_amplitude,
+                                      steady_speed)
 
 N, M_TOT, C, MU_N, V = 30, 0.1 + 30 * 1e-3, 10.0, 0.6 * (0.1 * 9.81 / 30 + 1e-3 * 9.81), 5e-3
 DEFLECTION = MU_N / 3333.0
@@ -65,6 +66,15 @@ def prediction(f, A, constant_force):
     return float(in_band_factor(V, v1, C, s1)), v1 / V, share, U
 
 
+def source_factor(f, A, v1):
+    """The noise source's own change: the patches' noise is a fluctuation of mu, so of the Coulomb part, whose cycle
+    mean scales by the compliant contact's mean ratio R (Jenkins element at the pads' relative amplitude share A
+    and xi = v1 / U); its power by R^2."""
+    w = 2 * np.pi * f
+    share = abs(1j * w * M_TOT) / abs(N * C + 1j * w * M_TOT)
+    return compliant_mean_ratio(min(v1 / (share * A * w), 1.0), share * A / DEFLECTION) ** 2
+
+
 def table(folder, constant_force, band):
     cells = _load(folder)
     twins = {}
@@ -87,10 +97,11 @@ def table(folder, constant_force, band):
         if not ratios:
             continue
         pred, pspeed, share, U = prediction(f, A, constant_force)
+        pred_src = pred * source_factor(f, A, pspeed * V)
         xi = V / (A * 2 * np.pi * f)
         n = len(ratios)
         ci = lambda x: 2 * np.std(x, ddof=1) / np.sqrt(n) if n > 1 else float("nan")  # noqa: E731
-        rows.append((f, A, xi, share, V / U if U > 0 else float("inf"), np.mean(ratios), ci(ratios), pred,
+        rows.append((f, A, xi, share, V / U if U > 0 else float("inf"), np.mean(ratios), ci(ratios), pred, pred_src,
                      np.mean(gammas), ci(gammas), np.mean(speeds), pspeed,
                      A / float(minimum_amplitude(min(V / U, 1.0), DEFLECTION)) if U > V else 0.0, n))
     return rows
@@ -104,12 +115,14 @@ def main(argv=None):
     a = ap.parse_args(argv)
     for label, folder, cf in (("constant force", a.force, True), ("constant velocity", a.velocity, False)):
         print(f"\n### {label}\n")
-        print("| f (Hz) | A (um) | xi = v/(A omega) | held share | v/U | C_x / twin (band, line masked) | predicted | "
+        print("| f (Hz) | A (um) | xi = v/(A omega) | held share | v/U | C_x / twin (band, line masked) | slope only | "
+              "slope and source | "
               "gamma | speed / twin | predicted | A / A_min | seeds |")
-        print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         for r in table(folder, cf, a.band):
-            f, A, xi, share, xu, rat, rci, pred, g, gci, sp, psp, amin, n = r
+            f, A, xi, share, xu, rat, rci, pred, psrc, g, gci, sp, psp, amin, n = r
             print(f"| {f:.0f} | {A * 1e6:.0f} | {xi:.3g} | {share:.3f} | {xu:.3g} | {rat:.3f} +- {rci:.3f} | {pred:.3f} | "
+                  f"{psrc:.3g} | "
                   f"{g:.2f} +- {gci:.2f} | {sp:.4f} | {psp:.4f} | {amin:.2g} | {n} |")
 
 
