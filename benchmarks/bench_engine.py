@@ -1,6 +1,6 @@
 """Engine scene cost: microseconds per step, simulated seconds per wall second, and the ratio of the
 project's loop (spring drive, recording at the output rate, substrate maintenance) to a bare
-`space.step` loop on the same space, measured in the same run (issue targets: ratio <= 1.15;
+`space.step` loop on the same space, measured in the same run (targets: ratio <= 1.15;
 pads_friction_patches gives C_x over two decades above v/a in <= 3 min).
 
     python -m benchmarks.bench_engine [--steps N] [--smoke]
@@ -11,24 +11,24 @@ import time
 import numpy as np
 
 import engine_sim
-from compare.fits import fit_power_law
-from compare.spectra import displacement_spectrum
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import displacement_spectrum
 from engine_sim import Scene, load_scenario, shipped_scenarios
 from engine_sim.record import Recorder
-from engine_sim.run import _MAINTAIN_EVERY
+from engine_sim.run import MAINTAIN_EVERY
 
 
 def loop_ratio(sc, n_steps: int, repeat: int = 3):
     """Best-of-`repeat` microseconds per step of a bare space.step loop and of the project's loop.
 
-    Both run in chunks of _MAINTAIN_EVERY output steps on the same scene; the bare loop's substrate is
+    Both run in chunks of MAINTAIN_EVERY output steps on the same scene; the bare loop's substrate is
     maintained outside its timer (without it the pads run off their tracks and the steps get cheaper),
     the project's loop pays for its maintenance and its recording.
     """
     scene = Scene(sc)
     scene.advance(2000)
     n_sub = scene.n_sub
-    chunk = _MAINTAIN_EVERY
+    chunk = MAINTAIN_EVERY
     n_chunks = max(1, n_steps // (n_sub * chunk))
     rec = Recorder(scene, n_chunks * chunk * repeat + 1)
     rec.sample()
@@ -67,7 +67,7 @@ def main(argv=None):
         sc = load_scenario(path)
         b, f = loop_ratio(sc, steps)
         print(f"| {name} | {b:.1f} | {f:.1f} | {f / b:.3f} | {sc.run.dt / (f * 1e-6):.2f} |")
-    # what the wear particles cost (issue target: 50 particles at most 2x the particle-free step)
+    # what the wear particles cost (target: 50 particles at most 2x the particle-free step)
     wear = load_scenario(shipped_scenarios()["pads_with_wear"])
     patches = load_scenario(shipped_scenarios()["pads_friction_patches"])
     print("\n| wear particles | loop us/step | vs. no particles, same settings | vs. pads_friction_patches |")

@@ -15,7 +15,8 @@ import time
 from engine_sim import Scene, load_scenario, shipped_scenarios
 from engine_sim.epoch import default_epoch, estimated_costs
 from engine_sim.record import Recorder
-from engine_sim.run import _MAINTAIN_EVERY, _rebind, _rec_state, _warm_up
+from engine_sim.checkpoint import recorder_state, restore
+from engine_sim.run import MAINTAIN_EVERY, warm_up
 
 TARGETS = ("pads_friction_patches", "pads_rough_profile")
 
@@ -24,7 +25,7 @@ def measure(name: str, rounds: int, block: int):
     """(default epoch [s], median round trip [s], median stepping [s per output step], estimates) for a scene."""
     sc = load_scenario(shipped_scenarios()[name])
     scene = Scene(sc, 0)
-    _warm_up(scene, int(round(sc.run.warmup / sc.run.dt_out)))
+    warm_up(scene, int(round(sc.run.warmup / sc.run.dt_out)))
     epoch = default_epoch(scene, sc.run.dt_out)
     est = estimated_costs(scene)
     n_out = (rounds + 1) * block + 1
@@ -33,7 +34,7 @@ def measure(name: str, rounds: int, block: int):
     k = 0
     for _ in range(block):  # untimed: compiles (or loads) the recorder's kernels
         rec.sample()
-        if k % _MAINTAIN_EVERY == 0:
+        if k % MAINTAIN_EVERY == 0:
             scene.maintain()
         scene.advance(scene.n_sub)
         k += 1
@@ -41,14 +42,14 @@ def measure(name: str, rounds: int, block: int):
         t0 = time.perf_counter()
         for _ in range(block):  # the run's loop body: sample, maintain, advance
             rec.sample()
-            if k % _MAINTAIN_EVERY == 0:
+            if k % MAINTAIN_EVERY == 0:
                 scene.maintain()
             scene.advance(scene.n_sub)
             k += 1
         st.append((time.perf_counter() - t0) / block)
         t0 = time.perf_counter()
         data = pickle.dumps(scene, protocol=pickle.HIGHEST_PROTOCOL)
-        scene, rec = _rebind(data, _rec_state(rec, k), n_out)
+        scene, rec = restore(data, recorder_state(rec, k), n_out)
         rt.append(time.perf_counter() - t0)
     return epoch, statistics.median(rt), statistics.median(st), est, sc.run.dt_out
 

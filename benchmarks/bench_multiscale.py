@@ -22,7 +22,7 @@ import time
 
 import numpy as np
 
-from compare.spectra import band_average, displacement_spectrum
+from compare.analysis.spectra import band_average, displacement_spectrum
 from reduced_models import multiscale as ms
 from reduced_models import spring_block as m1
 

@@ -9,8 +9,8 @@ import time
 
 import numpy as np
 
-from compare.fits import fit_power_law
-from compare.spectra import displacement_spectrum
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import displacement_spectrum
 
 
 def run(n: int, repeat: int) -> dict:

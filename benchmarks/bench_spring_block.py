@@ -20,7 +20,7 @@ import time
 import numba
 import numpy as np
 
-from compare.spectra import band_average, displacement_spectrum
+from compare.analysis.spectra import band_average, displacement_spectrum
 from reduced_models.spring_block import SpringBlockParams, _renewal_block, simulate, theory_spectrum
 
 

@@ -18,8 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-from compare.fits import fit_power_law
-from compare.spectra import displacement_spectrum
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import displacement_spectrum
 from tests.synthetic import power_law_series
 
 DT = 1e-3

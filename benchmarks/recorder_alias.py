@@ -28,7 +28,7 @@ import sys
 import numpy as np
 
 import engine_sim
-from compare.spectra import band_average, force_series_spectrum
+from compare.analysis.spectra import band_average, force_series_spectrum
 from engine_sim import load_scenario, shipped_scenarios
 
 

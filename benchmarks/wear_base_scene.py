@@ -26,9 +26,9 @@ from pathlib import Path
 import numpy as np
 
 import engine_sim
-from compare.fits import fit_power_law
-from compare.spectra import band_average, displacement_spectrum, force_series_spectrum
-from compare.studies._common import balances
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import band_average, displacement_spectrum, force_series_spectrum
+from compare.analysis.balances import balances
 from engine_sim import load_scenario, shipped_scenarios
 
 GEOMETRIES = {

@@ -38,8 +38,8 @@ from pathlib import Path
 import numpy as np
 
 import engine_sim
-from compare.spectra import band_average, displacement_spectrum, force_series_spectrum
-from compare.studies._common import balances
+from compare.analysis.spectra import band_average, displacement_spectrum, force_series_spectrum
+from compare.analysis.balances import balances
 from engine_sim import load_scenario, shipped_scenarios
 from engine_sim.wear import grain_step
 

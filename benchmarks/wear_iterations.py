@@ -15,7 +15,7 @@ import time
 
 import engine_sim
 from benchmarks.bench_engine import loop_ratio
-from compare.studies._common import balances as _balances
+from compare.analysis.balances import balances as _balances
 from engine_sim import load_scenario, shipped_scenarios
 
 ITERATIONS = (4, 8, 10, 12, 15, 20, 30)

@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 
 import engine_sim
-from compare.studies._common import balances
+from compare.analysis.balances import balances
 from engine_sim import scenario_from_dict
 from engine_sim.wear import climb_force, lightest_grain_mass, regime_shares, wedge_regime
 from frictionnoise import G

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 import engine_sim
-from compare.studies._common import balances
+from compare.analysis.balances import balances
 from engine_sim import load_scenario
 from engine_sim.wear import grain_step
 

@@ -23,9 +23,9 @@ from pathlib import Path
 
 import numpy as np
 
-from compare import plots
+from compare.report import plots
 from compare.sweep import expand, load_results, load_sweep
-from compare.wear_study import answer, cells, gamma_figure, mass_sensitivity, mass_split, widen
+from compare.report.wear_study import answer, cells, gamma_figure, mass_sensitivity, mass_split, widen
 
 _COLS = ("track", "size", "count", "n", "gamma", "gamma_err", "delta_gamma", "delta_gamma_err", "gamma_err_total",
          "delta_gamma_err_total", "Cx_ratio_bands", "fit_CF_grains", "fit_CF_friction", "trapped_frac", "moving_frac",
@@ -49,7 +49,7 @@ def projected_wall(results, full_spec) -> float:
     """Seconds on one core for every task of ``full_spec``: each task's simulated time (duration + warm-up) times the
     wall seconds per simulated second measured in the quick study's cell of the same count and size (the count's
     mean when the cell was not run; counts in between interpolated linearly)."""
-    from compare.sweep_spec import build_point
+    from compare.sweep.spec import build_point
     per = {}
     for r in results:
         w = r.get("wear")

@@ -10,7 +10,7 @@ exact, so its error is sampling noise at every output step).
 import argparse
 from pathlib import Path
 
-from compare.workprec import engine_work_precision
+from compare.analysis.work_precision import engine_work_precision
 from engine_sim import load_scenario, shipped_scenarios
 
 SETTINGS = [(1e-4, 2), (1e-4, 5), (1e-4, 10), (5e-5, 2), (5e-5, 10), (2.5e-5, 2)]
@@ -36,7 +36,7 @@ def main(argv=None):
     rows = engine_work_precision(base, SETTINGS[:1] if a.smoke else SETTINGS, 1.0 if a.smoke else a.duration)
     print(table(rows))
     if a.out:
-        from compare import plots
+        from compare.report import plots
         out = Path(a.out)
         out.mkdir(parents=True, exist_ok=True)
         (out / "work_precision.md").write_text(table(rows) + "\n")

@@ -1,55 +1,7 @@
-"""Helpers for users' own pytest suites: assert spectral slopes and levels with readable failures.
+"""``compare.testing``, the public path of :mod:`compare.analysis.assertions`: the same module under both names, so imports,
+attributes and monkeypatches through either reach one object."""
+import sys
 
-Example
--------
->>> from compare.testing import assert_spectral_slope
->>> assert_spectral_slope(trace.t, trace.x, expected=4.0, tol=0.2, band=(5.0, 200.0))
-"""
-from __future__ import annotations
+from .analysis import assertions as _module
 
-import numpy as np
-
-from .fits import PowerLawFit, fit_power_law
-from .spectra import Spectrum, band_average, displacement_spectrum
-
-__all__ = ["assert_spectral_slope", "assert_spectrum_matches", "SpectralAssertionError"]
-
-
-class SpectralAssertionError(AssertionError):
-    """A spectral check failed; the message carries the measured numbers."""
-
-
-def assert_spectral_slope(t, x, expected: float, tol: float, band=None, method: str | None = None,
-                          **spectrum_kwargs) -> PowerLawFit:
-    """Assert that C_x of x(t) falls as omega^-gamma with |gamma - expected| <= tol.
-
-    ``band`` (rad/s) and ``method`` ("whittle" or "lsq"; default :data:`compare.fits.DEFAULT_METHOD`) are
-    passed to :func:`compare.fits.fit_power_law` (auto band when None); extra keyword arguments go to
-    :func:`compare.spectra.displacement_spectrum`. Returns the fit on success.
-    """
-    spec = displacement_spectrum(t, x, **spectrum_kwargs)
-    fit = fit_power_law(spec, band=band, method=method)
-    if not abs(fit.gamma - expected) <= tol:
-        raise SpectralAssertionError(
-            f"spectral slope: measured gamma = {fit.gamma:.3f} +- {fit.gamma_err:.3f} (95 % CI, {fit.method}) over "
-            f"{fit.band[0]:.4g}-{fit.band[1]:.4g} rad/s ({'auto' if fit.band_auto else 'given'} band, "
-            f"{fit.n_points} log bins); expected {expected:g} +- {tol:g}; off by {fit.gamma - expected:+.3f}"
-        )
-    return fit
-
-
-def assert_spectrum_matches(spectrum: Spectrum, theory, edges, rtol: float) -> np.ndarray:
-    """Assert that the band averages of ``spectrum`` and ``theory(omega)`` agree within ``rtol``.
-
-    ``theory`` is a callable of omega (rad/s) or an array on ``spectrum.omega``; ``edges`` are the band
-    edges (rad/s). Both are averaged over the same ordinates. Returns the per-band ratios.
-    """
-    vals = theory(spectrum.omega) if callable(theory) else np.asarray(theory)
-    ratio = band_average(spectrum, edges) / band_average(spectrum, edges, vals)
-    bad = np.flatnonzero(np.abs(ratio - 1.0) > rtol)
-    if bad.size:
-        rows = ", ".join(f"[{edges[i]:.3g}, {edges[i + 1]:.3g}): {ratio[i]:.3f}" for i in bad)
-        raise SpectralAssertionError(
-            f"spectrum/theory outside 1 +- {rtol:g} in {bad.size} of {len(ratio)} bands: {rows}"
-        )
-    return ratio
+sys.modules[__name__] = _module

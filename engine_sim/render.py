@@ -23,12 +23,8 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Rectangle
 
 from . import units as U
-from .record import Recorder
 
 __all__ = ["SceneRenderer"]
-
-_STATE_COLORS = np.array([[0.6, 0.6, 0.6, 1.0], [0.12, 0.47, 0.71, 1.0], [0.89, 0.10, 0.11, 1.0]])  # idle, trapped, moving
-_STATE_NAMES = ("idle", "trapped", "moving")
 
 
 class SceneRenderer:
@@ -42,14 +38,9 @@ class SceneRenderer:
     def __init__(self, scene, window: float | None = None, dpi: int = 90):
         self.scene = scene
         sc = scene.sc
-        self.zoom = scene.wear is not None  # grains of tens of um: zoom onto the first pad's track
-        # grain states come from a recorder that keeps only its latest sample (the trace's own classifier)
-        self._rec = Recorder(scene, 1) if scene.wear is not None else None
-        view = scene.arrangement.view(scene)
-        if self.zoom:
-            surf = scene.track_surface[0]
-            view = {**view, "window": 0.6 * sc.wear.ahead, "ylim": (surf - 0.3, surf + 0.9),
-                    "ylabel": "y (mm): the first pad's track", "block_top": view["block_top"]}
+        self._grains = scene.wear.observer(scene)  # the grains' states, by the recorder's own classifier
+        view = scene.wear.view(scene, scene.arrangement.view(scene))
+        self.zoom = view.get("true_size", False)  # pads drawn at their true size, axes of equal aspect
         self.view = view
         inset = view.get("zoom")
         # a Figure on its own Agg canvas: importing or rendering never changes the program's matplotlib backend
@@ -73,7 +64,6 @@ class SceneRenderer:
         self.ylim = view["ylim"]
         if self.zoom:
             self.ax.set_aspect("equal", adjustable="box")
-        self.particles = None
         # the time line: above the axes, not over the scene (a placeholder of its size for the layout)
         self.text = self.ax.set_title("t = 0.000 s   x = 0.000 mm   v = 0.000 mm/s", loc="left", fontsize=9)
         self._legend = None
@@ -117,17 +107,15 @@ class SceneRenderer:
             labels.append("track")
         handles.append(Rectangle((0, 0), 1, 1, color="tab:blue", alpha=0.35))
         labels.append("block")
-        if self._rec is not None:
-            handles += [Line2D([], [], ls="", marker="o", ms=7, mfc=c, mec="none") for c in _STATE_COLORS]
-            labels += [f"grain {n}" for n in _STATE_NAMES]
+        for label, colour in self.scene.wear.key():
+            handles.append(Line2D([], [], ls="", marker="o", ms=7, mfc=colour, mec="none"))
+            labels.append(label)
         self._legend = self.fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 5), fontsize=8,
                                        frameon=False, bbox_to_anchor=(0.5, 0.0))
 
     def observe(self):
         """Sample the scene after an output step (the recorder classifies grains on their mean speed over it)."""
-        if self._rec is not None:
-            self._rec.k = 0  # keep only the latest sample
-            self._rec.sample()
+        self._grains.observe()
 
     @staticmethod
     def _shapes(panel, shapes: dict):
@@ -161,22 +149,13 @@ class SceneRenderer:
                 self._shapes(pn, s.drive.draw(s, lo, hi))
                 if getattr(s, "vibration", None) is not None:  # [vibration]: its phase dial and caption
                     self._shapes(pn, s.vibration.draw(s, lo, hi))
+                self._shapes(pn, s.wear.draw(self.states))
             half = pn["view"]["block_half"]
             pn["block"].set_x(bx - half)
             pn["block"].set_width(2 * half)
             pn["ax"].set_xlim(lo, hi)
         if len(self.panels) > 1:
             self.frame_box.set_x(bx - self.panels[1]["window"])
-        if self._rec is not None:
-            if self._rec.k == 0:
-                self.observe()
-            xy, r = s.wear.snapshot()
-            if self.particles is None:
-                self.particles = EllipseCollection(2 * r, 2 * r, 0.0, units="xy", offsets=xy,
-                                                   offset_transform=self.ax.transData, zorder=4)
-                self.ax.add_collection(self.particles)
-            self.particles.set_offsets(xy)
-            self.particles.set_facecolor(_STATE_COLORS[self.states])
         if self._legend is None:
             self._key()
         v = s.block.velocity.x / U.VELOCITY * U.LENGTH  # mm/s
@@ -188,7 +167,7 @@ class SceneRenderer:
     @property
     def states(self) -> np.ndarray:
         """The grains' states at the latest observed output step (0 idle, 1 trapped, 2 moving), as recorded."""
-        return self._rec.p_state[0].astype(int)
+        return self._grains.states
 
     def save_png(self, path: Path):
         self.fig.savefig(path)
@@ -204,8 +183,8 @@ def _new_artist(ax, kind, data, style):
         return ax.add_collection(LineCollection([], **style))
     if kind == "polys":
         return ax.add_collection(PolyCollection([], **style))
-    if kind == "discs":
-        xy, d = data
+    if kind == "discs":  # (centres, diameters[, face colours])
+        xy, d = data[:2]
         return ax.add_collection(EllipseCollection(d, d, 0.0, units="xy", offsets=xy, offset_transform=ax.transData,
                                                    **style))
     if kind == "line":
@@ -220,8 +199,12 @@ def _new_artist(ax, kind, data, style):
 
 
 def _update_artist(art, kind, data):
-    if kind in ("points", "discs"):
-        art.set_offsets(data[0] if kind == "discs" else data)
+    if kind == "points":
+        art.set_offsets(data)
+    elif kind == "discs":
+        art.set_offsets(data[0])
+        if len(data) > 2:
+            art.set_facecolor(data[2])
     elif kind == "segments":
         art.set_segments(data)
     elif kind == "polys":

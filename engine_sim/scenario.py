@@ -20,10 +20,10 @@ from .arrangements import ARRANGEMENTS, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSp
 from .drives import DRIVES, DriveSpec
 from .drives.force import ForceSpec
 from .laws import LAWS, FrictionSpec
-from .substrates import KINDS as SUBSTRATES, SubstrateSpec
+from .substrates import SUBSTRATES, SubstrateSpec
 from .substrates.patches import PatchesSpec
 from .vibration import Vibration, VibrationSpec
-from .wear import WearSpec, check_wear
+from .wear import WearSpec, wear_part
 
 __all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", "SubstrateSpec", "DriveSpec",
            "WearSpec", "RunSpec", "load_scenario", "scenario_from_dict", "shipped_scenarios", "resolve_scenario",
@@ -90,6 +90,10 @@ class Scenario:
     @property
     def vibration_part(self):
         return None if self.vibration is None else Vibration(self.vibration, self)
+
+    @property
+    def wear_part(self):
+        return wear_part(self.wear, self)
 
     # ------------------------------------------------------------------ derived quantities (SI)
     @property
@@ -202,7 +206,7 @@ def _section(where, sec, cls, raw, strict=True, default=None):
                             choices=tuple(registry))
         cls = registry[kind].Spec
         raw = {**raw, key: kind}
-        if not strict:  # traces written before issue 14 list every kind's fields
+        if not strict:  # a trace's metadata may list fields of every kind: keep this kind's
             other = {f.name for k in registry.values() for f in fields(k.Spec)}
             raw = {k: v for k, v in raw.items() if k in {f.name for f in fields(cls)} or k not in other}
     valid = {f.name: f.type for f in fields(cls)}
@@ -222,7 +226,7 @@ def _section(where, sec, cls, raw, strict=True, default=None):
 
 def scenario_from_dict(data: dict, where: str = "", strict: bool = True) -> Scenario:
     """Build and validate a Scenario from a TOML-like dict (SI units). ``strict=False`` (a trace's metadata) ignores
-    substrate fields that belong to other substrate kinds, as written by versions before issue 14."""
+    substrate fields that belong to other substrate kinds (older traces list every kind's fields)."""
     if not isinstance(data, dict):
         raise _err(where, "a scenario must be a table of sections")
     top_keys = {"name", "description", *_SECTIONS}
@@ -262,18 +266,11 @@ def _check_consistency(sc: Scenario, where: str):
         sc.law_part.validate(sc.friction, sc)
         sc.drive_part.validate(sc.drive, sc)
         sc.substrate_part.validate(sc.substrate, sc, where)
+        sc.wear_part.validate(where)
         if sc.vibration is not None:
             Vibration.validate(sc.vibration, sc)
     except ValueError as e:
         raise _err(where, str(e)) from None
-    if sc.wear.count > 0:
-        if not sc.substrate_part.hosts_wear or not sc.arrangement_part.hosts_wear:
-            raise _err(where, f"wear particles need flat pad tracks (substrate.kind 'patches', pads.arrangement "
-                              f"'tracks'; got {sc.substrate.kind!r}, {sc.pads.arrangement!r})")
-        try:
-            check_wear(sc)
-        except ValueError as e:
-            raise _err(where, str(e)) from None
 
 
 def resolve_scenario(name_or_path) -> Path:

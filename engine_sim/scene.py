@@ -1,6 +1,6 @@
 """The pymunk scene: a block composed with its parts, sliding over a substrate.
 
-The parts (``engine_sim/substrates``, ``arrangements``, ``drives``, ``laws`` and the wear particles) each build
+The parts (``engine_sim/substrates``, ``arrangements``, ``drives``, ``laws`` and the wear particles, ``wear.py``) each build
 their own pymunk objects; the scene holds the space, the block and the scene-unit values they share, and never
 checks a part's kind. Only what changes the result is modelled: the block is a body without a shape (guided
 horizontally by a groove joint unless the arrangement lets it rest on its feet); the pads are held by springs;
@@ -16,7 +16,7 @@ import pymunk
 from . import units as U
 from .laws.linear import corrected_drag
 from .scenario import G, Scenario
-from .wear import Wear, grain_step, pad_friction_split
+from .wear import grain_step
 
 __all__ = ["Scene", "corrected_drag", "describe"]
 
@@ -90,9 +90,9 @@ class Scene:
             space.add(pymunk.GrooveJoint(space.static_body, block, (-_FAR, self.y_block), (_FAR, self.y_block), (0, 0)))
         self.block = block
         self.seeds = np.random.SeedSequence(self.seed).spawn(p.N + 1)  # one per track, stream N for the particles
-        wear = sc.wear
+        self.wear = sc.wear_part  # the grains part (a null part without particles)
         # pymunk multiplies shape frictions: with particles the pads carry q and the tracks mu / q (see wear.py)
-        self.q_pad, f_particle = pad_friction_split(fr.mu0, wear.mu_pad, wear.mu_track) if wear.count else (1.0, 0.0)
+        self.q_pad, f_particle = self.wear.friction_split(fr.mu0)
         self.mu_track = fr.mu0 / self.q_pad
         self.width = self.arrangement.width()
         # what the arrangement builds (see engine_sim/arrangements)
@@ -104,12 +104,7 @@ class Scene:
         self.slider_terms = np.array([(b.mass, c * U.DAMPING, bN * U.FORCE, vc * U.VELOCITY) for b, (c, bN, vc) in zip(
             self.sliders, (self.law.drag_terms(load, c) for load, c in zip(self.slider_load, self.slider_c)))])
         self.ahead, self.behind = self.substrate.margins(self)
-        self.wear = None
-        if wear.count:
-            self.wear = Wear(self, wear, np.random.default_rng(self.seeds[p.N]), f_particle)
-            # idle particles at rest sleep until a pad reaches them (pads and block never rest)
-            space.sleep_time_threshold = 20.0  # ms
-            space.idle_speed_threshold = 2e-3  # mm/ms = 2 mm/s: a resting grain gains g dt = 1e-3 mm/ms per step before its contact stops it
+        self.wear.build(self, self.seeds[p.N], f_particle)
         # an imposed vibration, built last: it shifts every body's velocity into the substrate's frame
         self.vibration = sc.vibration_part  # None without a [vibration] section (engine_sim/vibration.py)
         if self.vibration is not None:
@@ -130,8 +125,7 @@ class Scene:
 
     def maintain(self):
         """Generate substrate ahead of each pad and drop it behind (call at least every few output steps)."""
-        if self.wear is not None:  # first: grains behind their pad leave before the track under them is dropped
-            self.wear.maintain()
+        self.wear.maintain()  # first: grains behind their pad leave before the track under them is dropped
         self.arrangement.maintain(self)
 
     def advance(self, n: int):

@@ -15,7 +15,7 @@ __all__ = ["PatchTrack", "SelfAffineTrack", "BumpTrack", "self_affine_kernel"]
 _CHUNK = 32  # patches generated at a time
 
 
-class _StreamedTrack:
+class StreamedTrack:
     """Segments generated ahead of a pad and dropped behind it. Subclasses implement ``_extend`` (add the next
     chunk via ``_link_and_add``) and ``_frontier`` (x up to which the track exists)."""
 
@@ -76,7 +76,7 @@ class _StreamedTrack:
             seg.set_neighbors(a, b)
 
 
-class PatchTrack(_StreamedTrack):
+class PatchTrack(StreamedTrack):
     """A flat track of friction patches (model I's renewal, section 3), optionally with cavities.
 
     Patch boundaries lie at (j + r_j) a, so the distance between renewals is a (1 + r - r'), exactly the
@@ -85,8 +85,8 @@ class PatchTrack(_StreamedTrack):
 
     Cavities (for wear particles): with probability ``pit_p`` a patch holds a flat-bottomed pit of depth
     ``pit_depth`` at a random place, its width (between the wall centre lines; the walls are as thick as the
-    segments) uniform in ``pit_width`` = (min, max), in the patch's friction. (V-shaped pits were tried first:
-    a grain wedged between two walls under a pad sank up to 65 um into them at 2 solver iterations.)
+    segments) uniform in ``pit_width`` = (min, max), in the patch's friction. Flat bottoms, because a grain wedged between the two walls of a V-shaped
+    pit under a pad sinks up to 65 um into them at 2 solver iterations.
 
     Parameters are in scene units (mm). ``rng`` is this track's own generator.
     """
@@ -145,8 +145,8 @@ def self_affine_kernel(hurst: float, lambda_r: float, lambda_s: float, dx: float
 
     ``hurst`` is the *line's* exponent: a line scan of an isotropic surface whose 2D spectrum is q^-2(1+H) has
     the 1D spectrum q^-(1+2H) (Jacobs, Junge & Pastewka, Surf. Topogr.: Metrol. Prop. 5, 013001 (2017), eq. 13);
-    the amplitude filter is therefore q^-(1/2+H). (Before issue 14 it was q^-(1+H), the 2D exponent applied to
-    a line: the tracks were H + 1/2 = 1.3 profiles, measured q^-3.59 for H = 0.8.) Length: 8 roll-off
+    the amplitude filter is therefore q^-(1/2+H) (the 2D exponent q^-(1+H) applied to a line would make a profile
+    of Hurst exponent H + 1/2). Length: 8 roll-off
     wavelengths (the kernel's tails are below 1e-3 of its peak there)."""
     n = int(2 ** np.ceil(np.log2(8 * lambda_r / dx)))
     q = 2 * np.pi * np.fft.rfftfreq(n, dx)
@@ -160,7 +160,7 @@ def self_affine_kernel(hurst: float, lambda_r: float, lambda_s: float, dx: float
     return k * (rms_slope / np.sqrt(np.sum(slope**2)))
 
 
-class SelfAffineTrack(_StreamedTrack):
+class SelfAffineTrack(StreamedTrack):
     """A randomly rough self-affine track, streamed: white noise filtered by a fixed FIR kernel, keeping the
     last kernel-length of noise between chunks, so the profile is exactly stationary across chunk joins.
     Straight segments between grid points, consecutive segments linked with set_neighbors; friction mu0."""
@@ -185,7 +185,7 @@ class SelfAffineTrack(_StreamedTrack):
         self._x_next = float(xs[-1] + self.dx)
 
 
-class BumpTrack(_StreamedTrack):
+class BumpTrack(StreamedTrack):
     """Sparse random asperities (the substrate of model III, section 6): the axis is cut into cells of length
     ``cell``; each cell holds a bump with probability p, a static circle of radius ``bump_radius`` centred in
     the cell whose top stands r h_max above the datum y (r uniform in [0, 1], as model III's cell force

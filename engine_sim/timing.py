@@ -5,7 +5,7 @@ from __future__ import annotations
 import time
 
 from .record import Recorder
-from .run import _MAINTAIN_EVERY, _warm_up
+from .run import MAINTAIN_EVERY, warm_up
 from .scene import Scene
 
 __all__ = ["step_costs"]
@@ -15,22 +15,22 @@ def step_costs(scenarios, seed: int | None = None, warmup: float = 1.0, chunks: 
     """Microseconds per step of each scenario's loop (steps, recording at the output rate, maintenance).
 
     Every scene is first run ``warmup`` simulated seconds (to its steady state: grains placed ahead of the pads
-    need that long to meet them and fall asleep), then the scenes take turns in chunks of _MAINTAIN_EVERY
+    need that long to meet them and fall asleep), then the scenes take turns in chunks of MAINTAIN_EVERY
     output steps, ``chunks`` turns each; a scene's cost is its fastest chunk. Taking turns every few tens of ms
     exposes all scenes to the same load from other processes, and the fastest chunk drops the moments of
     contention."""
     scenes = [Scene(sc, seed) for sc in scenarios]
     recs = []
     for s in scenes:
-        _warm_up(s, int(round(warmup / s.sc.run.dt_out)))
-        recs.append(Recorder(s, chunks * _MAINTAIN_EVERY + 1))
+        warm_up(s, int(round(warmup / s.sc.run.dt_out)))
+        recs.append(Recorder(s, chunks * MAINTAIN_EVERY + 1))
     best = [float("inf")] * len(scenes)
     for _ in range(chunks):
         for i, (s, rec) in enumerate(zip(scenes, recs)):
             t0 = time.perf_counter()
             s.maintain()
-            for _ in range(_MAINTAIN_EVERY):
+            for _ in range(MAINTAIN_EVERY):
                 s.advance(s.n_sub)
                 rec.sample()
-            best[i] = min(best[i], (time.perf_counter() - t0) / (_MAINTAIN_EVERY * s.n_sub))
+            best[i] = min(best[i], (time.perf_counter() - t0) / (MAINTAIN_EVERY * s.n_sub))
     return [b * 1e6 for b in best]

@@ -34,9 +34,10 @@ from pymunk._chipmunk_cffi import ffi, lib  # raw writes or the C setters, not p
 
 from . import units as U
 
-__all__ = ["VibrationSpec", "Vibration", "MIN_STEPS_PER_PERIOD"]
+__all__ = ["VibrationSpec", "Vibration", "MIN_STEPS_PER_PERIOD", "VIB_COLS"]
 
 MIN_STEPS_PER_PERIOD = 20  # pymunk steps per vibration period the loader demands
+VIB_COLS = ("vib_disp", "vib_power")  # the recorder's columns after reduction.COLS, written by Vibration.record
 
 
 @dataclass(frozen=True)
@@ -204,7 +205,7 @@ class Vibration:
                     do(arg)
                     s_prev, s_cur = s_cur, c2 * s_cur - s_prev
 
-    def record(self, scene, ids, fl, tab, slider_terms, part, drive_mass) -> tuple[float, float]:
+    def record(self, scene, ids, fl, tab, slider_terms, grain_table, drive_mass) -> tuple[float, float]:
         """(displacement s [mm], power [N mm/ms]) at the present sample, from the recorder's body buffer (ids,
         [px, py, vx, vy, w] per body) and body table (kind, index: 0 block, 1 slider, 2 particle, 3 drive body)."""
         if not self.active:
@@ -213,7 +214,7 @@ class Vibration:
         s = self._s(n)
         a = self.A * self.wd2 * math.sin(self.w * n * self.dt)
         if self.pseudo:
-            P = _momentum(ids, fl, tab, self.M, slider_terms, part, drive_mass, self.axis)
+            P = _momentum(ids, fl, tab, self.M, slider_terms, grain_table, drive_mass, self.axis)
             return s, a * P
         v = self.block.velocity
         return s, self.M * a * (v.x if self.axis == 0 else v.y)

@@ -5,8 +5,8 @@ Each particle belongs to one pad's track and collides only with that pad, that t
 stays at rest on the track (trapped) or drags it along (moving); which happens depends on the particle's
 size, the contact angle and the two friction coefficients. By default a grain does not rotate (moment = inf),
 as angular debris does not roll: a free disc squeezed between a sliding pad and the track rolls at v / 2 and is
-never trapped. (A rotary damper to the ground was tried instead: it doubled the step cost and, stiff against
-the grains' tiny moments of inertia, let the contact solver squeeze particles through the track.)
+never trapped. (A rotary damper to the ground would stop the rolling too, but it doubles the step cost and, stiff
+against the grains' tiny moments of inertia, lets the contact solver squeeze particles through the track.)
 
 Confinement: particles left more than ``behind`` behind their pad, pushed more than 3 ``ahead`` ahead of it,
 or out of the interface (below the track surface or above the pad) are recycled to a random free place up to
@@ -24,8 +24,9 @@ import numpy as np
 import pymunk
 
 from . import units as U
+from .grain_regimes import climb_force, regime_shares, wedge_regime  # the closed forms, importable from here too
 
-__all__ = ["WearSpec", "check_wear", "draw_radii", "grain_step", "pad_friction_split", "wedge_regime", "regime_shares",
+__all__ = ["WearSpec", "NoWear", "wear_part", "check_wear", "draw_radii", "grain_step", "pad_friction_split", "wedge_regime", "regime_shares",
            "climb_force", "Wear"]
 
 # No continuous collision detection in pymunk: a particle crosses a surface once v dt exceeds about 1.2 radii
@@ -33,7 +34,7 @@ __all__ = ["WearSpec", "check_wear", "draw_radii", "grain_step", "pad_friction_s
 # the tracks' segment radius (50 um by default) adds to the margin.
 WEAR_SPEED_FACTOR = 10.0
 WEAR_TUNNEL_FRACTION = 0.25
-# The grain step rule (issue 17; benchmarks/results/wear_convergence.md): a grain of mass m_g squeezed by a pad feels
+# The grain step rule (benchmarks/results/wear_convergence.md): a grain of mass m_g squeezed by a pad feels
 # the pad's springs, omega_g = sqrt((k0 + k_normal) / m_g). Every grain run measured with omega_g dt <= 0.65 closed
 # the energy balance within 0.5 % (the clean branch); every one with omega_g dt >= 0.81 chattered (residual 2.4-8 %,
 # grains sunk into the track at 1e-6 kg), whatever the solver iterations. The step is cut into substeps so that
@@ -158,83 +159,120 @@ def pad_friction_split(mu0: float, mu_pad: float, mu_track: float) -> tuple[floa
     return q, mu_pad / q
 
 
-def wedge_regime(r: float, R: float, mu_pad: float, mu_track: float) -> tuple[str, float]:
-    """What a rigid, non-rolling, massless grain of radius r does when the front of a sliding circular pad of radius R
-    (resting on the same flat track; r and R in one length unit, only their ratio counts) reaches it, on a track
-    whose friction with the grain is mu_track: ("trapped" | "wedged" | "pushed", theta in degrees).
-
-    The pad's contact normal on the grain points forward and down at theta below the horizontal, sin theta =
-    (R - r) / (R + r). The pad's contact force lies within its friction cone, theta +- atan(mu_pad); a massless grain
-    sliding on the track needs a force at phi = atan(1 / mu_track) below the horizontal. If the whole cone is steeper
-    than phi the track holds the grain and the pad climbs over it (trapped: the force is set by the pad's springs,
-    :func:`climb_force`); if it is shallower the grain slides ahead with a force of order mu_track m g (pushed, zero
-    in the light limit); if it contains phi the grain is wedged: every force along phi balances it, so rigid-body
-    mechanics leaves its magnitude undetermined (a static indeterminacy, as of a Coulomb wedge), and a contact
-    solver picks one through its step, iterations and mass ratio (benchmarks/results/wear_light_limit.md). On a
-    track of friction patches mu_track varies from patch to patch (:func:`regime_shares`)."""
-    theta = math.asin((R - r) / (R + r))
-    phi, cone = math.atan2(1.0, mu_track), math.atan(mu_pad)
-    regime = "trapped" if theta - cone > phi else "pushed" if theta + cone < phi else "wedged"
-    return regime, math.degrees(theta)
+STATE_COLORS = np.array([[0.6, 0.6, 0.6, 1.0], [0.12, 0.47, 0.71, 1.0], [0.89, 0.10, 0.11, 1.0]])  # RGBA by state
+STATE_NAMES = ("idle", "trapped", "moving")
 
 
-def regime_shares(r: float, R: float, mu_pad: float, mu_track: float, alpha: float) -> dict:
-    """The shares of a track's patches on which a grain of radius r is trapped, wedged or pushed
-    (:func:`wedge_regime`), when the grain-track friction on a patch is mu_track (1 + alpha (u - 1/2)) with u uniform
-    on [0, 1] (the friction patches' law, section 3; pymunk's product of shape frictions carries the patch's spread to
-    the grain-track pair). The grain is trapped where that friction exceeds 1 / tan(theta - atan(mu_pad)) and pushed
-    where it is below 1 / tan(theta + atan(mu_pad)). alpha = 0: one regime, as :func:`wedge_regime`."""
-    theta, cone = math.asin((R - r) / (R + r)), math.atan(mu_pad)
-    lo, hi = mu_track * (1 - alpha / 2), mu_track * (1 + alpha / 2)
-    if hi <= lo:
-        return {k: float(k == wedge_regime(r, R, mu_pad, mu_track)[0]) for k in ("trapped", "wedged", "pushed")}
-
-    def share_above(mu):  # of the uniform friction on [lo, hi]
-        return min(1.0, max(0.0, (hi - mu) / (hi - lo)))
-
-    trapped = share_above(1 / math.tan(theta - cone)) if theta > cone else 0.0
-    pushed = 1.0 - share_above(1 / math.tan(theta + cone)) if theta + cone < math.pi / 2 else 0.0
-    return {"trapped": trapped, "wedged": 1.0 - trapped - pushed, "pushed": pushed}
+def wear_part(spec, scenario):
+    """The scene's grains part for a [wear] spec: :class:`Wear` when it asks for particles, else :class:`NoWear`."""
+    return Wear(spec, scenario) if spec.count else NoWear(spec, scenario)
 
 
-def climb_force(r: float, R: float, mu_pad: float, load: float, k_normal: float) -> float:
-    """Mean tangential force (N, against sliding) on a pad of radius R (m) that climbs quasi-statically over a grain of
-    radius r (m) stuck on a flat track, averaged over the horizontal distance of the climb (time at constant speed).
-    For a trapped grain (:func:`wedge_regime`); defined while the contact angle theta exceeds atan(mu_pad) (else the
-    pad could not slide up the grain: ValueError).
+class NoWear:
+    """The grains part of a scene without wear particles: it builds nothing, records nothing and draws nothing. The
+    scene, the recorder, the renderer and the run ask it exactly what they ask :class:`Wear`."""
 
-    The pad's centre runs on the circle of radius R + r about the grain's centre, at angle psi from the vertical,
-    from -psi0 to psi0 (cos psi0 = (R - r) / (R + r): back on the track); it slides over the grain with friction
-    mu_pad = tan(beta). Its load is ``load`` (N: block share plus its weight) plus its normal spring k_normal (N/m)
-    times the lift (R + r) cos psi + r - R. Vertical balance N (cos psi + mu_pad sin psi) = load(psi) gives the contact
-    force N, and the force on the pad against sliding is f = N (mu_pad cos psi - sin psi) = load tan(beta - psi).
-    Over the whole climb the lift returns to zero and the load is a function of it, so the work f dx is the friction
-    work alone, mu_pad N (R + r) dpsi, and the mean is (mu_pad / (2 sin psi0)) Int load / (cos psi + mu_pad sin psi)
-    dpsi, in closed form with A = load + k_normal (r - R), B = k_normal (R + r):
+    count = 0
+    bodies: tuple = ()
+    recycle_work = 0.0  # scene energy units
+    reduced_model = None  # no particles: the substrate's model fits the scene
+    quick_duration = None
 
-        mean = mu / (2 sin psi0) [ A (artanh sin(psi0 + beta) + artanh sin(psi0 - beta)) / sqrt(1 + mu^2)
-                                   + B (2 psi0 + mu ln(cos(psi0 - beta) / cos(psi0 + beta))) / (1 + mu^2) ]
+    def __init__(self, spec, scenario):
+        self.spec, self.sc = spec, scenario
 
-    Without friction climbing and descending cancel (mean 0). No inertia, damping or tangential spring (they add the
-    few percent measured)."""
-    theta = math.asin((R - r) / (R + r))
-    beta = math.atan(mu_pad)
-    if not theta > beta:
-        raise ValueError(f"climb_force: a grain of r = {r:g} under a pad of R = {R:g} meets it at "
-                         f"{math.degrees(theta):.1f} deg, not above the pad's friction angle {math.degrees(beta):.1f} "
-                         "deg: the pad cannot climb it")
-    mu, psi0 = mu_pad, math.pi / 2 - theta
-    A, B = load + k_normal * (r - R), k_normal * (R + r)
-    sec_int = (math.atanh(math.sin(psi0 + beta)) + math.atanh(math.sin(psi0 - beta))) / math.sqrt(1 + mu * mu)
-    cos_int = (2 * psi0 + mu * math.log(math.cos(psi0 - beta) / math.cos(psi0 + beta))) / (1 + mu * mu)
-    return mu / (2 * math.sin(psi0)) * (A * sec_int + B * cos_int)
+    def validate(self, where: str = "") -> None:
+        """Raise ValueError (naming the field) if the scene cannot hold the particles."""
+
+    def friction_split(self, mu0: float) -> tuple[float, float]:
+        """(q_pad, particle friction): the pads' shape friction factor and the particles' (see
+        :func:`pad_friction_split`); without particles the pads carry the track's friction alone."""
+        return 1.0, 0.0
+
+    def build(self, scene, seed, particle_friction: float) -> None:
+        """Add the particles to ``scene.space`` (scene units), drawing from ``seed`` (a SeedSequence)."""
+
+    def maintain(self) -> None:
+        """Recycle particles that left their place (every few output steps)."""
+
+    def recorder_table(self) -> np.ndarray:
+        """Per particle: mass, moment (0 if locked), radius, asleep flag, last known x, y (scene units)."""
+        return np.zeros((0, 6))
+
+    def mark_sleeping(self, table: np.ndarray) -> None:
+        """Write each particle's asleep flag into column 3 of the recorder's table."""
+
+    def trace_metadata(self, stale: int) -> dict:
+        """Entries of the trace's metadata: the stale grain arbiters the recorder left out."""
+        return {}
+
+    def run_metadata(self) -> dict:
+        """Entries of the run's metadata: counts, radii and tracks of the particles."""
+        return {}
+
+    def view(self, scene, view: dict) -> dict:
+        """The renderer's view (``arrangements.Arrangement.view``) as the particles need it."""
+        return view
+
+    def observer(self, scene):
+        """What classifies the particles' states for the renderer (the recorder's classifier)."""
+        return _NoStates()
+
+    def key(self) -> list:
+        """(label, RGBA colour) entries of the renderer's key."""
+        return []
+
+    def draw(self, states) -> dict:
+        """Shapes to draw (``render.py``: name -> (kind, data, style)), scene units."""
+        return {}
 
 
-class Wear:
-    """The particles of a scene; built by :class:`~engine_sim.scene.Scene` when ``wear.count > 0``."""
+class _NoStates:
+    states = np.zeros(0, dtype=int)
 
-    def __init__(self, scene, spec, rng: np.random.Generator, particle_friction: float):
-        self.scene, self.spec, self.rng = scene, spec, rng
+    def observe(self):
+        pass
+
+
+class _States:
+    """The particles' states (0 idle, 1 trapped, 2 moving) at the latest observed output step, from a recorder that
+    keeps only its latest sample: the trace's own classifier."""
+
+    def __init__(self, scene):
+        from .record import Recorder
+        self._rec = Recorder(scene, 1)
+
+    def observe(self):
+        self._rec.k = 0
+        self._rec.sample()
+
+    @property
+    def states(self) -> np.ndarray:
+        if self._rec.k == 0:
+            self.observe()
+        return self._rec.p_state[0].astype(int)
+
+
+class Wear(NoWear):
+    """The particles of a scene (``wear.count > 0``): built into the scene's space by :meth:`build`."""
+
+    reduced_model = "model_II"  # the key in reduced_models.MODELS of the model that fits a scene with particles
+    quick_duration = 8.0  # s recorded by each of a quick comparison's paired runs (with and without particles)
+
+    def validate(self, where: str = "") -> None:
+        sc = self.sc
+        if not sc.substrate_part.hosts_wear or not sc.arrangement_part.hosts_wear:
+            raise ValueError(f"wear particles need flat pad tracks (substrate.kind 'patches', pads.arrangement "
+                             f"'tracks'; got {sc.substrate.kind!r}, {sc.pads.arrangement!r})")
+        check_wear(sc)
+
+    def friction_split(self, mu0: float) -> tuple[float, float]:
+        return pad_friction_split(mu0, self.spec.mu_pad, self.spec.mu_track)
+
+    def build(self, scene, seed, particle_friction: float) -> None:
+        spec = self.spec
+        self.scene, self.rng = scene, np.random.default_rng(seed)
+        rng = self.rng
         space = scene.space
         sc = scene.sc
         N = len(scene.pads)
@@ -266,6 +304,10 @@ class Wear:
             if not self._place(j, initial=True, tries=200):
                 raise ValueError(f"wear: no free place for particle {j} ahead of pad {self.track[j]} "
                                  f"(wear.ahead = {spec.ahead} m is too short for wear.count = {spec.count})")
+        # idle particles at rest sleep until a pad reaches them (pads and block never rest)
+        space.sleep_time_threshold = 20.0  # ms
+        # mm/ms = 2 mm/s: a resting grain gains g dt = 1e-3 mm/ms per step before its contact stops it
+        space.idle_speed_threshold = 2e-3
 
     @property
     def count(self) -> int:
@@ -316,6 +358,42 @@ class Wear:
             elif x < pad.position.x - self.behind or x > pad.position.x + 3 * self.ahead:
                 if self._place(j):
                     self.recycled += 1
+
+    def recorder_table(self) -> np.ndarray:
+        moment = np.where(np.isfinite(self.moment), self.moment, 0.0)  # locked grains: no rotational energy
+        n = self.count
+        table = np.column_stack([self.mass, moment, self.r, np.zeros(n), np.zeros(n), np.zeros(n)]).astype(float)
+        for j, b in enumerate(self.bodies):
+            table[j, 4:6] = b.position.x, b.position.y
+        return table
+
+    def mark_sleeping(self, table: np.ndarray) -> None:
+        for j, b in enumerate(self.bodies):
+            table[j, 3] = b.is_sleeping
+
+    def trace_metadata(self, stale: int) -> dict:
+        return {"stale_arbiters_skipped": stale}
+
+    def run_metadata(self) -> dict:
+        return {"wear": {"count": self.count, "recycled": self.recycled, "left_interface": self.lost,
+                         "radii_m": (self.r / U.LENGTH).tolist(), "track": self.track.tolist(),
+                         "asleep_at_end": int(sum(b.is_sleeping for b in self.bodies))}}
+
+    def view(self, scene, view: dict) -> dict:
+        """Grains of tens of um: the view zooms onto the first pad's track and draws the pads at their true size."""
+        surf = scene.track_surface[0]
+        return {**view, "window": 0.6 * self.spec.ahead, "ylim": (surf - 0.3, surf + 0.9),
+                "ylabel": "y (mm): the first pad's track", "block_top": view["block_top"], "true_size": True}
+
+    def observer(self, scene):
+        return _States(scene)
+
+    def key(self) -> list:
+        return [(f"grain {n}", c) for n, c in zip(STATE_NAMES, STATE_COLORS)]
+
+    def draw(self, states) -> dict:
+        xy, r = self.snapshot()
+        return {"grains": ("discs", (xy, 2 * r, STATE_COLORS[states]), {"zorder": 4})}
 
     def snapshot(self):
         """(positions (n, 2), radii) in scene units, for rendering. A grain's state (idle, trapped, moving) is the

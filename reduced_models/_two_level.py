@@ -199,7 +199,7 @@ def run_two_level(lr, ilr, cr, B1r, B2r, lcr, lci, ilc, cc, B1c, B2c, qr, gr, qc
     mean of F1 + F2 and of F2 over [t_k, t_k + dt). Macro renewal times go to ev_time; micro ones to
     ev2_time only if store2. stats[0] counts evaluations of the exact solution (Newton iterates). er, pr
     (real, len nr), ec, pc (complex, len nc): scratch. Compiled without numba's reference counting (nothing is
-    allocated inside): with it, the atomic increments on every array passed to the inlined helpers took half
+    allocated inside): with it, the atomic increments on every array passed to the inlined helpers take half
     of the time per renewal (perf).
     """
     nr = lr.shape[0]

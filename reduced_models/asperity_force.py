@@ -206,3 +206,19 @@ def theory_spectrum_sampled(params: AsperityForceParams, omega) -> np.ndarray:
     th = w * params.dt
     gain = params.dt**4 * np.cos(th / 2) ** 2 / (16 * np.sin(th / 2) ** 4) / params.M**2
     return theory_force_spectrum(params, w) * gain
+
+
+# What the sweep, the report and `frictionnoise compare` read of this model through reduced_models.MODELS
+# (the protocol is described in reduced_models/__init__.py).
+PARAMS = AsperityForceParams
+SWEEP_SERIES = "x"  # a sweep task returns the spectrum of the block's displacement, C_x
+
+
+def default_duration(params: AsperityForceParams) -> float:
+    """Simulated seconds of a run when the caller sets none (Units: s)."""
+    return 2**18 * params.dt  # 2^18 grid steps
+
+
+def default_dt_out(params: AsperityForceParams) -> float:
+    """Output step of a run when the caller sets none (Units: s)."""
+    return params.dt  # the grid step: model III's own

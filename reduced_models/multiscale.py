@@ -43,7 +43,7 @@ C_f1 and C_f2 from (A8) with (a, alpha f_kin) and (a2, alpha2 f_kin2). n = 0 giv
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -53,7 +53,7 @@ from . import spring_block as _m1
 from ._exact import Modes, first_order, modal_decomposition
 from ._two_level import run_two_level, sort_windows
 from ._version import package_version
-from .trace import ModelTrace
+from .trace import ModelTrace, check_run
 
 __all__ = ["MultiscaleParams", "simulate", "theory_spectrum", "theory_components", "transfer_functions",
            "asymptotic_spectrum", "micro_macro_ratio", "crossover_frequency", "regime_frequencies", "RESPONSE",
@@ -65,11 +65,11 @@ _TOL = 1e-6  # renewal crossings located to 1e-6 a2 (a different uniform draw at
 
 
 @dataclass(frozen=True)
-class MultiscaleParams:
+class MultiscaleParams(_m1.SpringBlockParams):
     """Parameters of model Ib, SI units. Defaults are :meth:`reference`.
 
-    Model I's fields keep their names and meaning (see :class:`~reduced_models.spring_block.SpringBlockParams`;
-    k1 and eta_lat do not act on the block). Added:
+    Model I's fields, inherited from :class:`~reduced_models.spring_block.SpringBlockParams` with their names,
+    meaning and checks (k1 and eta_lat do not act on the block). Added:
 
     n_micro : int
         Microblocks (micro-asperity contacts) per miniblock; 0 is model I.
@@ -91,19 +91,6 @@ class MultiscaleParams:
         None: derived from F_drive = N (m eta1 v + f_kin) + N n (m2 eta3 v + f_kin2).
     """
 
-    N: int = 30
-    v: float = 0.5e-3
-    a: float = 1e-3
-    k0: float = 1e4
-    k1: float = 1e2
-    M: float = 1.0
-    m: float = 1e-5
-    eta0: float = 0.8e4
-    eta1: float | None = None
-    eta_lat: float = 0.0
-    alpha: float = 1.0
-    F_drive: float = 10.0
-    F_kin: float = 5.0
     n_micro: int = 10
     m2: float = 1e-11
     k2: float = 100.0
@@ -112,18 +99,15 @@ class MultiscaleParams:
     a2: float = 1e-5
     alpha2: float = 1.0
     F_kin2: float = 0.03
-    eta1_derived: bool = field(default=False, repr=False)
 
     def __post_init__(self):
-        _m1.SpringBlockParams(N=self.N, v=self.v, a=self.a, k0=self.k0, k1=self.k1, M=self.M, m=self.m,
-                              eta0=self.eta0, eta_lat=self.eta_lat, alpha=self.alpha, F_drive=self.F_drive,
-                              F_kin=0.0)  # model I's field checks first (each names its field)
+        self._check_fields()  # model I's field checks first (each names its field)
         check_fields(self, integer=("n_micro",), positive=("m2", "k2", "a2"),  # the scene's micro-pads: the same check
                      non_negative=("eta2", "eta3", "alpha2", "F_kin2"))
         n = self.n_micro
         if n == 0 and self.F_kin2 != 0:
             raise ValueError(f"F_kin2 = N n f_kin2 must be 0 when n_micro = 0 (got {self.F_kin2!r})")
-        micro = self.N * n * self.m2 * self.eta3 * self.v + self.F_kin2 if n else 0.0
+        micro = self.micro_friction
         if self.eta1 is None or self.eta1_derived:
             if not self.F_drive > self.F_kin + micro:
                 raise ValueError(f"F_drive = {self.F_drive!r} N must exceed F_kin + N n (m2 eta3 v + f_kin2) = "
@@ -131,12 +115,17 @@ class MultiscaleParams:
             eta1 = (self.F_drive - self.F_kin - micro) / (self.N * self.m * self.v)
             object.__setattr__(self, "eta1", eta1)
             object.__setattr__(self, "eta1_derived", True)
-        self.macro  # model I's steady-sliding and F_kin checks
+        self.macro  # model I's steady-sliding check on the macro level (eta1 > 0, given or derived)
         total = self.N * (self.m * self.eta1 * self.v + self.f_kin) + micro
         if not math.isclose(total, self.F_drive, rel_tol=1e-6):
             raise ValueError(f"eta1 = {self.eta1!r} 1/s does not give steady sliding: N (m eta1 v + f_kin) + "
                              f"N n (m2 eta3 v + f_kin2) = {total:.6g} N != F_drive = {self.F_drive!r} N "
                              "(leave eta1 unset to derive it)")
+
+    @property
+    def micro_friction(self) -> float:
+        """The microblocks' steady friction N n (m2 eta3 v + f_kin2) (Units: N; 0 when n = 0)."""
+        return self.N * self.n_micro * self.m2 * self.eta3 * self.v + self.F_kin2 if self.n_micro else 0.0
 
     @classmethod
     def reference(cls) -> "MultiscaleParams":
@@ -162,19 +151,9 @@ class MultiscaleParams:
         return cls()
 
     @property
-    def f_kin(self) -> float:
-        """Kinetic friction per miniblock (Units: N)."""
-        return self.F_kin / self.N
-
-    @property
     def f_kin2(self) -> float:
         """Kinetic friction per microblock, F_kin2 / (N n) (Units: N); 0 when n = 0."""
         return self.F_kin2 / (self.N * self.n_micro) if self.n_micro else 0.0
-
-    @property
-    def tau0(self) -> float:
-        """Mean renewal interval of one miniblock, a / v (Units: s)."""
-        return self.a / self.v
 
     @property
     def tau2(self) -> float:
@@ -184,15 +163,12 @@ class MultiscaleParams:
     @property
     def macro(self) -> _m1.SpringBlockParams:
         """Model I's parameters with this eta1: the macro level alone (F_drive reduced by the micro friction)."""
-        micro = self.N * self.n_micro * self.m2 * self.eta3 * self.v + self.F_kin2 if self.n_micro else 0.0
         return _m1.SpringBlockParams(N=self.N, v=self.v, a=self.a, k0=self.k0, k1=self.k1, M=self.M, m=self.m,
                                      eta0=self.eta0, eta1=self.eta1, eta_lat=self.eta_lat, alpha=self.alpha,
-                                     F_drive=self.F_drive - micro, F_kin=self.F_kin)
+                                     F_drive=self.F_drive - self.micro_friction, F_kin=self.F_kin)
 
     def to_dict(self) -> dict:
-        d = asdict(self)
-        d.pop("eta1_derived")
-        d["eta1_derived_from_steady_sliding"] = self.eta1_derived
+        d = super().to_dict()
         d.update(f_kin=self.f_kin, f_kin2=self.f_kin2)
         return d
 
@@ -249,7 +225,7 @@ def simulate(params: MultiscaleParams, duration: float, dt_out: float = 1e-3, se
         interval; ``events``: ``times``, ``index`` of the macro renewals, ``force_micro`` (F2 averaged per
         interval), ``n_micro_renewals``, and ``micro_times`` if ``micro_events``.
     """
-    _m1._check_run(duration, dt_out)
+    check_run(duration, dt_out)
     if params.n_micro == 0:
         tr = _m1.simulate(params.macro, duration, dt_out, seed=seed)
         meta = {**tr.metadata, "model": "Ib (multiscale), n = 0: model I", "params": params.to_dict()}
@@ -275,7 +251,7 @@ def _simulate_two_level(p: MultiscaleParams, duration, dt_out, seed, micro_event
     ilr = np.divide(1.0, md.lam_r, out=np.zeros_like(md.lam_r), where=md.lam_r != 0.0)
     lcr, lci, ilc = md.lam_c.real.copy(), md.lam_c.imag.copy(), 1.0 / md.lam_c
     x, F, F2 = np.empty(n), np.empty(n), np.empty(n)
-    n1_est = int(p.N * (p.v * duration * 1.5 / p.a + 2 * _m1._BLOCK_INTERVALS)) + 16
+    n1_est = int(p.N * (p.v * duration * 1.5 / p.a + 2 * _m1.BLOCK_INTERVALS)) + 16
     ev_time = np.empty(n1_est)
     ev_index = np.empty(n1_est, dtype=np.int64)
     n2_est = int(p.N * p.n_micro * (p.v * duration * 1.5 / p.a2 + 2 * _WINDOWS)) + 16 if micro_events else 1
@@ -293,7 +269,7 @@ def _simulate_two_level(p: MultiscaleParams, duration, dt_out, seed, micro_event
     reach = -np.inf  # the kernel stops 4 output steps before the nearer loaded boundary
     while k < n:
         while bound1 <= reach or bound1 == -np.inf:
-            new = _m1._renewal_block(p.macro, rng, b1)
+            new = _m1.renewal_block(p.macro, rng, b1)
             b1 += 1
             pos1, idx1, val1 = (np.concatenate([pos1[ptr1:], new[0]]), np.concatenate([idx1[ptr1:], new[1]]),
                                 np.concatenate([val1[ptr1:], new[2]]))
@@ -351,7 +327,7 @@ def transfer_functions(params: MultiscaleParams, omega):
     return -P0 / (Q0 * Q1t - P0 * P1), P2 / Q2
 
 
-def _force_spectrum(v, a, amp, omega, closure):
+def contact_force_spectrum(v, a, amp, omega, closure):
     """C_f of one contact's renewing force, eq. (A8) (Units: N^2 s); closure as in :func:`theory_spectrum`."""
     w = np.asarray(omega, dtype=float)
     tau0 = a / v
@@ -368,8 +344,8 @@ def theory_components(params: MultiscaleParams, omega, closure: str = "cumulant"
     """(macro, micro) parts of C_x: |Z~|^2 C_f1 / N and |Z~|^2 n |T2|^2 C_f2 / N (Units: m^2 s)."""
     p = params
     Z, T2 = transfer_functions(p, omega)
-    Cf1 = _force_spectrum(p.v, p.a, p.alpha * p.f_kin, omega, closure)
-    Cf2 = _force_spectrum(p.v, p.a2, p.alpha2 * p.f_kin2, omega, closure)
+    Cf1 = contact_force_spectrum(p.v, p.a, p.alpha * p.f_kin, omega, closure)
+    Cf2 = contact_force_spectrum(p.v, p.a2, p.alpha2 * p.f_kin2, omega, closure)
     return np.abs(Z) ** 2 * Cf1 / p.N, np.abs(Z) ** 2 * p.n_micro * np.abs(T2) ** 2 * Cf2 / p.N
 
 
@@ -443,3 +419,19 @@ def asymptotic_spectrum(params: MultiscaleParams, omega, regime: str) -> np.ndar
 def fit_band(params: MultiscaleParams, dt_out: float | None = None) -> tuple[float, float]:
     """The macro omega^-4 band as in model I: 10 v/a to omega_c / 10 (Units: rad/s)."""
     return 10 * params.v / params.a, regime_frequencies(params)["omega_c"] / 10
+
+
+# What the sweep, the report and `frictionnoise compare` read of this model through reduced_models.MODELS
+# (the protocol is described in reduced_models/__init__.py).
+PARAMS = MultiscaleParams
+SWEEP_SERIES = "x"  # a sweep task returns the spectrum of the block's displacement, C_x
+
+
+def default_duration(params: MultiscaleParams) -> float:
+    """Simulated seconds of a run when the caller sets none (Units: s)."""
+    return 300.0
+
+
+def default_dt_out(params: MultiscaleParams) -> float:
+    """Output step of a run when the caller sets none (Units: s)."""
+    return 1e-3

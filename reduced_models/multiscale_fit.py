@@ -8,7 +8,7 @@ Two procedures, each stated where it is used:
 
    - f_kin = <G> / K (G the summed force);
    - the autocorrelation of G in sliding distance is one contact's (independent, identical contacts), whose
-     integral is <tau^2> / (2 <tau>) = 7 a / 12 (as in ``compare.extract``): a = (12/7) L_c, with L_c integrated
+     integral is <tau^2> / (2 <tau>) = 7 a / 12 (:mod:`reduced_models.correlation`): a = (12/7) L_c, with L_c integrated
      over [0, 2a] (rho vanishes beyond the longest interval 2 a), a found as the fixed point from model I's
      first-zero estimate;
    - Var G = K (alpha f_kin)^2 / 12 (eq. A7): alpha f_kin = sqrt(12 Var G / K).
@@ -38,6 +38,7 @@ import numpy as np
 
 from . import multiscale as ms
 from . import spring_block as m1
+from .correlation import autocorrelation, correlation_integral, correlation_length
 
 __all__ = ["RenewalLevel", "renewal_statistics", "renewal_force_spectrum", "fit_renewal_levels", "rigid_micro_params",
            "correlation_length"]
@@ -56,37 +57,6 @@ class RenewalLevel:
     @property
     def alpha(self) -> float:
         return self.amplitude / self.f_kin if self.f_kin else math.inf
-
-
-def _rho(x: np.ndarray, f: np.ndarray):
-    """(rho, dx): the unbiased autocorrelation of the force columns ``f`` (samples x columns, or one series) in
-    sliding distance, averaged over columns (FFT), and the mean distance step (uniform steps assumed)."""
-    f = np.asarray(f, dtype=float)
-    f = f[:, None] if f.ndim == 1 else f
-    dx = float(np.mean(np.diff(x)))
-    fz = f - f.mean(axis=0)
-    n = len(fz)
-    nfft = 1 << int(math.ceil(math.log2(2 * n)))
-    F = np.fft.rfft(fz, nfft, axis=0)
-    ac = np.fft.irfft(np.abs(F) ** 2, nfft, axis=0)[:n].mean(axis=1)
-    ac /= (n - np.arange(n))
-    return ac / ac[0], dx
-
-
-def correlation_length(x: np.ndarray, f: np.ndarray, max_lag_distance: float, window: float | None = None) -> float:
-    """Int_0^{s0} rho(s) ds (Units: m) of the force columns ``f`` against the sliding distance ``x``: up to the
-    first zero of rho or ``max_lag_distance`` (model I's estimator in ``compare.extract``), or, given ``window``,
-    up to exactly that distance."""
-    rho, dx = _rho(x, f)
-    n = len(rho)
-    if window is not None:
-        end = min(n - 1, int(round(window / dx)))
-        return float(np.trapezoid(rho[: end + 1], dx=dx))
-    m = min(n - 1, int(max_lag_distance / dx))
-    seg = rho[: m + 1]
-    stop = np.flatnonzero(seg <= 0)
-    end = int(stop[0]) if stop.size else m
-    return float(np.trapezoid(seg[: end + 1], dx=dx))
 
 
 def renewal_statistics(x, G, n_contacts: int, *, offset: float = 0.0, averaged_dt: float | None = None,
@@ -109,15 +79,12 @@ def renewal_statistics(x, G, n_contacts: int, *, offset: float = 0.0, averaged_d
     # a from the first zero of rho, then integrated over the fixed window [0, 2a] (no renewal interval exceeds
     # 2 tau0, eq. 5, so rho vanishes beyond; a fixed window keeps the estimate's variance bounded, where the noisy
     # first zero of a long record can land far out), iterated to its fixed point
-    rho, dx = _rho(x, G)
-    m = min(len(rho) - 1, int((max_lag_distance or dist / 10) / dx))
-    stop = np.flatnonzero(rho[: m + 1] <= 0)
-    a = 12.0 / 7.0 * float(np.trapezoid(rho[: (int(stop[0]) if stop.size else m) + 1], dx=dx))
+    rho, dx = autocorrelation(x, G)
+    a = 12.0 / 7.0 * correlation_integral(rho, dx, max_lag_distance or dist / 10)
     s = 1.0
     for _ in range(6):
         s = 1.0 - averaged_dt * v / (3.0 * a) if averaged_dt else 1.0
-        end = min(len(rho) - 1, int(round(2.0 * a / dx)))
-        a = 12.0 / 7.0 * float(np.trapezoid(rho[: end + 1], dx=dx)) * s
+        a = 12.0 / 7.0 * correlation_integral(rho, dx, window=2.0 * a) * s
     var = float(np.var(G)) / s
     return RenewalLevel(f_kin=(float(np.mean(G)) + offset) / K, a=a, amplitude=math.sqrt(12.0 * var / K),
                         n_renewals=K * dist / a)
@@ -125,7 +92,7 @@ def renewal_statistics(x, G, n_contacts: int, *, offset: float = 0.0, averaged_d
 
 def renewal_force_spectrum(omega, v: float, a: float, amplitude: float, closure: str = "cumulant") -> np.ndarray:
     """One contact's renewing-force spectrum, eq. (A8) (Units: N^2 s): ``reduced_models.multiscale``'s, public."""
-    return ms._force_spectrum(v, a, amplitude, omega, closure)
+    return ms.contact_force_spectrum(v, a, amplitude, omega, closure)
 
 
 def _band_means(omega, values, edges):

@@ -29,7 +29,7 @@ from frictionnoise.checks import check_fields, check_number
 from ._checkpoint import load_checkpoint as _load_checkpoint, save_checkpoint as _save_checkpoint
 from ._exact import Modes, first_order, modal_decomposition, run_renewals
 from ._version import package_version
-from .trace import ModelTrace
+from .trace import ModelTrace, check_run
 
 __all__ = [
     "SpringBlockParams", "simulate", "theory_spectrum", "theory_spectrum_coupled", "random_force_spectrum",
@@ -39,7 +39,7 @@ __all__ = [
 
 RESPONSE = "viscous"  # below omega_c the block follows Z = -1/(i omega m eta1), eq. (A6)
 
-_BLOCK_INTERVALS = 256  # renewal intervals generated per miniblock at a time (memory independent of length)
+BLOCK_INTERVALS = 256  # renewal intervals generated per miniblock at a time (memory independent of length)
 
 
 @dataclass(frozen=True)
@@ -93,8 +93,17 @@ class SpringBlockParams:
     eta1_derived: bool = field(default=False, repr=False)
 
     def __post_init__(self):
+        self._check_fields()
+        self._settle_eta1()
+
+    def _check_fields(self):
+        """Model I's field checks (ValueError naming the field); model Ib's parameters run them too."""
         check_fields(self, integer=("N",), positive=("N", "v", "a", "k0", "M", "m", "F_drive"),
                      non_negative=("k1", "eta0", "eta_lat", "alpha", "F_kin"))
+
+    def _settle_eta1(self):
+        """eta1 from steady sliding, N (m eta1 v + f_kin) = F_drive, when not given (or derived before a replace);
+        a given eta1 must satisfy it."""
         if self.eta1 is None or self.eta1_derived:
             if not self.F_drive > self.F_kin:
                 raise ValueError(
@@ -205,9 +214,9 @@ def _modal(p: SpringBlockParams, contacts=False) -> Modes:
 
 
 # ----------------------------------------------------------------------------- simulator
-def _renewal_block(p: SpringBlockParams, rng: np.random.Generator, b: int):
+def renewal_block(p: SpringBlockParams, rng: np.random.Generator, b: int):
     """Renewal events for distance block b: one per miniblock in each interval [j a, (j+1) a)."""
-    nb = _BLOCK_INTERVALS
+    nb = BLOCK_INTERVALS
     j = np.arange(b * nb, (b + 1) * nb, dtype=float)
     r_pos = rng.random((p.N, nb))
     r_val = rng.random((p.N, nb))
@@ -252,98 +261,90 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float = 1e-3, s
         ``x`` the big block's displacement, ``force`` the summed random force sum_i f_i averaged over each
         output interval, ``events`` with ``times`` (s) and ``index`` (miniblock) of every renewal.
     """
-    _check_run(duration, dt_out)
+    check_run(duration, dt_out)
     n = int(round(duration / dt_out))
     md = _modal(params, contacts)
     n_rows = md.C_r.shape[0]
     every = n if not checkpoint_every else max(1, int(round(checkpoint_every / dt_out)))
     key_seed = seed if not n_rows else ("contacts", tuple(_contact_indices(params, contacts).tolist()), seed)
-    st = _load_checkpoint(checkpoint, params, n, dt_out, key_seed) if checkpoint else None
-    if st is None:
-        rng = np.random.default_rng(seed)
-        forces = params.alpha * params.f_kin * (rng.random(params.N) - 0.5)
-        st = {
-            "rng": rng, "forces": forces, "qr": np.zeros(len(md.lam_r)),
-            "qc": np.zeros(len(md.lam_c), dtype=np.complex128), "gr": md.B_r @ forces,
-            "gc": md.B_c @ forces.astype(np.complex128), "x": np.empty(n), "f": np.empty(n),
-            "xc": np.empty((n if n_rows else 0, n_rows)),
-            "ev_time": np.empty(int(params.N * (params.v * duration * 1.5 / params.a + 2 * _BLOCK_INTERVALS)) + 16),
-            "ev_index": None, "ev_count": 0, "k": 0, "b": 0, "pos": np.empty(0), "idx": np.empty(0, dtype=np.int64),
-            "val": np.empty(0), "ptr": 0, "boundary": -np.inf,
-        }
-        st["ev_index"] = np.empty(len(st["ev_time"]), dtype=np.int64)
-    rng, forces, qr, qc, gr, gc = st["rng"], st["forces"], st["qr"], st["qc"], st["gr"], st["gc"]
-    x, f, xc = st["x"], st["f"], st.get("xc", np.empty((0, n_rows)))
-    k, b, pos, idx, val, ptr, boundary = st["k"], st["b"], st["pos"], st["idx"], st["val"], st["ptr"], st["boundary"]
-    ev_time, ev_index, ev_count = st["ev_time"], st["ev_index"], st["ev_count"]
-    need_block = st.get("need_block", True)
-    nr, nc = len(md.lam_r), len(md.lam_c)
+    st = (_load_checkpoint(checkpoint, params, n, dt_out, key_seed) if checkpoint else None) or _initial_state(
+        params, md, n, duration, seed)
+    st.setdefault("xc", np.empty((0, n_rows)))
+    st.setdefault("need_block", True)
+    for k_stop in [*range((st["k"] // every + 1) * every, n, every), n]:  # the checkpoints, then the end
+        _advance(params, md, st, k_stop, dt_out)
+        if checkpoint and k_stop < n:
+            _save_checkpoint(checkpoint, params, n, dt_out, key_seed, st)
+    x, ev_count = st["x"], st["ev_count"]
+    if not np.all(np.isfinite(x)):
+        raise FloatingPointError("model I produced non-finite positions; please report the parameters")
+    meta = {"model": "I (spring-block)", "params": params.to_dict(), "duration": n * dt_out, "dt_out": dt_out,
+            "seed": seed if isinstance(seed, (int, type(None))) else "Generator", "version": package_version(),
+            "method": ("exact modal propagation between renewals of the " + ("full (N+1)-body system" if contacts else
+                       "2-DOF system block + sum of miniblocks") + "; renewal times by Newton on the exact solution"),
+            "n_renewals": ev_count}
+    events = {"times": st["ev_time"][:ev_count].copy(), "index": st["ev_index"][:ev_count].copy()}
+    if n_rows:
+        events["contacts"] = st["xc"]
+        events["contact_index"] = _contact_indices(params, contacts)
+    return ModelTrace(t=np.arange(n) * dt_out, x=x, force=st["f"], events=events, metadata=meta)
+
+
+def _initial_state(p: SpringBlockParams, md: Modes, n: int, duration: float, seed) -> dict:
+    """The state of a run at t = 0: the generator, every miniblock's first force, modal coordinates at rest, output
+    buffers of n samples and room for the expected renewals."""
+    rng = np.random.default_rng(seed)
+    forces = p.alpha * p.f_kin * (rng.random(p.N) - 0.5)
+    n_rows = md.C_r.shape[0]
+    ev_time = np.empty(int(p.N * (p.v * duration * 1.5 / p.a + 2 * BLOCK_INTERVALS)) + 16)
+    return {"rng": rng, "forces": forces, "qr": np.zeros(len(md.lam_r)), "qc": np.zeros(len(md.lam_c), dtype=complex),
+            "gr": md.B_r @ forces, "gc": md.B_c @ forces.astype(np.complex128), "x": np.empty(n), "f": np.empty(n),
+            "xc": np.empty((n if n_rows else 0, n_rows)), "ev_time": ev_time,
+            "ev_index": np.empty(len(ev_time), dtype=np.int64), "ev_count": 0, "k": 0, "b": 0, "pos": np.empty(0),
+            "idx": np.empty(0, dtype=np.int64), "val": np.empty(0), "ptr": 0, "boundary": -np.inf, "need_block": True}
+
+
+def _next_block(p: SpringBlockParams, st: dict):
+    """Append the next distance block of renewals to the loaded ones (dropping those passed) and make room for
+    their events."""
+    new_pos, new_idx, new_val, st["boundary"] = renewal_block(p, st["rng"], st["b"])
+    st["b"] += 1
+    ptr = st["ptr"]
+    st["pos"] = np.concatenate([st["pos"][ptr:], new_pos])
+    st["idx"] = np.concatenate([st["idx"][ptr:], new_idx])
+    st["val"] = np.concatenate([st["val"][ptr:], new_val])
+    st["ptr"] = 0
+    if st["ev_count"] + len(st["pos"]) > len(st["ev_time"]):
+        grow = max(len(st["ev_time"]), len(st["pos"]))
+        st["ev_time"] = np.concatenate([st["ev_time"], np.empty(grow)])
+        st["ev_index"] = np.concatenate([st["ev_index"], np.empty(grow, dtype=np.int64)])
+
+
+def _advance(p: SpringBlockParams, md: Modes, st: dict, k_stop: int, dt_out: float):
+    """Propagate the run's state ``st`` (:func:`_initial_state`) to output step ``k_stop``: the exact kernel between
+    renewals, renewal blocks drawn as the kernel reaches the end of the loaded ones. Computation only."""
+    nr, nc, n_rows = len(md.lam_r), len(md.lam_c), md.C_r.shape[0]
     scratch = (np.empty(nr), np.empty(nr), np.empty(nc, dtype=np.complex128), np.empty(nc, dtype=np.complex128),
                np.empty(nr), np.empty(nc, dtype=np.complex128))
-    next_ckpt = (k // every + 1) * every
-    while k < n:
-        if need_block:  # the kernel stopped near the end of the loaded renewals: load the next distance block
-            new_pos, new_idx, new_val, boundary = _renewal_block(params, rng, b)
-            b += 1
-            pos = np.concatenate([pos[ptr:], new_pos])
-            idx = np.concatenate([idx[ptr:], new_idx])
-            val = np.concatenate([val[ptr:], new_val])
-            ptr = 0
-            if ev_count + len(pos) > len(ev_time):
-                grow = max(len(ev_time), len(pos))
-                ev_time = np.concatenate([ev_time, np.empty(grow)])
-                ev_index = np.concatenate([ev_index, np.empty(grow, dtype=np.int64)])
-        start = ptr
-        k_stop = min(n, next_ckpt)
+    while st["k"] < k_stop:
+        if st["need_block"]:  # the kernel stopped near the end of the loaded renewals
+            _next_block(p, st)
+        x, f, xc, ev_time, pos, ptr = st["x"], st["f"], st["xc"], st["ev_time"], st["pos"], st["ptr"]
+        qr, qc, gr, gc = st["qr"], st["qc"], st["gr"], st["gc"]
         # the kernel writes x, f (and xc when per-contact rows are asked) rows k..k_stop-1 and one event per renewal
         # passed, unchecked (numba): refuse buffers too small for that
         if not (x.shape[0] >= k_stop and f.shape[0] >= k_stop and (n_rows == 0 or xc.shape[0] >= k_stop)
-                and ev_time.shape[0] >= ev_count + len(pos) - ptr
+                and ev_time.shape[0] >= st["ev_count"] + len(pos) - ptr
                 and qr.shape == gr.shape == md.lam_r.shape and qc.shape == gc.shape == md.lam_c.shape):
             raise RuntimeError(f"spring_block.simulate: buffers too small (x {x.shape[0]}, f {f.shape[0]} rows for "
-                               f"{k_stop}; events {ev_time.shape[0]} for {ev_count + len(pos) - ptr})")
-        k_new, ptr, new_count = run_renewals(md.lam_r, md.c0_r, md.B_r, md.lam_c, md.c0_c, md.B_c, md.C_r, md.C_c,
-                                             qr, gr, qc, gc, forces, params.v, dt_out, k, k_stop, pos, idx, val, ptr,
-                                             boundary, x, f, xc, ev_time, ev_count, *scratch)
-        ev_index[ev_count:new_count] = idx[start:ptr]
-        ev_count = new_count
-        need_block = k_new < k_stop
-        k = k_new
-        if k == k_stop and k < n:
-            next_ckpt += every
-            if checkpoint:
-                _save_checkpoint(checkpoint, params, n, dt_out, key_seed, dict(
-                    rng=rng, forces=forces, qr=qr, qc=qc, gr=gr, gc=gc, x=x, f=f, xc=xc, ev_time=ev_time, ev_index=ev_index,
-                    ev_count=ev_count, k=k, b=b, pos=pos, idx=idx, val=val, ptr=ptr, boundary=boundary,
-                    need_block=need_block))
-    if not np.all(np.isfinite(x)):
-        raise FloatingPointError("model I produced non-finite positions; please report the parameters")
-    meta = {
-        "model": "I (spring-block)",
-        "params": params.to_dict(),
-        "seed": seed if isinstance(seed, (int, type(None))) else "Generator",
-        "duration": n * dt_out,
-        "dt_out": dt_out,
-        "method": ("exact modal propagation between renewals of the " + ("full (N+1)-body system" if contacts else
-                   "2-DOF system block + sum of miniblocks") + "; renewal times by Newton on the exact solution"),
-        "version": package_version(),
-        "n_renewals": ev_count,
-    }
-    events = {"times": ev_time[:ev_count].copy(), "index": ev_index[:ev_count].copy()}
-    if n_rows:
-        events["contacts"] = xc
-        events["contact_index"] = _contact_indices(params, contacts)
-    return ModelTrace(t=np.arange(n) * dt_out, x=x, force=f, events=events, metadata=meta)
-
-
-def _check_run(duration, dt_out):
-    """The run arguments every reduced model takes: a positive duration holding at least two output steps."""
-    if not (isinstance(duration, (int, float)) and duration > 0 and math.isfinite(duration)):
-        raise ValueError(f"duration must be a positive number of seconds (got {duration!r})")
-    if not (isinstance(dt_out, (int, float)) and dt_out > 0 and math.isfinite(dt_out)):
-        raise ValueError(f"dt_out must be a positive number of seconds (got {dt_out!r})")
-    if int(round(duration / dt_out)) < 2:
-        raise ValueError(f"duration {duration!r} s holds fewer than two output steps of {dt_out!r} s")
+                               f"{k_stop}; events {ev_time.shape[0]} for {st['ev_count'] + len(pos) - ptr})")
+        k_new, new_ptr, new_count = run_renewals(md.lam_r, md.c0_r, md.B_r, md.lam_c, md.c0_c, md.B_c, md.C_r, md.C_c,
+                                                 qr, gr, qc, gc, st["forces"], p.v, dt_out, st["k"], k_stop, pos,
+                                                 st["idx"], st["val"], ptr, st["boundary"], x, f, xc, ev_time,
+                                                 st["ev_count"], *scratch)
+        st["ev_index"][st["ev_count"]:new_count] = st["idx"][ptr:new_ptr]
+        st["ev_count"], st["ptr"], st["k"] = new_count, new_ptr, k_new
+        st["need_block"] = k_new < k_stop
 
 
 # ----------------------------------------------------------------------------- theory
@@ -431,3 +432,19 @@ def rms_displacement(params: SpringBlockParams, L0) -> np.ndarray:
     """zeta_rms after sliding L0, eq. (A13): sqrt(7 / (72 pi^2) L0 a / N) (times alpha f_kin / (m eta1 v)),
     the paper's estimate with the low-frequency cut-off omega_0 = pi v / L0 (Units: m)."""
     return np.sqrt(displacement_variance(params, L0) / np.pi**2)
+
+
+# What the sweep, the report and `frictionnoise compare` read of this model through reduced_models.MODELS
+# (the protocol is described in reduced_models/__init__.py).
+PARAMS = SpringBlockParams
+SWEEP_SERIES = "x"  # a sweep task returns the spectrum of the block's displacement, C_x
+
+
+def default_duration(params: SpringBlockParams) -> float:
+    """Simulated seconds of a run when the caller sets none (Units: s)."""
+    return 300.0
+
+
+def default_dt_out(params: SpringBlockParams) -> float:
+    """Output step of a run when the caller sets none (Units: s)."""
+    return 1e-3

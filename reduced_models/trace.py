@@ -1,11 +1,13 @@
-"""The trace every reduced model returns: what compare needs (t, x, metadata) plus model channels."""
+"""The trace every reduced model returns (what compare needs: t, x, metadata, plus model channels) and the run
+arguments every model takes."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["ModelTrace"]
+__all__ = ["ModelTrace", "check_run"]
 
 
 @dataclass(frozen=True)
@@ -38,3 +40,13 @@ class ModelTrace:
     @property
     def dt(self) -> float:
         return float(self.t[1] - self.t[0])
+
+
+def check_run(duration, dt_out):
+    """The run arguments every reduced model takes: a positive duration holding at least two output steps."""
+    if not (isinstance(duration, (int, float)) and duration > 0 and math.isfinite(duration)):
+        raise ValueError(f"duration must be a positive number of seconds (got {duration!r})")
+    if not (isinstance(dt_out, (int, float)) and dt_out > 0 and math.isfinite(dt_out)):
+        raise ValueError(f"dt_out must be a positive number of seconds (got {dt_out!r})")
+    if int(round(duration / dt_out)) < 2:
+        raise ValueError(f"duration {duration!r} s holds fewer than two output steps of {dt_out!r} s")

@@ -44,7 +44,8 @@ import numpy as np
 from frictionnoise.checks import check_number
 
 from ._version import package_version
-from .spring_block import SpringBlockParams, _check_run
+from .spring_block import SpringBlockParams
+from .trace import check_run
 from .trace import ModelTrace
 
 __all__ = ["VibratingBlockParams", "PARAMS", "simulate", "averaged_law", "steady_state", "theory_spectrum",
@@ -290,7 +291,7 @@ def simulate(params: VibratingBlockParams, duration: float, dt_out: float = 5e-4
         random force at each sample, ``events``: ``substrate`` (s(t) at each sample, Units: m), ``times`` and
         ``index`` of the renewals.
     """
-    _check_run(duration, dt_out)
+    check_run(duration, dt_out)
     if not (warmup >= 0 and math.isfinite(warmup)):
         raise ValueError(f"warmup must be a finite number of seconds >= 0 (got {warmup!r})")
     b, h = params, params.h

@@ -408,3 +408,19 @@ def power_law_prediction(params: WearParticleParams) -> dict:
     return {"beta": beta, "beta_prime": beta_p, "force_slope": slope, "gamma": 4 - slope,
             "band": (lo, hi) if hi > lo else None,
             "note": "valid between the corners 10/tau_max and 0.1/tau_min; omega^-2 above 1/tau_min"}
+
+
+# What the sweep, the report and `frictionnoise compare` read of this model through reduced_models.MODELS
+# (the protocol is described in reduced_models/__init__.py).
+PARAMS = WearParticleParams
+SWEEP_SERIES = "x"  # a sweep task returns the spectrum of the block's displacement, C_x
+
+
+def default_duration(params: WearParticleParams) -> float:
+    """Simulated seconds of a run when the caller sets none (Units: s)."""
+    return 500.0
+
+
+def default_dt_out(params: WearParticleParams) -> float:
+    """Output step of a run when the caller sets none (Units: s)."""
+    return 1e-3

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from compare.cli import main
-from compare.measured import DataFileError, read_displacement_csv, read_measured
+from compare.io.measured import DataFileError, read_displacement_csv, read_measured
 from reduced_models.spring_block import SpringBlockParams, simulate
 
 
@@ -165,7 +165,7 @@ def test_reciprocating_force_exponent_and_strokes(tmp_path, extra, method):
                      "-o", str(out)] + extra) == 0
         s = json.loads((out / "summary.json").read_text())
     else:  # the other stroke finders through the same analysis, without drawing the report's figures again (4 s)
-        from compare.measured_report import analyze_force
+        from compare.report.measured_report import analyze_force
 
         cols = {"--x-col": "x_col", "--direction-col": "direction_col"}
         data = read_measured(RECIP, force_col="Ff", normal_col="Fn", require_x=False, **{cols[extra[0]]: extra[1]})
@@ -209,8 +209,8 @@ def test_stroke_averaged_whittle_interval_covers_over_seeds():
     # coverage), the mean estimate within 3 standard errors of 1.2, and the half-width / 1.96 must match the
     # scatter within 35 % (the sd of 30 values is uncertain by 13 %). Measured: 28/30, bias +0.012, ratio 0.85.
     import importlib.util
-    from compare.measured import MeasuredData
-    from compare.measured_report import analyze_force
+    from compare.io.measured import MeasuredData
+    from compare.report.measured_report import analyze_force
     spec = importlib.util.spec_from_file_location("make_reciprocating", "scenarios/data/make_reciprocating.py")
     mr = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mr)

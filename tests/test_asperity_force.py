@@ -2,9 +2,9 @@
 import numpy as np
 import pytest
 
-from compare.fits import fit_power_law
-from compare.spectra import displacement_spectrum, force_series_spectrum
-from compare.testing import assert_spectrum_matches
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import displacement_spectrum, force_series_spectrum
+from compare.analysis.assertions import assert_spectrum_matches
 from reduced_models.asperity_force import (
     AsperityForceParams, grid_force_variance, simulate, theory_force_spectrum, theory_spectrum,
     theory_spectrum_sampled,

@@ -11,7 +11,7 @@ from tests.modules import project_modules
 @pytest.mark.slow  # a fresh interpreter importing all the project (numba, scipy, dask, SurfaceTopography: about 6 s)
 def test_importing_every_module_and_drawing_keeps_the_backend():
     modules = sorted(project_modules())
-    assert len(modules) > 40 and "compare.plots" in modules and "engine_sim.render" in modules
+    assert len(modules) > 40 and "compare.report.plots" in modules and "engine_sim.render" in modules
     code = f"""
 import matplotlib
 matplotlib.use("svg")  # a backend the program chose; pyplot not imported
@@ -20,8 +20,8 @@ for m in {modules!r}:
     importlib.import_module(m)
     assert matplotlib.get_backend() == "svg", (m, matplotlib.get_backend())
 import numpy as np
-from compare import plots
-from compare.spectra import displacement_spectrum
+from compare.report import plots
+from compare.analysis.spectra import displacement_spectrum
 t = np.arange(4096) * 1e-3
 spec = displacement_spectrum(t, np.cumsum(np.random.default_rng(0).standard_normal(t.size)))
 png = plots.figure_png_bytes(plots.spectrum_figure([(spec, "walk")]))

@@ -86,9 +86,9 @@ def test_checkpointing_does_not_change_the_bits(tmp_path):
 
 
 def test_checkpoint_interval_rounds_to_whole_epochs():
-    from engine_sim.run import _every
+    from engine_sim.checkpoint import checkpoint_interval as every
 
-    assert _every(1000, 1e-3, 2.4) == 2000 and _every(1000, 1e-3, 0.1) == 1000 and _every(1000, 1e-3, None) is None
+    assert every(1000, 1e-3, 2.4) == 2000 and every(1000, 1e-3, 0.1) == 1000 and every(1000, 1e-3, None) is None
 
 
 def test_default_epochs_keep_the_round_trip_cost_small():
@@ -170,11 +170,11 @@ _SIGNAL_SCENES = [("pads_friction_patches", 3.0, 0.5), ("pads_rough_profile", 2.
 
 @pytest.mark.slow
 def test_real_signals_at_random_moments_then_resume_is_bitwise_identical(tmp_path):
-    """Must show (issue 15): `frictionnoise run` interrupted by real SIGINT and SIGKILL at seeded random moments
+    """`frictionnoise run` interrupted by real SIGINT and SIGKILL at seeded random moments
     (a second interrupt, of the other kind, lands during the resume), then resumed to the end, equals a plain run
-    that never checkpointed in every recorded array, bit for bit, on five scenes; no crash, no traceback.
-    A Ctrl-C once left counters one sample apart and the resume aborted with heap corruption in 3 of 3 tries;
-    a checkpointed run once departed from a plain one at its first checkpoint (6.4e-8 m on the rough profile)."""
+    that never checkpointed in every recorded array, bit for bit, on five scenes; no crash, no traceback. The
+    hazards it watches: an interrupt that leaves the loop's and the recorder's counters apart (a resume would write
+    past the buffers), and a checkpointed run that departs from a plain one at its first checkpoint."""
     rng = np.random.default_rng(2026_11_23)
     counts = {"SIGINT": 0, "SIGKILL": 0, "during resume": 0, "finished before the signal": 0, "crashes": 0,
               "differing arrays": 0, "arrays compared": 0}

@@ -268,7 +268,7 @@ def test_unicode_paths_and_permissions(tmp_path, capsys):
 
 def test_compare_says_a_trace_is_partial(tmp_path, capsys):
     import engine_sim
-    from compare.traceio import save_trace
+    from compare.io.traces import save_trace
     from engine_sim import load_scenario
 
     sc = load_scenario(PATCHES).with_run(warmup=0.25)  # (the warmup's length does not bear on what is checked)

@@ -1,12 +1,13 @@
-"""The one line before numba compiles (compare.compile_notice): printed on a terminal when a kernel is compiled,
-once, never on a cache hit (a second process), never off a terminal."""
+"""The one line before numba compiles (compare.cli.compile_notice): printed on a terminal when a kernel is compiled,
+once, never on a cache hit (a second process), never off a terminal; a compile in the report's worker processes
+reaches the parent's announcer."""
 import importlib
 import io
 import subprocess
 import sys
 import textwrap
 
-from compare.compile_notice import MESSAGE, cold_kernels, compile_notice
+from compare.cli.compile_notice import MESSAGE, announcer, compile_notice
 
 _SRC = textwrap.dedent('''
     import numba
@@ -32,7 +33,6 @@ def _module(tmp_path, name):
 
 def test_a_compile_is_announced_once_on_a_terminal_and_not_on_a_cache_hit(tmp_path):
     mod = _module(tmp_path, "fresh_kernels")
-    assert cold_kernels([mod]) == ["fresh_kernels.kernel"]  # inlined kernels have no cache of their own
     buf = io.StringIO()
     with compile_notice(stream=buf, tty=True):
         assert mod.kernel(1.0) == 3.0
@@ -43,8 +43,7 @@ def test_a_compile_is_announced_once_on_a_terminal_and_not_on_a_cache_hit(tmp_pa
         import io, sys
         sys.path.insert(0, {str(tmp_path)!r})
         import fresh_kernels
-        from compare.compile_notice import cold_kernels, compile_notice
-        print(cold_kernels([fresh_kernels]))
+        from compare.cli.compile_notice import compile_notice
         buf = io.StringIO()
         with compile_notice(stream=buf, tty=True):
             fresh_kernels.kernel(1.0)
@@ -52,7 +51,7 @@ def test_a_compile_is_announced_once_on_a_terminal_and_not_on_a_cache_hit(tmp_pa
     ''')
     out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
-    assert out.stdout.split("\n")[:2] == ["[]", "''"], out.stdout
+    assert out.stdout.split("\n")[:1] == ["''"], out.stdout
 
 
 def test_nothing_is_printed_off_a_terminal(tmp_path):
@@ -63,14 +62,28 @@ def test_nothing_is_printed_off_a_terminal(tmp_path):
     assert buf.getvalue() == ""
 
 
-def test_the_reduced_models_kernels_are_found():
-    """cold_kernels reads numba's cache index for every kernel of the reduced models without failing (it returns
-    [] on failure, which would silence the notice): a kernel renamed in the index's layout shows up here."""
-    from numba.core.dispatcher import Dispatcher
+def _compile_in_worker(name):
+    import importlib
 
-    from reduced_models import _exact
+    return importlib.import_module(name).kernel(1.0)  # the worker's sys.path is the parent's (spawn)
 
-    assert isinstance(_exact.run_renewals, Dispatcher)
-    idx = _exact.run_renewals._cache._cache_file._load_index()  # the internals cold_kernels relies on
-    assert isinstance(idx, dict)
-    assert isinstance(cold_kernels(), list)
+
+def test_a_compile_in_a_pool_worker_is_announced_once_in_the_parent(tmp_path):
+    from compare.report.pool import process_pool
+
+    _module(tmp_path, "pool_kernels")  # written, not yet compiled: the worker compiles it
+    buf = io.StringIO()
+    announce = announcer(stream=buf, tty=True)
+    sys.path.insert(0, str(tmp_path))
+    try:
+        with process_pool(1, on_compile=announce) as pool:
+            assert pool.submit(_compile_in_worker, "pool_kernels").result(timeout=120) == 3.0
+        with compile_notice(announce=announce):  # a later compile in this process: the line was said already
+            assert _module(tmp_path, "pool_kernels_2").kernel(1.0) == 3.0
+    finally:
+        sys.path.remove(str(tmp_path))
+    assert buf.getvalue() == MESSAGE + "\n"
+
+
+def test_off_a_terminal_there_is_no_announcer():
+    assert announcer(stream=io.StringIO()) is None

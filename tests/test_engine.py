@@ -10,8 +10,8 @@ import pytest
 
 import engine_sim
 from engine_sim.laws.log import LogSpec
-from compare.fits import fit_power_law
-from compare.spectra import band_average, displacement_spectrum
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import band_average, displacement_spectrum
 from engine_sim import ScenarioError, load_scenario, scenario_from_dict, shipped_scenarios
 from reduced_models.spring_block import SpringBlockParams, theory_spectrum
 

@@ -3,8 +3,8 @@ import numpy as np
 import pytest
 
 import engine_sim
-from compare.fits import fit_power_law
-from compare.spectra import band_average, displacement_spectrum, force_series_spectrum
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import band_average, displacement_spectrum, force_series_spectrum
 from engine_sim import load_scenario, shipped_scenarios
 
 

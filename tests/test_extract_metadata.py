@@ -5,7 +5,7 @@ import math
 import pytest
 
 import engine_sim
-from compare.extract import model_I_parameters, scene_info
+from compare.analysis.extract import model_I_parameters, scene_info
 from engine_sim import load_scenario
 from engine_sim.scene import describe
 

@@ -2,8 +2,8 @@
 import numpy as np
 import pytest
 
-from compare.fits import fit_power_law
-from compare.spectra import displacement_spectrum
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import displacement_spectrum
 from tests.synthetic import power_law_series
 
 DT = 1e-3
@@ -85,7 +85,7 @@ def test_methods_agree_and_whittle_needs_a_periodogram():
     w, l = fit_power_law(spec, method="whittle"), fit_power_law(spec, method="lsq")
     assert abs(w.gamma - 6) <= w.gamma_err and abs(l.gamma - 6) <= l.gamma_err
     assert w.to_dict()["method"] == "whittle" and "whittle" in str(w)
-    from compare.spectra import log_bin
+    from compare.analysis.spectra import log_bin
     binned = log_bin(spec)
     assert binned.periodogram is not None  # binning keeps the raw periodogram
     from dataclasses import replace
@@ -138,9 +138,9 @@ def test_bent_spectrum_and_narrow_band_are_flagged():
 
 def test_flag_reaches_legends_and_the_sweep_table():
     """Issue 15: a fit that is not a power law is marked in figures, tables and JSON, not only in its text."""
-    from compare import plots
-    from compare.fits import flag_mark
-    from compare.sweep_report import build_sweep_report
+    from compare.report import plots
+    from compare.analysis.fits import flag_mark
+    from compare.report.sweep_report import build_sweep_report
     from compare.sweep import load_sweep
     from scenarios import __path__ as _scen
 

@@ -92,7 +92,7 @@ def test_ctrl_c_during_report_ends_its_workers(tmp_path):
     time.sleep(3.0)  # and busy with their stages
     wall, err, kids = _interrupt(proc)
     print(f"\nreport: exit {wall:.2f} s after SIGINT, {len(kids)} worker processes")
-    _one_line_130(proc, err, wall, 2.5)  # measured ~0.3-1 s (was 15 s and a traceback)
+    _one_line_130(proc, err, wall, 2.5)  # measured ~0.3-1 s
     time.sleep(0.5)
     assert not _alive(kids), "worker processes left running"
     assert not out.exists() and not list(tmp_path.glob(".rep*"))  # nothing half-written
@@ -143,22 +143,20 @@ def test_ctrl_c_in_other_subcommands(tmp_path, cmd, delay):
 
 
 # engine_sim.run defers SIGINT/SIGTERM to its loop's consistent points (engine_sim/run.py, _Interrupts). Its first
-# sample calls the recorder's numba kernel (_reduce) for the first time in the process: 0.73 s to load it from the
-# cache (measured idle), about 9 s to compile it in a fresh clone. A Ctrl-C landing there waited for the load:
-# 1.34 s from the signal to the exit (warm cache, idle; 9.06 s with the cache cold), so the fast tier's `run` case
-# above (signal 1.5 s after the start, exit within 2 s) failed now and then beside the other xdist worker. Loading
-# the kernel before the deferral begins (a 1-sample Recorder on a throwaway Scene: 0.03 s) brought every exit to
-# 0.01-0.5 s (13 delays from 0.8 to 2.3 s): engine_sim/run.py's _load_recorder_kernel.
+# sample calls the recorder's numba kernel (engine_sim.reduction.reduce_sample) for the first time in the process:
+# under a second to load it from the cache, about 9 s to compile it in a fresh clone, and a Ctrl-C deferred during
+# that load would wait for it (the `run` case above allows 2 s from the signal to the exit). So run() loads the
+# kernel before the deferral begins (_load_recorder_kernel); this checks that every deferral starts with it loaded.
 def test_signals_are_deferred_only_once_the_recorders_kernel_is_loaded():
     code = (
         "import signal\n"
         "import sys, engine_sim\n"
         "R = sys.modules['engine_sim.run']\n"
-        "from engine_sim.record import _reduce\n"
+        "from engine_sim.reduction import reduce_sample\n"
         "seen, real = [], signal.signal\n"
         "def spy(s, h):\n"
         "    if s == signal.SIGINT and isinstance(getattr(h, '__self__', None), R._Interrupts):\n"
-        "        seen.append(len(_reduce.signatures))\n"
+        "        seen.append(len(reduce_sample.signatures))\n"
         "    return real(s, h)\n"
         "signal.signal = spy\n"
         "engine_sim.run(engine_sim.load_scenario(engine_sim.shipped_scenarios()['pads_friction_patches'])"
@@ -167,5 +165,5 @@ def test_signals_are_deferred_only_once_the_recorders_kernel_is_loaded():
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr[-2000:]
     seen = eval(r.stdout.strip().splitlines()[-1])
-    assert seen, "engine_sim.run no longer defers signals through _Interrupts: revisit this test"
+    assert seen, "engine_sim.run did not defer signals through _Interrupts, which this test watches"
     assert all(n > 0 for n in seen), f"kernel signatures loaded when the deferral began: {seen}"

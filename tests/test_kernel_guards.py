@@ -33,7 +33,7 @@ def test_resume_refuses_recorder_arrays_of_another_shape():
     import pickle
 
     from engine_sim import load_scenario, shipped_scenarios
-    from engine_sim.run import CheckpointError, _rebind
+    from engine_sim.checkpoint import CheckpointError, restore
     from engine_sim.scene import Scene
 
     scene = Scene(load_scenario(shipped_scenarios()["pads_friction_patches"]), 0)
@@ -41,4 +41,4 @@ def test_resume_refuses_recorder_arrays_of_another_shape():
               "n_contact": np.zeros(5, np.int32), "p_state": np.zeros((5, 0), np.int8), "p_force": np.zeros((5, 0)),
               "recycle": np.zeros(5)}
     with pytest.raises(CheckpointError, match="recorder array 'out' of shape"):
-        _rebind(pickle.dumps(scene), {"k": 5, "x0": 0.0, "part": np.zeros((0, 6)), "arrays": arrays}, 10)
+        restore(pickle.dumps(scene), {"k": 5, "x0": 0.0, "part": np.zeros((0, 6)), "arrays": arrays}, 10)

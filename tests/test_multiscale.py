@@ -4,9 +4,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from compare.fits import fit_power_law
-from compare.spectra import band_average, displacement_spectrum
-from compare.testing import assert_spectrum_matches
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import band_average, displacement_spectrum
+from compare.analysis.assertions import assert_spectrum_matches
 from reduced_models import multiscale as ms
 from reduced_models import spring_block as m1
 
@@ -169,7 +169,7 @@ def test_study_answers_with_numbers():
 
     import matplotlib
 
-    from compare.studies.multiscale import STUDY
+    from compare.report.studies.multiscale import STUDY
 
     backend = matplotlib.get_backend()
     res = STUDY.run(True, 0)
@@ -219,7 +219,7 @@ def test_strong_micro_slopes_on_both_sides_of_the_crossover(label):
     # with 1.5 x the fit's 95 % half-width, and that slope against the regime's exponent: within 0.15 of 4 and 0.25
     # of 2 (the upper band ends at v/a2 / 2, where the micro force starts to fall: closed form 2.12-2.20).
     # Measured over seeds 0-2: below 3.78-4.14 (+- 0.15-0.73), above 2.07-2.20 (+- 0.06-0.11).
-    from compare.studies.multiscale import strong_cases
+    from compare.report.studies.multiscale import strong_cases
 
     p = strong_cases()[label]
     tr = ms.simulate(p, 120.0, 1e-3, seed=0)

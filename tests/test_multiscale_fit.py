@@ -118,7 +118,7 @@ def test_multiscale_params_from_a_trace(columns):
     # The builder on an engine-like trace made from a model Ib run with known parameters: the layout comes back
     # exactly from the metadata, f_kin2 from the recorded mean, alpha2 and a2 (measured) within the statistical
     # bounds above, and the MultiscaleParams it builds slides steadily with the measured speed.
-    from compare.studies.scene_multiscale import multiscale_parameters, multiscale_params
+    from compare.report.studies.scene_multiscale import multiscale_parameters, multiscale_params
 
     p = REF
     tr = _fake_scene_trace(p, columns=columns)
@@ -138,7 +138,7 @@ def test_multiscale_params_from_a_trace(columns):
 
 
 def test_builder_names_what_is_missing():
-    from compare.studies.scene_multiscale import multiscale_parameters
+    from compare.report.studies.scene_multiscale import multiscale_parameters
 
     tr = _fake_scene_trace(REF, T=2.0)
     del tr.metadata["scene"]["micro"]
@@ -154,7 +154,7 @@ def test_study_skips_with_a_reason_when_the_scene_is_not_shipped(monkeypatch):
     # an install whose scenarios lack pads_multiscale (the study reads the list when it runs)
     import engine_sim
 
-    from compare.studies import scene_multiscale
+    from compare.report.studies import scene_multiscale
 
     shipped = engine_sim.shipped_scenarios()
     monkeypatch.setattr(engine_sim, "shipped_scenarios",
@@ -165,7 +165,7 @@ def test_study_skips_with_a_reason_when_the_scene_is_not_shipped(monkeypatch):
 
 def test_averaged_record_block_means():
     # every k-th time and position; pad forces, contact counts and drag averaged over each k steps (exact means)
-    from compare.studies.scene_rough_multiscale import averaged_record
+    from compare.report.studies.scene_rough_multiscale import averaged_record
 
     n, k = 103, 10
     t = np.arange(n) * 1e-4
@@ -187,8 +187,8 @@ def test_study_part_reads_model_Ib_built_from_its_own_run(case):
     # sd(alpha^2)/alpha^2 <= 2 x 0.76 / sqrt(300) = 9 % (bounds above); C_x ~ (alpha f_kin)^2 / a in the omega^-4
     # band gives ~19 % sd, 3 sigma ~ exp(0.55) = 1.7. Measured (seeds 7, 8): 0.92-1.30. Gamma per regime against
     # the model's closed-form slope over the same band within 1.5 x the fit's 95 % half-width (measured within 1x).
-    from compare.studies.multiscale import strong_cases
-    from compare.studies.scene_multiscale import scene_against_model_Ib
+    from compare.report.studies.multiscale import strong_cases
+    from compare.report.studies.scene_multiscale import scene_against_model_Ib
 
     p = REF if case == "reference" else strong_cases()["R = 1000, v/a2 = 500 rad/s"]
     res = scene_against_model_Ib("model Ib run", None, False, 0, trace=_fake_scene_trace(p, T=600.0, seed=0))

@@ -10,8 +10,8 @@ import time
 
 import pytest
 
-from compare.html import write_report
-from compare.report import build_report
+from compare.report.html import write_report
+from compare.report.build import build_report
 
 pytestmark = pytest.mark.slow  # a report built (about 7 s) and a browser started (about 4 s)
 
@@ -32,7 +32,7 @@ def _browser():
 
 @pytest.fixture(scope="module")
 def small_report(tmp_path_factory):
-    from compare import studies
+    from compare.report import studies
 
     chosen = [s for s in studies.STUDIES if s.key in ("model_III", "scenarios/tilted_plane")]
     assert len(chosen) == 2

@@ -5,8 +5,8 @@ import math
 import pytest
 
 from compare.cli import main
-from compare.report import run_studies
-from compare.studies import model_II, model_III
+from compare.report.build import run_studies
+from compare.report.studies import model_II, model_III
 from engine_sim import load_scenario, shipped_scenarios
 from engine_sim.timing import step_costs
 

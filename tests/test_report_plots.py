@@ -3,9 +3,9 @@ ranges). That importing them leaves matplotlib's backend alone is in test_backen
 import numpy as np
 import pytest
 
-from compare import plots
-from compare.fits import fit_power_law
-from compare.spectra import displacement_spectrum, force_series_spectrum
+from compare.report import plots
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import displacement_spectrum, force_series_spectrum
 
 
 @pytest.fixture(scope="module")

@@ -6,17 +6,18 @@ import re
 
 import pytest
 
-from compare import studies
-from compare.cli import _build_parser, main
-from compare.html import page, summary_of, write_report
-from compare.progress import StageProgress
-from compare.report import build_report
-from compare.study import Figure, Study, StudyResult
+from compare.report import studies
+from compare.cli import main
+from compare.cli.parser import build_parser
+from compare.report.html import page, summary_of, write_report
+from compare.cli.progress import StageProgress
+from compare.report.build import build_report
+from compare.report.study import Figure, Study, StudyResult
 
 
 def _png() -> bytes:
-    from compare import plots
-    from compare.spectra import displacement_spectrum
+    from compare.report import plots
+    from compare.analysis.spectra import displacement_spectrum
     import numpy as np
 
     t = np.arange(4096) * 1e-3
@@ -129,7 +130,7 @@ def test_version(capsys):
 
 
 def test_every_subcommand_has_a_one_line_help_and_seed_is_documented():
-    ap = _build_parser()
+    ap = build_parser()
     sub = next(a for a in ap._actions if a.dest == "command")
     helps = {c.dest: c.help for c in sub._choices_actions}
     assert set(helps) == set(sub.choices) and all(h and "\n" not in h for h in helps.values())
@@ -141,7 +142,7 @@ def test_every_subcommand_has_a_one_line_help_and_seed_is_documented():
 
 
 def test_run_progress_without_a_terminal_prints_tenths():
-    from compare.commands import progress_bar as _progress_bar
+    from compare.cli.progress import progress_bar as _progress_bar
 
     buf = io.StringIO()
     bar, update = _progress_bar("scene", stream=buf)
@@ -158,7 +159,7 @@ def test_run_progress_total_is_warm_up_plus_duration_from_the_start():
     """`run --duration D`: the bar's total is what the run simulates, the warm-up plus D, before the first report
     and after the run's own reports (engine_sim.run counts the warm-up in), and its label names the warm-up."""
     import engine_sim
-    from compare.commands import progress_bar as _progress_bar
+    from compare.cli.progress import progress_bar as _progress_bar
     from engine_sim import load_scenario
 
     sc = load_scenario("pads_friction_patches").with_run(warmup=0.03)
@@ -175,7 +176,7 @@ def test_run_progress_total_is_warm_up_plus_duration_from_the_start():
 
 def test_paired_runs_fill_one_bar_and_logs_name_the_warm_up():
     """compare on a wear scene simulates two runs (with and without particles): one bar of both, run by run."""
-    from compare.commands import progress_bar as _progress_bar
+    from compare.cli.progress import progress_bar as _progress_bar
 
     buf = io.StringIO()
     bar, update = _progress_bar("wear", stream=buf, warmup=1.0, duration=4.0, runs=2)
@@ -199,12 +200,13 @@ def test_paired_runs_fill_one_bar_and_logs_name_the_warm_up():
 
 
 def test_process_pool_returns_results_and_ends_its_workers_on_an_interrupt():
-    # compare.pool: the report's worker processes (spawned). Results come back; a KeyboardInterrupt in the parent
+    # compare.report.pool: the report's worker processes (spawned). Results come back; a KeyboardInterrupt in the parent
     # while a worker is busy ends that worker at once (terminate, then kill) instead of waiting for its task.
     import math
+    import multiprocessing
     import time
 
-    from compare.pool import process_pool
+    from compare.report.pool import process_pool
 
     with process_pool(1) as pool:
         assert pool.submit(math.factorial, 10).result(timeout=60) == 3628800
@@ -212,18 +214,19 @@ def test_process_pool_returns_results_and_ends_its_workers_on_an_interrupt():
     with pytest.raises(KeyboardInterrupt):
         with process_pool(1) as pool:
             busy = pool.submit(time.sleep, 60)
-            procs = list(pool._processes.values())
             while not busy.running():
                 time.sleep(0.01)
+            procs = multiprocessing.active_children()  # the pool's worker, running its task
             raise KeyboardInterrupt
     assert time.perf_counter() - t0 < 30 and procs and not any(p.is_alive() for p in procs)
 
 
 def test_each_shipped_scene_goes_to_the_study_of_its_layout(monkeypatch):
-    # compare.studies.scenes: wear particles -> the paired runs and model II (scene_wear), sparse asperities -> model
+    # the parts name the model (compare.report.studies.scenes.fitting_part): wear particles -> the paired runs and
+    # model II (scene_wear), sparse asperities -> model
     # III (scene_asperity, 16 s quick runs), every other substrate -> model I. The studies' bodies run in the slow
     # tier (quick report, install test): a wear or asperity scene costs 4-7 s of CPU even when too short to fit.
-    from compare.studies import scene_asperity, scene_wear, scenes
+    from compare.report.studies import scene_asperity, scene_wear, scenes
     from engine_sim import load_scenario, shipped_scenarios
 
     calls = []

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import engine_sim
-from compare.spectra import band_average, displacement_spectrum
+from compare.analysis.spectra import band_average, displacement_spectrum
 from engine_sim import Scene, load_scenario, scenario_from_dict
 from engine_sim.scenario import ScenarioError
 from engine_sim.scene import describe
@@ -155,7 +155,7 @@ def test_compare_puts_model_Ib_beside_model_I_for_micro_pads():
     # band; bound 1.5 as for model I on the patch scenes
     import numpy as np
 
-    from compare.report import build_scene_report
+    from compare.report.build import build_scene_report
     from engine_sim import load_scenario, shipped_scenarios
 
     sc = load_scenario(shipped_scenarios()["pads_multiscale"])

@@ -2,12 +2,12 @@
 import numpy as np
 import pytest
 
-from compare.fits import fit_power_law
-from compare.spectra import (
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import (
     band_average, displacement_spectrum, force_series_spectrum, force_spectrum,
     friction_coefficient_spectrum, log_bin, rms_from_spectrum, series_spectrum,
 )
-from compare.testing import assert_spectrum_matches
+from compare.analysis.assertions import assert_spectrum_matches
 from tests.synthetic import ou_process, ou_spectrum, power_law_series
 
 DT = 1e-3

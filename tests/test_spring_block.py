@@ -4,9 +4,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from compare.fits import fit_power_law
-from compare.spectra import band_average, displacement_spectrum
-from compare.testing import assert_spectrum_matches
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import band_average, displacement_spectrum
+from compare.analysis.assertions import assert_spectrum_matches
 from reduced_models.spring_block import (
     SpringBlockParams, asymptotic_spectrum, crossover_frequency, displacement_variance, mean_renewal_interval,
     rms_displacement, simulate, theory_spectrum, theory_spectrum_coupled,

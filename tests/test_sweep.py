@@ -149,7 +149,7 @@ def test_unreachable_scheduler_one_line_after_the_timeout_nothing_left(tmp_path)
 
 
 def test_results_sorted_by_parameters(tmp_path):
-    from compare.sweep import _write_json
+    from compare.sweep.run import write_json as _write_json
 
     (tmp_path / "tasks").mkdir()
     for i, (v, seed) in enumerate([(3e-3, 0), (1e-4, 1), (1e-3, 0), (1e-4, 0)]):
@@ -232,9 +232,9 @@ def test_real_cluster_survives_a_killed_worker(tmp_path):
 
 
 def test_the_sweep_file_example_lives_in_one_docstring():
-    """sweep_spec.py carries the sweep-file example; sweep.py points to it instead of a second copy."""
-    import compare.sweep as sweep
-    import compare.sweep_spec as sweep_spec
+    """compare/sweep/spec.py carries the sweep-file example; the tasks module points to it instead of a second copy."""
+    import compare.sweep.spec as sweep_spec
+    import compare.sweep.tasks as tasks
 
     assert "[grid]" in sweep_spec.__doc__ and "target =" in sweep_spec.__doc__
-    assert "[grid]" not in sweep.__doc__ and ":mod:`compare.sweep_spec`" in sweep.__doc__
+    assert "[grid]" not in tasks.__doc__ and ":mod:`compare.sweep.spec`" in tasks.__doc__

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 import engine_sim
-from compare.spectra import band_average, force_series_spectrum
-from compare.wear import duration_summary, episodes, model_II_from_episodes
+from compare.analysis.spectra import band_average, force_series_spectrum
+from compare.analysis.episodes import duration_summary, episodes, model_II_from_episodes
 from engine_sim import ScenarioError, load_scenario, scenario_from_dict, shipped_scenarios
 from engine_sim.scenario import WearSpec
 from engine_sim.wear import draw_radii, pad_friction_split
@@ -111,7 +111,8 @@ def test_render_colours_grains_by_the_recorders_state_within_the_frame_budget(tm
     from tests.frame_budget import frame_cost_ratio
     from engine_sim import Scene
     from engine_sim.record import Recorder
-    from engine_sim.render import _STATE_COLORS, SceneRenderer
+    from engine_sim.render import SceneRenderer
+    from engine_sim.wear import STATE_COLORS
 
     sc = load_scenario(WEAR).with_wear(count=100)
     scene = Scene(sc)
@@ -129,8 +130,8 @@ def test_render_colours_grains_by_the_recorders_state_within_the_frame_budget(tm
     assert ratio < 0.2  # measured 0.03-0.04 (pymunk draws every segment and constraint as a patch)
     assert np.array_equal(r.states, rec.p_state[-1])  # one classifier: frame colours are the recorded states
     assert np.count_nonzero(rec.p_state[-1]) > 0  # some grains touch their pads (else the check says nothing)
-    colours = r.particles.get_facecolor()
-    assert len(colours) == 100 and np.allclose(colours, _STATE_COLORS[rec.p_state[-1]])
+    colours = r.panels[0]["artists"]["grains"].get_facecolor()
+    assert len(colours) == 100 and np.allclose(colours, STATE_COLORS[rec.p_state[-1]])
     r.save_png(tmp_path / "f.png")
     assert (tmp_path / "f.png").stat().st_size > 5000
     r.close()
@@ -142,9 +143,10 @@ def test_a_stale_grain_arbiter_is_left_out_of_the_sample():
     # 85 mm there). Made here by hand: a sleeping grain moved 1 mm along and 0.1 mm into its track, then woken. Its
     # stale arbiter would read a 100 um overlap; the recorder must skip it (counted) and read no overlap above 1 um.
     from engine_sim import Scene
-    from engine_sim.record import _COLS, Recorder
+    from engine_sim.record import Recorder
+    from engine_sim.reduction import COLS
 
-    stale = _COLS.index("stale")
+    stale = COLS.index("stale")
     sc = load_scenario(WEAR).with_wear(count=60)
     scene = Scene(sc, seed=0)
     for k in range(100):

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import engine_sim
-from compare.studies._common import balances
+from compare.analysis.balances import balances
 from engine_sim import load_scenario, shipped_scenarios
 from engine_sim.wear import grain_step
 

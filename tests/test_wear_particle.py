@@ -4,9 +4,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from compare.fits import fit_power_law
-from compare.spectra import displacement_spectrum, force_series_spectrum
-from compare.testing import assert_spectrum_matches
+from compare.analysis.fits import fit_power_law
+from compare.analysis.spectra import displacement_spectrum, force_series_spectrum
+from compare.analysis.assertions import assert_spectrum_matches
 from reduced_models.wear_particle import (
     DurationLaw, WearParticleParams, power_law_prediction, simulate, theory_force_spectrum,
 )

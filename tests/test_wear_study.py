@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from compare.sweep import SweepError, expand, load_sweep
-from compare.wear_study import _mean_interval, cells, expand_factors
+from compare.analysis.wear_study import cells, expand_factors, mean_interval as _mean_interval
 
 SWEEPS = Path(__file__).resolve().parents[1] / "scenarios" / "sweeps"
 
@@ -152,7 +152,7 @@ def test_cell_with_particles_against_its_twin(track):
 
 
 def test_mass_sensitivity_pairs_seeds_and_widens_the_intervals():
-    from compare.wear_study import mass_sensitivity, widen
+    from compare.analysis.wear_study import mass_sensitivity, widen
 
     def row(count, track, gammas, err=0.1, dg=None):
         r = {"count": count, "size": "narrow" if count else "-", "track": track, "seeds": [0, 1, 2],
@@ -191,7 +191,7 @@ def test_wear_task_fits_its_spectrum_on_the_wear_studys_segments():
 
 
 def test_mass_split_pairs_seeds_and_reads_the_light_limit_parts():
-    from compare.wear_study import mass_split
+    from compare.analysis.wear_study import mass_split
 
     def task(seed, trapped, moving, cx):
         t = _task(25, "narrow", "smooth", seed, 4.0, 0.1, cx, [1.0] * 3, [1.0] * 3)

@@ -1,7 +1,7 @@
 """The engine's shipped defaults sit on the speed-against-error Pareto front (issue 9)."""
 import pytest
 
-from compare.workprec import engine_work_precision, pareto
+from compare.analysis.work_precision import engine_work_precision, pareto
 from engine_sim import load_scenario, shipped_scenarios
 
 

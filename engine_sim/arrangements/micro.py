@@ -1,4 +1,4 @@
-"""Pads that carry micro-pads: the scene of model Ib (the paper's Fig. 1c and sections 10-11; issue 18).
+"""Pads that carry micro-pads: the scene of model Ib (the paper's Fig. 1c and sections 10-11).
 
 Each pad (a miniblock, on its own track of friction patches of renewal length a, as in "tracks") carries n
 micro-pads (microblocks), each spring-mounted on it (tangential k2, c2; a pre-compressed normal spring) and
@@ -61,6 +61,7 @@ class MicroSpec(PadSpec):
 @ARRANGEMENTS.register
 class Micro(Tracks):
     name = "micro"
+    also_fits = ("model_Ib",)  # micro-pads: the multiscale model beside model I
     Spec = MicroSpec
     hosts_wear = False
     positive = Tracks.positive | {"n_micro", "micro_mass", "micro_radius", "micro_k", "micro_k_normal", "micro_a",
@@ -190,7 +191,7 @@ class Micro(Tracks):
     @staticmethod
     def _index(scene):
         """A spatial hash (1 mm cells) instead of pymunk's bounding-box trees: with 120 micro-pads over ~5000 track
-        segments a step cost 1.6-1.8 ms with the trees and 0.38-0.43 ms with the hash (measured, same trajectory).
+        segments a step costs 1.6-1.8 ms with the trees and 0.38-0.43 ms with the hash (measured, same trajectory).
         pymunk does not pickle the choice: it is made again on restoring."""
         scene.space.use_spatial_hash(1.0, 2000)
 

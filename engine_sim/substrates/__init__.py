@@ -2,8 +2,8 @@
 validation, build (the tracks, in scene units), length scale and drawing. The scene, the loader and the renderer
 ask the part; none of them checks kinds.
 
-A new kind is one module here defining a :class:`Substrate` subclass decorated with :func:`register`, and one
-import line below (see ``line_scan.py``).
+A new kind is one module here defining a :class:`Substrate` subclass decorated with ``@SUBSTRATES.register``, and
+one import line below (see ``line_scan.py``).
 """
 from __future__ import annotations
 
@@ -11,10 +11,11 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from .. import units as U
+from ..parts import Registry
 
-__all__ = ["SubstrateSpec", "Substrate", "register", "substrate_kind", "KINDS"]
+__all__ = ["SubstrateSpec", "Substrate", "SUBSTRATES", "substrate_kind"]
 
-KINDS: dict = {}
+SUBSTRATES = Registry("substrate")
 
 
 @dataclass(frozen=True)
@@ -28,20 +29,24 @@ class SubstrateSpec:
 
 
 class Substrate:
-    """One substrate kind. Subclasses set ``kind``, ``Spec`` and override what differs.
+    """One substrate kind. Subclasses set ``name`` (the value of ``[substrate] kind``), ``Spec`` and override what
+    differs.
 
     arrangement: the pad arrangement a scenario gets when its ``[pads]`` section names none (``engine_sim/arrangements``:
     "tracks", one track per pad, or "sole", one track under a flat block on feet, free vertically);
     hosts_wear: flat tracks where wear particles can rest; positive / non_negative / choices: field checks made by
-    the loader (names of Spec fields)."""
+    the loader (names of Spec fields); reduced_model: the key in ``reduced_models.MODELS`` of the model that fits
+    a scene on this substrate; quick_duration: the recorded seconds a quick comparison with that model needs (s)."""
 
-    kind: ClassVar[str] = ""
+    name: ClassVar[str] = ""
     Spec: ClassVar[type] = SubstrateSpec
     arrangement: ClassVar[str] = "tracks"
     hosts_wear: ClassVar[bool] = False
     positive: ClassVar[frozenset] = frozenset({"a", "segment_radius"})
     non_negative: ClassVar[frozenset] = frozenset()
     choices: ClassVar[dict] = {}
+    reduced_model: ClassVar[str] = "model_I"  # pads renewing their force every a: model I
+    quick_duration: ClassVar[float] = 12.0
 
     def __init__(self, spec, scenario):
         self.spec, self.sc = spec, scenario
@@ -95,15 +100,9 @@ class Substrate:
         return segs, mus
 
 
-def register(cls):
-    """Class decorator: make a Substrate subclass available as ``[substrate] kind = cls.kind``."""
-    KINDS[cls.kind] = cls
-    return cls
-
-
 def substrate_kind(name: str):
     """The Substrate class registered as ``name`` (KeyError if none)."""
-    return KINDS[name]
+    return SUBSTRATES[name]
 
 
 # the kinds shipped: each module registers its class

@@ -7,7 +7,7 @@ import numpy as np
 
 from .. import units as U
 from ..substrate import BumpTrack
-from . import Substrate, SubstrateSpec, register
+from . import SUBSTRATES, Substrate, SubstrateSpec
 
 
 @dataclass(frozen=True)
@@ -23,12 +23,14 @@ class AsperitiesSpec(SubstrateSpec):
     h_max: float = 0.02e-3
 
 
-@register
+@SUBSTRATES.register
 class Asperities(Substrate):
-    kind = "asperities"
+    name = "asperities"
     Spec = AsperitiesSpec
     arrangement = "sole"
     positive = Substrate.positive | {"cell", "p", "bump_radius"}
+    reduced_model = "model_III"  # a flat block on sparse asperities
+    quick_duration = 16.0  # model III's corner 2 pi v / w lies near 4 rad/s: resolving below it takes 8 s segments
     non_negative = frozenset({"h_max"})
 
     @classmethod

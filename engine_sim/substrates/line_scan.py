@@ -15,8 +15,8 @@ from pathlib import Path
 import numpy as np
 
 from .. import units as U
-from ..substrate import _StreamedTrack
-from . import Substrate, SubstrateSpec, register
+from ..substrate import StreamedTrack
+from . import SUBSTRATES, Substrate, SubstrateSpec
 from .self_affine import sliding_limit
 
 __all__ = ["LineScanSpec", "LineScan", "read_profile", "ProfileTrack"]
@@ -100,11 +100,12 @@ def _find(name: str, where: str) -> Path:
                      "shipped profiles (scenarios/profiles/)")
 
 
-@register
+@SUBSTRATES.register
 class LineScan(Substrate):
-    kind = "line_scan"
+    name = "line_scan"
     Spec = LineScanSpec
     non_negative = frozenset({"dx"})
+    quick_duration = 8.0  # streaming its short segments costs about 1 wall s per simulated s
     choices = {"x_unit": tuple(_UNITS), "height_unit": tuple(_UNITS), "detrend": ("linear", "mean", "none"),
                "extend": ("mirror", "tile")}
 
@@ -138,7 +139,7 @@ class LineScan(Substrate):
                             shape_filter, rng, x_start)
 
 
-class ProfileTrack(_StreamedTrack):
+class ProfileTrack(StreamedTrack):
     """A fixed profile streamed as straight segments between its grid points (scene units), continued without end
     by mirroring or tiling, entered at a random index; consecutive segments linked with set_neighbors."""
 

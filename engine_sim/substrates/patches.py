@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 from .. import units as U
 from ..substrate import PatchTrack
-from . import Substrate, SubstrateSpec, register
+from . import SUBSTRATES, Substrate, SubstrateSpec
 
 
 @dataclass(frozen=True)
@@ -24,9 +24,9 @@ class PatchesSpec(SubstrateSpec):
     pit_depth: float = 0.06e-3
 
 
-@register
+@SUBSTRATES.register
 class Patches(Substrate):
-    kind = "patches"
+    name = "patches"
     Spec = PatchesSpec
     hosts_wear = True
     non_negative = frozenset({"alpha", "pit_p", "pit_depth"})

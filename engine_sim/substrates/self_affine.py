@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 from .. import units as U
 from ..substrate import SelfAffineTrack, self_affine_kernel
-from . import Substrate, SubstrateSpec, register
+from . import SUBSTRATES, Substrate, SubstrateSpec
 
 
 @dataclass(frozen=True)
@@ -30,11 +30,12 @@ def sliding_limit(mu0: float) -> float:
     return 1.0 / (6.0 * max(mu0, 1e-9))
 
 
-@register
+@SUBSTRATES.register
 class SelfAffine(Substrate):
-    kind = "self_affine"
+    name = "self_affine"
     Spec = SelfAffineSpec
     positive = Substrate.positive | {"lambda_r", "lambda_s", "rms_slope"}
+    quick_duration = 8.0  # streaming its short segments costs about 1 wall s per simulated s
 
     @classmethod
     def validate(cls, s, sc, where=""):

@@ -6,8 +6,8 @@ import pytest
 
 pytestmark = pytest.mark.slow  # hard cases: long or extreme runs
 
-from compare.spectra import band_average, displacement_spectrum
-from compare.testing import assert_spectrum_matches
+from compare.analysis.spectra import band_average, displacement_spectrum
+from compare.analysis.assertions import assert_spectrum_matches
 from reduced_models.spring_block import SpringBlockParams, displacement_variance, simulate, theory_spectrum
 
 REF = SpringBlockParams.reference()

@@ -6,7 +6,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from engine_sim.scenario import _SECTIONS, ScenarioError, scenario_from_dict
-from engine_sim.substrates import KINDS
+from engine_sim.substrates import SUBSTRATES as KINDS
 
 values = st.one_of(st.none(), st.sampled_from(sorted(KINDS)), st.booleans(), st.integers(-10**6, 10**6), st.floats(allow_nan=True, allow_infinity=True),
                    st.text(max_size=8), st.lists(st.integers(), max_size=3), st.dictionaries(st.text(max_size=4), st.integers(), max_size=2))

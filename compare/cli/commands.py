@@ -1,0 +1,357 @@
+"""What each `frictionnoise` subcommand does (the parser is :mod:`compare.cli.parser`, the entry point
+:mod:`compare.cli.main`).
+User errors raise :class:`UserError`: printed as one line, exit 2."""
+from __future__ import annotations
+
+import sys
+
+from .options import UserError, check_seed, load_scenario_arg, output_dir, scenario_path, usable_cores
+from .progress import progress_bar
+
+__all__ = ["cmd_analyze", "cmd_compare", "cmd_render", "cmd_report", "cmd_run", "cmd_scenarios", "cmd_sweep"]
+
+
+def cmd_scenarios(args) -> int:
+    from engine_sim import load_scenario, shipped_scenarios
+    from engine_sim.scenario import scenario_summary
+
+    shipped = shipped_scenarios()
+    width = max(map(len, shipped), default=0)
+    for name, path in shipped.items():
+        print(f"{name:{width}s}  {scenario_summary(load_scenario(path).description)}")
+    return 0
+
+
+def cmd_sweep(args) -> int:
+
+    from tqdm import tqdm
+
+    from ..report.sweep_report import build_sweep_report, write_sweep_outputs
+    from ..sweep import SchedulerError, SweepError, load_results, load_sweep, run_sweep
+
+    try:
+        spec = load_sweep(args.sweep)
+    except SweepError as e:
+        raise UserError(str(e)) from None
+    if not 1 <= args.workers <= 64:
+        raise UserError(f"--workers must be between 1 and 64 (got {args.workers})")
+    if not 0 < args.connect_timeout <= 3600:
+        raise UserError(f"--connect-timeout must be in (0, 3600] seconds (got {args.connect_timeout})")
+    out = output_dir(args.output, f"sweep-{spec.name}", "index.html, summary.json and its task cache")
+    bar = tqdm(total=0, desc=spec.name, unit="task", file=sys.stderr, disable=not sys.stderr.isatty())
+
+    def progress(done, total):
+        bar.total = total
+        bar.n = done
+        bar.refresh()
+    with bar:
+        try:
+            counts = run_sweep(spec, out, scheduler=args.scheduler, workers=args.workers, serial=args.serial,
+                               progress=progress, connect_timeout=args.connect_timeout)
+        except SchedulerError as e:
+            raise UserError(str(e)) from None
+    import json
+    from ..sweep import expand, task_id
+    ids = {task_id(spec, params, seed) for params, seed in expand(spec)}
+    failures = [json.loads(p.read_text()) for p in sorted((out / "failures").glob("*.json")) if p.stem in ids]
+    sections, summary = build_sweep_report(spec, load_results(out, spec), failures)
+    write_sweep_outputs(out, sections, summary)
+    print(f"{spec.name}: {counts['done']}/{counts['total']} tasks done ({counts['ran']} run now, "
+          f"{counts['failed']} failed); wrote {out / 'index.html'}")
+    va = summary.get("velocity_analysis")
+    if va:
+        print(f"  C_x at fixed omega ~ v^{va['exponent']:.3f} +- {va['exponent_err']:.3f}; distance-domain collapse "
+              f"{va['collapse_gain']:.1f}x")
+    return 0 if counts["failed"] == 0 else 1
+
+
+def cmd_analyze(args) -> int:
+    from pathlib import Path
+
+    from ..report.html import write_report
+    from ..io.measured import DataFileError, read_measured, units_line
+
+    import math
+
+    from ..io.inputs import input_file, sniff
+
+    if sniff(input_file(args.data)) != "text":  # kind, emptiness, binary; the format is read by compare.io.measured
+        raise UserError(f"{args.data}: binary data, not a CSV text file")
+    force = args.force_col is not None
+    if args.mass is not None and not (args.mass > 0 and math.isfinite(args.mass)):
+        raise UserError(f"--mass must be positive (got {args.mass})")
+    if not force and args.mass is None:
+        raise UserError("--mass is required for displacement data (or give --force-col for force data)")
+    if args.speed is not None and not (args.speed > 0 and math.isfinite(args.speed)):
+        raise UserError(f"--speed must be a positive number of m/s (got {args.speed})")
+    if args.cut is not None and not (args.cut >= 0 and math.isfinite(args.cut)):
+        raise UserError(f"--cut must be >= 0 s (got {args.cut})")
+    if args.band is not None and not all(math.isfinite(b) for b in args.band):
+        raise UserError(f"--band must be two finite frequencies in rad/s (got {args.band[0]} {args.band[1]})")
+    if not force:
+        for flag in ("normal_col", "direction_col", "speed", "cut", "method", "force_unit"):
+            if getattr(args, flag) is not None:
+                raise UserError(f"--{flag.replace('_', '-')} applies to force data only (give --force-col)")
+    try:
+        data = read_measured(args.data, time_col=args.time_col, x_col=args.x_col, force_col=args.force_col,
+                             normal_col=args.normal_col, direction_col=args.direction_col, time_unit=args.time_unit,
+                             x_unit=args.x_unit, force_unit=args.force_unit, require_x=not force)
+    except DataFileError as e:
+        raise UserError(str(e)) from None
+    if data.warning:
+        print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)
+    out = output_dir(args.output, f"analyze-{Path(args.data).stem}", "index.html and summary.json")
+    band = tuple(args.band) if args.band else None
+    try:
+        if force:
+            from ..report.measured_report import analyze_force, build_force_report
+
+            an = analyze_force(data, band=band, mass=args.mass, speed=args.speed, cut=args.cut, method=args.method)
+            sections, summary = build_force_report(an)
+        else:
+            from ..report.measured_report import build_measured_report
+
+            sections, summary = build_measured_report(data, args.mass, band=band)
+            summary["units"] = data.units
+    except ValueError as e:
+        raise UserError(f"{args.data}: {e}") from None
+    write_report(out, sections, summary)
+    print(f"{args.data}: {units_line(data)}")
+    if force:
+        st = summary["strokes"]
+        f = summary["fit_F"]
+        print(f"strokes ({st['method']}): {st['found']} found, {st['used']} used, {len(st['dropped'])} dropped; "
+              f"{st['cut_each_end_s']:.4g} s cut at each end")
+        print(f"wrote {out / 'index.html'}: force exponent {f['gamma']:.3f} +- {f['gamma_err']:.3f} (95 %, {f['method']}) "
+              f"over {f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s" + ("" if f["power_law"] else
+                                                                    f" [not a power law: {'; '.join(f['flags'])}]"))
+    else:
+        f = summary["fit"]
+        print(f"wrote {out / 'index.html'}: gamma = {summary['gamma']:.3f} +- {summary['gamma_err']:.3f} over "
+              f"{summary['band'][0]:.3g}-{summary['band'][1]:.3g} rad/s, mean velocity "
+              f"{summary['mean_velocity']:.4g} m/s" + ("" if f["power_law"] else
+                                                       f" [not a power law: {'; '.join(f['flags'])}]"))
+    return 0
+
+
+def cmd_render(args) -> int:
+
+    from ..io.outputs import atomic_folder
+
+    sc = load_scenario_arg(args.scenario)
+    check_seed(args.seed)
+    if not 1 <= args.frames <= 10_000:
+        raise UserError(f"--frames must be between 1 and 10000 (got {args.frames})")
+    if not 0 < args.duration < float("inf"):
+        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
+    from engine_sim import Scene
+    from engine_sim.render import SceneRenderer
+
+    out = output_dir(args.output, f"render-{sc.name}",
+                      "frame_000.png, frame_001.png, ... and with --gif animation.gif")
+    scene = Scene(sc, args.seed)
+    renderer = SceneRenderer(scene)
+    n_out = max(1, int(round(args.duration / sc.run.dt_out / args.frames)))  # output steps between frames
+    images = []
+    with atomic_folder(out) as tmp:
+        for k in range(args.frames):
+            img = renderer.frame()
+            renderer.save_png(tmp / f"frame_{k:03d}.png")
+            if args.gif:
+                images.append(img.copy())
+            for _ in range(n_out):  # output step by output step: grain states are the recorder's
+                scene.advance(scene.n_sub)
+                renderer.observe()
+            scene.maintain()
+        if args.gif:
+            from PIL import Image
+
+            frames = [Image.fromarray(im).convert("P", palette=Image.ADAPTIVE) for im in images]
+            frames[0].save(tmp / "animation.gif", save_all=True, append_images=frames[1:], duration=120, loop=0)
+    renderer.close()
+    print(f"wrote {args.frames} frames{' and animation.gif' if args.gif else ''} to {out}")
+    return 0
+
+
+def cmd_run(args) -> int:
+    sc = load_scenario_arg(args.scenario)
+    check_seed(args.seed)
+    if args.duration is not None and not 0 < args.duration < float("inf"):
+        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
+    out = output_dir(args.output, f"run-{sc.name}", "trace.npz and trace.json")
+    if args.epoch is not None and not 0 < args.epoch < float("inf"):
+        raise UserError(f"--epoch must be a positive number of seconds (got {args.epoch})")
+    ck = None
+    if args.checkpoint_every is not None:
+        if not 0 < args.checkpoint_every < float("inf"):
+            raise UserError(f"--checkpoint-every must be a positive number of seconds (got {args.checkpoint_every})")
+        ck = out / "checkpoint.pkl"
+    created = not out.exists()
+    try:
+        return _run_into(args, sc, out, ck)
+    except BaseException:
+        if created and out.is_dir() and not any(out.iterdir()):
+            out.rmdir()  # nothing half-written: a folder made for a checkpoint that never came
+        raise
+
+
+def _run_into(args, sc, out, ck) -> int:
+    import engine_sim
+
+    from engine_sim.run import CheckpointError, TraceSizeError
+
+    from ..io.traces import save_trace
+
+    if ck is not None:
+        out.mkdir(parents=True, exist_ok=True)
+
+    def on_plan(epoch_s, every_s):
+        if every_s is not None and abs(every_s - args.checkpoint_every) > 1e-9:
+            print(f"checkpoints every {every_s:g} s (whole epochs of {epoch_s:g} s)", file=sys.stderr)
+    from .compile_notice import compile_notice
+
+    bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration)
+    with bar, compile_notice():  # the recorder's and friction laws' kernels compile on a fresh install
+        try:
+            tr = engine_sim.run(sc, duration=args.duration, seed=args.seed, progress=update, checkpoint=ck,
+                                checkpoint_every=args.checkpoint_every, epoch=args.epoch, on_plan=on_plan)
+        except (CheckpointError, TraceSizeError) as e:  # a checkpoint of another run or a corrupt one; a run too big
+            raise UserError(str(e)) from None
+    out.mkdir(parents=True, exist_ok=True)
+    path = save_trace(tr, out / "trace.npz")
+    meta = tr.metadata
+    if meta["partial"]:
+        at = meta.get("checkpoint_at_s")
+        print(f"interrupted ({meta['interrupted_by']}) at t = {tr.t[-1]:.3f} s: partial trace (marked partial) "
+              f"written to {path}" + (f"; rerun the same command to resume from t = {at:g} s" if at else ""),
+              file=sys.stderr)
+        return 143 if meta["interrupted_by"] == "SIGTERM" else 130
+    if ck is not None and ck.exists():
+        ck.unlink()
+    print(f"wrote {path} and {path.with_suffix('.json')} ({len(tr.t)} samples, {meta['wall_s']:.1f} s wall)")
+    return 0
+
+
+def _registered_model(source: str) -> bool:
+    """Whether ``frictionnoise compare SOURCE`` names a registered reduced model (an existing path wins)."""
+    import os
+
+    from reduced_models import MODELS
+
+    return source in MODELS and not os.path.lexists(source)
+
+
+def _compare_model(args) -> int:
+    """``frictionnoise compare MODEL``: the registered model's simulation against its closed form."""
+    from ..report.build import build_model_report
+    from ..report.html import write_report
+    from .compile_notice import compile_notice
+
+    check_seed(args.seed)
+    if args.duration is not None and not 0 < args.duration < float("inf"):
+        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
+    out = output_dir(args.output, f"compare-{args.source}", "index.html, summary.json and figures/")
+    try:
+        with compile_notice():  # the model's kernels compile on its first run after an install
+            sections, summary = build_model_report(args.source, seed=args.seed or 0, duration=args.duration)
+    except ValueError as e:  # e.g. a duration too short for the model's band
+        raise UserError(f"{args.source}: {e}") from None
+    path = write_report(out, sections, summary)
+    f = summary["models"][args.source]
+    print(f"wrote {path / 'index.html'}: gamma = {f['gamma']:.3f} +- {f['gamma_err']:.3f} over "
+          f"{f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s; simulated / closed form per band "
+          f"{min(b['ratio'] for b in f['band_ratios_vs_closed_form']):.3f}-"
+          f"{max(b['ratio'] for b in f['band_ratios_vs_closed_form']):.3f}")
+    return 0
+
+
+def cmd_compare(args) -> int:
+
+    from ..report.html import write_report
+    from ..report.build import build_scene_report
+    from ..io.traces import TraceFileError, load_trace
+
+    from ..io.inputs import input_file, sniff
+
+    if _registered_model(args.source):
+        return _compare_model(args)
+    src = input_file(scenario_path(args.source))
+    check_seed(args.seed)
+    kind = sniff(src)
+    if kind == "binary":
+        raise UserError(f"{src}: binary data, neither a scenario TOML file nor a trace .npz")
+    if src.suffix.lower() == ".npz" and kind != "npz":
+        raise UserError(f"{src}: not a .npz trace file (text, not a zip archive)")
+    if args.duration is not None and not 0 < args.duration < float("inf"):
+        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
+    trace = None
+    if kind == "npz":
+        from engine_sim import ScenarioError, scenario_from_dict
+
+        try:
+            trace = load_trace(src)
+            sc = scenario_from_dict(trace.metadata.get("scenario", {}), where=f"{src} (metadata)", strict=False)
+        except (TraceFileError, ScenarioError) as e:
+            raise UserError(str(e)) from None
+    else:
+        sc = load_scenario_arg(src)
+    out = output_dir(args.output, f"compare-{sc.name}", "index.html, summary.json and figures/")
+    note = None
+    if trace is not None and trace.metadata.get("partial"):
+        note = f"{src} is a partial trace (interrupted at t = {trace.t[-1]:.3f} s)"
+    from .compile_notice import compile_notice
+
+    try:
+        with compile_notice():  # the reduced model's kernels compile on the first comparison after an install
+            if trace is None:
+                # the recorded duration as the study sets it (--duration, else the scenario's), times the scene
+                # runs its comparison makes (a wear scene's: with and without its particles)
+                from ..report.studies.scenes import scene_runs
+
+                bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration,
+                                           runs=scene_runs(sc))
+                with bar:
+                    sections, summary = build_scene_report(sc, duration=args.duration, seed=args.seed,
+                                                           progress=update)
+            else:
+                sections, summary = build_scene_report(sc, trace=trace)
+    except ValueError as e:  # e.g. a record too short for the fit band
+        raise UserError(f"{src}: {e}" + (f"; {note}" if note else "")) from None
+    if note:
+        summary["partial_trace"] = note
+        print(f"frictionnoise: note: {note}; the spectra cover only what was recorded", file=sys.stderr)
+    path = write_report(out, sections, summary)
+    f = summary["scenarios"][sc.name]
+    print(f"wrote {path / 'index.html'}: gamma = {f['gamma']:.3f} +- {f['gamma_err']:.3f} over "
+          f"{f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s")
+    return 0
+
+
+def cmd_report(args) -> int:
+
+    from ..report import studies
+    from ..report.html import write_report
+    from .progress import StageProgress
+    from ..report.build import build_report
+
+    out = output_dir(args.output, "frictionnoise-report", "index.html, summary.json and figures/")
+    check_seed(args.seed)
+    if args.workers is not None and args.workers < 1:
+        raise UserError(f"--workers must be at least 1 (got {args.workers})")
+    workers = args.workers or usable_cores(cap=4)
+    chosen = studies.selected(args.quick)
+    from .compile_notice import announcer, compile_notice
+
+    # kernels compiled in this process (the studies that run alone) or in the pool's workers: one line, once
+    announce = announcer()
+    with compile_notice(announce=announce), StageProgress([s.label for s in chosen], desc="report") as progress:
+        results, summary = build_report(quick=args.quick, seed=args.seed, progress=progress, workers=workers,
+                                        studies=chosen, on_compile=announce)
+    path = write_report(out, results, summary)
+    print(f"wrote {path / 'index.html'} ({summary['total_wall_s']:.1f} s)")
+    from reduced_models import MODELS
+
+    for key in (k for k in MODELS if "gamma" in summary.get(k, {})):  # the registered models the report fits
+        f = summary[key]
+        print(f"  {key:10s} gamma = {f['gamma']:.3f} +- {f['gamma_err']:.3f} over {f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s")
+    return 0

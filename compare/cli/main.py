@@ -1,0 +1,54 @@
+"""The `frictionnoise` command line. User errors print one line and exit 2; no tracebacks."""
+from __future__ import annotations
+
+import sys
+
+from ..io.inputs import InputError
+from .options import UserError
+from .parser import build_parser
+
+__all__ = ["main"]
+
+
+def _sigterm(signum, frame):
+    raise KeyboardInterrupt
+
+
+def main(argv=None) -> int:
+    """Run the command line. Exit status: 0 done, 1 some work failed (sweep tasks), 2 a user error (one line),
+    130 interrupted by Ctrl-C (SIGINT; SIGTERM likewise, 143 when a run stopped on it), no traceback."""
+    import signal
+    import threading
+
+    try:
+        ap = build_parser()
+        args = ap.parse_args(argv)
+    except KeyboardInterrupt:  # Ctrl-C while the parser is built: nothing started, nothing written
+        print("frictionnoise: interrupted", file=sys.stderr)
+        return 130
+    if args.command is None:
+        ap.print_help()
+        return 0
+    main_thread = threading.current_thread() is threading.main_thread()
+    old = signal.signal(signal.SIGTERM, _sigterm) if main_thread else None
+    try:
+        return args.func(args)
+    except (UserError, InputError) as e:
+        print("frictionnoise: error: " + " ".join(str(e).split()), file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("frictionnoise: interrupted; no output written for the unfinished step", file=sys.stderr)
+        if argv is None:  # the command line itself: everything is cleaned up by now (outputs are written atomically,
+            # worker processes ended); skip the interpreter's exit, where dask's threads held it 10 s after a sweep
+            import os
+
+            sys.stdout.flush()
+            sys.stderr.flush()
+            os._exit(130)
+        return 130
+    finally:
+        if main_thread:
+            signal.signal(signal.SIGTERM, old)
+            if argv is None:  # the command line itself: the work is over, a late Ctrl-C must not kill the exit
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
+

@@ -1,0 +1,127 @@
+"""The ``frictionnoise`` argument parser: a declarative table of the subcommands, their options and help."""
+from __future__ import annotations
+
+import argparse
+
+from .commands import cmd_analyze, cmd_compare, cmd_render, cmd_report, cmd_run, cmd_scenarios, cmd_sweep
+
+__all__ = ["Parser", "build_parser"]
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse's usage errors as one line too (exit 2), like every other user error."""
+
+    def error(self, message):
+        self.exit(2, f"frictionnoise: error: {self.prog}: {message} (see {self.prog} --help)\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    from frictionnoise import package_version  # the leaf package: no numerics imported to build the parser
+
+    ap = Parser(
+        prog="frictionnoise",
+        description="Displacement noise of sliding friction: reduced models, scenes and spectra.",
+        epilog="Seeds: report, run, compare and render take --seed K (the same seed gives the same numbers, bit for "
+               "bit); a sweep's seeds are the grid axis `seed` of its file; analyze draws no random numbers. "
+               "Every -o names a folder the command writes its files into (a name ending in a file suffix such as "
+               ".npz or .png is refused). `frictionnoise COMMAND --help` describes a command.",
+    )
+    ap.add_argument("--version", action="version", version=f"frictionnoise {package_version()}")
+    sub = ap.add_subparsers(dest="command", metavar="COMMAND")
+
+    def add(name, summary):
+        """A subcommand whose help line and description are the same one-line summary."""
+        return sub.add_parser(name, help=summary, description=summary[0].upper() + summary[1:] + ".")
+
+    rep = add("report", "the main job: the paper's model figures, every shipped scene against its reduced model, "
+                        "fits and timings, as an HTML report with summary.json")
+    rep.add_argument("-o", "--output", default="frictionnoise-report",
+                     help="output folder for index.html, summary.json and figures/ (default: %(default)s)")
+    rep.add_argument("--quick", action="store_true", help="shorter runs (about 2 min on 2 cores)")
+    rep.add_argument("--seed", type=int, default=0,
+                     help="random seed of every model and scene run (default: %(default)s); same seed, same numbers")
+    rep.add_argument("--workers", type=int, default=None, metavar="N",
+                     help="run the report's stages in N processes (default: the usable cores, at most 4; 1: in this "
+                          "process); the numbers do not depend on it")
+    rep.set_defaults(func=cmd_report)
+
+    run = add("run", "run a scenario and write its trace (.npz arrays in SI units + .json metadata)")
+    run.add_argument("scenario", help="scenario TOML file or shipped name (see `frictionnoise scenarios`)")
+    run.add_argument("-o", "--output", default=None, metavar="DIR",
+                     help="output folder, created if needed: the run writes DIR/trace.npz and DIR/trace.json (a name "
+                          "ending in a file suffix such as .npz is refused; default: run-<scenario name>)")
+    run.add_argument("--duration", type=float, default=None, help="simulated seconds (default: the scenario's)")
+    run.add_argument("--seed", type=int, default=None,
+                     help="random seed of the substrate and the scene (default: the scenario's [run] seed)")
+    run.add_argument("--checkpoint-every", type=float, default=None, metavar="S",
+                     help="checkpoint to DIR/checkpoint.pkl about every S simulated seconds (rounded to whole epochs, "
+                          "at least one); rerunning the same command resumes from it, bit for bit")
+    run.add_argument("--epoch", type=float, default=None, metavar="S",
+                     help="simulated seconds between the run's state round trips (default: the scene's, chosen so "
+                          "they cost at most 5 %% of the stepping); part of the run's definition, like --seed")
+    run.set_defaults(func=cmd_run)
+
+    cmp_ = add("compare", "report one scene (scenario TOML or trace .npz) against the reduced model that fits it, or "
+                          "one registered reduced model (model_I, model_Ib, ...) against its closed form")
+    cmp_.add_argument("source", help="scenario TOML file, shipped name, trace .npz written by `frictionnoise run`, or "
+                                     "the name of a registered reduced model")
+    cmp_.add_argument("-o", "--output", default=None, metavar="DIR",
+                      help="output folder for index.html, summary.json and figures/ (default: compare-<name>)")
+    cmp_.add_argument("--duration", type=float, default=None, help="simulated seconds when running a scenario or a model (default: its own)")
+    cmp_.add_argument("--seed", type=int, default=None,
+                      help="random seed of the scene run and of the reduced model's run (default: the scenario's)")
+    cmp_.set_defaults(func=cmd_compare)
+
+    ren = add("render", "render a scenario headless to PNG frames (and an animated GIF)")
+    ren.add_argument("scenario", help="scenario TOML file or shipped name")
+    ren.add_argument("-o", "--output", default=None, metavar="DIR",
+                     help="output folder for frame_000.png, ... and animation.gif (default: render-<scenario name>)")
+    ren.add_argument("--frames", type=int, default=12, help="number of frames (default: %(default)s)")
+    ren.add_argument("--duration", type=float, default=0.6, help="simulated seconds spanned (default: %(default)s)")
+    ren.add_argument("--gif", action="store_true", help="also write animation.gif")
+    ren.add_argument("--seed", type=int, default=None,
+                     help="random seed of the substrate and the scene (default: the scenario's [run] seed)")
+    ren.set_defaults(func=cmd_render)
+
+    sw = add("sweep", "run a parameter grid (dask LocalCluster by default; seeds are a grid axis of the sweep "
+                      "file) and its report")
+    sw.add_argument("sweep", help="sweep TOML file")
+    sw.add_argument("-o", "--output", default=None, help="output folder, also the task cache (default: sweep-<name>)")
+    sw.add_argument("--scheduler", default=None, help="address of a running dask scheduler, e.g. tcp://host:8786")
+    sw.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes (default: %(default)s)")
+    sw.add_argument("--serial", action="store_true", help="run in this process, without dask")
+    sw.add_argument("--connect-timeout", type=float, default=10.0, metavar="S",
+                    help="give up on --scheduler after S seconds (default: %(default)s)")
+    sw.set_defaults(func=cmd_sweep)
+
+    lst = add("scenarios", "list the shipped scenarios (run one by name: frictionnoise run NAME)")
+    lst.set_defaults(func=cmd_scenarios)
+
+    an = add("analyze", "analyse measured x(t) or friction force F(t) from a text export: spectra, exponent, rms and a "
+                        "report (deterministic: no random numbers, so no --seed)")
+    an.add_argument("data", help="text table (CSV, ;- or tab-separated; preamble, units row and decimal commas are read): "
+                                 "time and displacement or force columns")
+    an.add_argument("--mass", type=float, default=None,
+                    help="block mass M (kg): required for displacement data (C_F = M^2 omega^4 C_x, eq. 3); with force "
+                         "data it adds the equivalent C_x of a free block")
+    an.add_argument("--time-col", default=None, help="time column name (default: the first)")
+    an.add_argument("--x-col", default=None, help="displacement column name (default: the second, unless --force-col)")
+    an.add_argument("--force-col", default=None, help="friction-force column: analyse force data (C_F, force exponent)")
+    an.add_argument("--normal-col", default=None, help="normal-force column (force data): adds C_mu of F/N")
+    an.add_argument("--direction-col", default=None, help="direction column of a reciprocating test (strokes)")
+    an.add_argument("--time-unit", default=None, choices=["s", "ms", "us", "min", "h"],
+                    help="time unit, when neither the header nor a units row names it")
+    an.add_argument("--x-unit", default=None, choices=["nm", "um", "mm", "m"],
+                    help="displacement unit, when neither the header (x_um, x [mm]) nor a units row names it")
+    an.add_argument("--force-unit", default=None, choices=["mN", "N", "kN"],
+                    help="force unit, when neither the header (F(N)) nor a units row names it")
+    an.add_argument("--speed", type=float, default=None, metavar="V",
+                    help="imposed sliding speed (m/s), force data: distance-domain spectrum and stroke length")
+    an.add_argument("--cut", type=float, default=None, metavar="S",
+                    help="seconds cut at each end of a stroke (default: 10 %% of the median stroke)")
+    an.add_argument("--method", default=None, choices=["whittle", "lsq"],
+                    help="exponent fit for force data (default: compare.fits.DEFAULT_METHOD)")
+    an.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"), help="fit band (rad/s)")
+    an.add_argument("-o", "--output", default=None, help="output folder (default: analyze-<file stem>)")
+    an.set_defaults(func=cmd_analyze)
+    return ap

@@ -1,0 +1,387 @@
+"""Measured series (displacement-sensor logs, tribometer force exports) read from text files and checked.
+
+What is read (instrument exports as they come):
+
+- metadata preamble lines before the header row (anything that is not a numeric table), ignored and counted;
+- a header row naming the columns, optionally followed by a units row (``s;mm;N`` or ``[s] [mm] [N]``);
+- ``,``, ``;`` or tab separators (the one that splits the numeric rows consistently); decimal commas when the
+  separator is ``;`` or tab;
+- units of time, position and force from the column header when it names one (``x_um``, ``x [mm]``,
+  ``F(N)``, ``t/s``) or from the units row; otherwise the unit must be given (``time_unit``, ``x_unit``,
+  ``force_unit``); a header unit that contradicts a given unit is an error naming both. ``units`` on the result
+  says which unit was used for each column and where it came from.
+
+Only what cannot be read is refused, with a :class:`DataFileError` naming the file, the line and the reason:
+a non-numeric or missing value in a column that is used, time that does not increase, a gap (a step more than
+3x the median step: a spectrum over a gap is not defined). Smaller irregularities are resampled onto a uniform
+grid by linear interpolation, with a warning that says how much they were. Blank lines and ``#`` comments
+inside the table are skipped.
+"""
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+__all__ = [
+    "MeasuredData", "DataFileError", "read_measured", "read_displacement_csv", "units_line",
+    "TIME_UNITS", "X_UNITS", "FORCE_UNITS",
+]
+
+TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "min": 60.0, "h": 3600.0}
+X_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "nm": 1e-9}
+FORCE_UNITS = {"N": 1.0, "mN": 1e-3, "kN": 1e3}
+_KINDS = {"time": TIME_UNITS, "x": X_UNITS, "force": FORCE_UNITS}
+_ALIASES = {"µm": "um", "μm": "um", "micron": "um", "microns": "um", "µs": "us", "μs": "us", "sec": "s",
+            "msec": "ms", "newton": "N"}
+_GAP = 3.0  # a step > 3 median steps is a gap
+_JITTER_OK = 1e-6  # relative step spread below which no resampling is needed
+_MIN_ROWS = 64
+_SEPARATORS = (";", "\t", ",")
+
+
+class DataFileError(ValueError):
+    """A malformed data file: the message names the file, the line and the problem (one line)."""
+
+
+@dataclass(frozen=True)
+class MeasuredData:
+    """A uniformly sampled measured record in SI units.
+
+    ``t`` (s, starting at 0), and whichever of ``x`` (m), ``F`` (friction force, N), ``N`` (normal force, N),
+    ``direction`` (the raw direction column) the file held and the caller asked for. ``units`` maps each
+    quantity read to ``{"column", "unit", "from"}`` where ``from`` is "header", "units row" or "argument".
+    """
+
+    t: np.ndarray
+    x: np.ndarray | None
+    source: str
+    resampled: bool
+    warning: str | None
+    n_rows: int
+    F: np.ndarray | None = None
+    N: np.ndarray | None = None
+    direction: np.ndarray | None = None
+    units: dict = field(default_factory=dict)
+    layout: dict = field(default_factory=dict)
+
+
+# ----------------------------------------------------------------------------- parsing helpers
+def _norm_unit(u: str) -> str:
+    u = u.strip().strip("[]()").strip()
+    return _ALIASES.get(u, _ALIASES.get(u.lower(), u))
+
+
+def _unit_kind(u: str) -> str | None:
+    u = _norm_unit(u)
+    for kind, table in _KINDS.items():
+        if u in table:
+            return kind
+    return None
+
+
+_BRACKET = re.compile(r"^(?P<name>.*?)\s*[\[(](?P<unit>[^\])]+)[\])]\s*$")
+_SLASH = re.compile(r"^(?P<name>.+?)\s*/\s*(?P<unit>[^/\s]+)$")
+_UNDERSCORE = re.compile(r"^(?P<name>.+)_(?P<unit>[^_]+)$")
+
+
+def _split_header(h: str) -> tuple[str, str | None]:
+    """(bare name, unit or None) from a column header: ``x [mm]``, ``F(N)``, ``t/s``, ``x_um``."""
+    h = h.strip()
+    for pat in (_BRACKET, _SLASH, _UNDERSCORE):
+        m = pat.match(h)
+        if m and _unit_kind(m.group("unit")) is not None:
+            return m.group("name").strip(), _norm_unit(m.group("unit"))
+    return h, None
+
+
+def _to_float(cell: str, decimal_comma: bool) -> float:
+    c = cell.strip()
+    if decimal_comma:
+        c = c.replace(",", ".")
+    return float(c)
+
+
+def _is_numeric(cell: str, decimal_comma: bool) -> bool:
+    try:
+        _to_float(cell, decimal_comma)
+        return True
+    except ValueError:
+        return False
+
+
+def _split(line: str, sep: str) -> list[str]:
+    return [c.strip().strip('"') for c in line.split(sep)]
+
+
+def _detect_layout(lines: list[str]) -> tuple[str, bool, int]:
+    """(separator, decimal_comma, index of the first numeric data row) or raise ValueError with the reason.
+
+    For each separator (and decimal mark), the table starts at the first run of rows that are fully numeric
+    with the same width >= 2 and at least 5 rows long (or the longest run, in a short file); the separator
+    whose table is longest, then widest, wins.
+    """
+    rows = [(i, line) for i, line in enumerate(lines) if line.strip() and not line.strip().startswith("#")]
+    best = None
+    for sep in _SEPARATORS:
+        for dc in ((False, True) if sep != "," else (False,)):
+            run_start, run_len, width = None, 0, None
+            found = None  # (length, width, start)
+            for i, line in rows:
+                cells = _split(line, sep)
+                ok = len(cells) >= 2 and any(cells) and all(_is_numeric(c, dc) for c in cells if c)
+                if ok and width is not None and len(cells) == width:
+                    run_len += 1
+                elif ok:
+                    run_start, run_len, width = i, 1, len(cells)
+                else:
+                    run_start, run_len, width = None, 0, None
+                if run_len and (found is None or run_len > found[0]):
+                    found = (run_len, width, run_start)
+                if found and found[0] >= 5:
+                    break
+            if found is None:
+                continue
+            key = (min(found[0], 5), found[1], -found[2])
+            if best is None or key > best[0]:
+                best = (key, sep, dc, found[2])
+    if best is None:
+        raise ValueError("no table of numbers with at least two columns found")
+    return best[1], best[2], best[3]
+
+
+# ----------------------------------------------------------------------------- the reader
+def _read_lines(path: Path, src: str) -> list:
+    """The file's lines, decoded (UTF-8, else Latin-1); DataFileError for a missing, empty or binary file."""
+    if not path.exists():
+        raise DataFileError(f"{src}: no such file")
+    if path.is_dir():
+        raise DataFileError(f"{src}: is a folder, not a data file")
+    raw = path.read_bytes()
+    if not raw.strip():
+        raise DataFileError(f"{src}: empty file")
+    if b"\x00" in raw[:4096]:
+        raise DataFileError(f"{src}: binary file (NUL bytes), not a text table")
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        text = raw.decode("latin-1")  # instrument exports in Windows code pages (a micro sign as 0xB5)
+    return text.splitlines()
+
+
+@dataclass
+class _Table:
+    """The layout of a text table: its lines, separator, decimal comma, first numeric row (0-based), width, and
+    the header row and optional units row above it."""
+
+    src: str
+    lines: list
+    sep: str
+    dc: bool
+    first: int
+    width: int
+    header_i: int = 0
+    units_i: int | None = None
+    header: list = field(default_factory=list)
+    parsed: list = field(default_factory=list)
+    units_row: list = field(default_factory=list)
+    units: dict = field(default_factory=dict)  # what each column was read in and where the unit came from
+
+
+def _table(lines: list, src: str) -> _Table:
+    """Locate the table, its header row and an optional units row above the first numeric row."""
+    try:
+        sep, dc, first = _detect_layout(lines)
+    except ValueError as e:
+        raise DataFileError(f"{src}: {e}") from None
+    tab = _Table(src, lines, sep, dc, first, len(_split(lines[first], sep)))
+    above = [i for i in range(first) if lines[i].strip() and not lines[i].strip().startswith("#")]
+    header_i = units_i = None
+    if above:
+        last = above[-1]
+        cells = _split(lines[last], sep)
+        unitish = [(not c) or _unit_kind(c) is not None or (c[0] in "[(" and c[-1] in "])") for c in cells]
+        known = sum(1 for c in cells if c and _unit_kind(c) is not None)
+        if len(cells) == tab.width and len(above) >= 2 and known >= 1 and (all(unitish) or 2 * known >= tab.width):
+            units_i = last
+            header_i = above[-2]
+        else:
+            header_i = last
+    if header_i is None:
+        raise DataFileError(f"{src}, line {first + 1}: expected a header row naming the columns above the "
+                            "first row of numbers")
+    tab.header_i, tab.units_i = header_i, units_i
+    tab.header = _split(lines[header_i], sep)
+    if len(tab.header) != tab.width:
+        raise DataFileError(f"{src}, line {header_i + 1}: the header has {len(tab.header)} columns, the data "
+                            f"{tab.width} (separator {sep!r})")
+    tab.units_row = _split(lines[units_i], sep) if units_i is not None else [""] * tab.width
+    tab.parsed = [_split_header(h) for h in tab.header]
+    return tab
+
+
+def _find(tab: _Table, name: str | None, default: int | None, what: str) -> int | None:
+    """The index of the column ``name`` (its full header or its name without the unit), else ``default``."""
+    if name is None:
+        if default is None:
+            return None
+        if tab.width <= default:
+            raise DataFileError(f"{tab.src}, line {tab.header_i + 1}: need at least {default + 1} columns for the "
+                                f"{what} (found {tab.width})")
+        return default
+    for k, h in enumerate(tab.header):
+        if name == h or name == tab.parsed[k][0]:
+            return k
+    raise DataFileError(f"{tab.src}, line {tab.header_i + 1}: no {what} column {name!r}; columns are: "
+                        f"{', '.join(tab.header)}")
+
+
+def _unit_scale(tab: _Table, k: int, kind: str, given: str | None, flag: str, key: str) -> float:
+    """The SI factor of column ``k``, from its header, the units row or the ``given`` argument (exactly one of
+    them, or agreeing ones); records the choice in ``tab.units[key]``."""
+    src, header = tab.src, tab.header
+    hname, hunit = tab.parsed[k]
+    origin = "header"
+    if hunit is None and tab.units_row[k]:
+        ru = _norm_unit(tab.units_row[k])
+        if _unit_kind(ru) is None:
+            raise DataFileError(f"{src}, line {tab.units_i + 1}: unit {tab.units_row[k]!r} of column {header[k]!r} "
+                                f"is not a {kind} unit ({', '.join(_KINDS[kind])})")
+        hunit, origin = ru, "units row"
+    line = (tab.units_i if origin == "units row" else tab.header_i) + 1
+    if hunit is not None and _unit_kind(hunit) != kind:
+        raise DataFileError(f"{src}, line {line}: column {header[k]!r} is in {hunit}, not a {kind} unit "
+                            f"({', '.join(_KINDS[kind])})")
+    g = None if given is None else _norm_unit(given)
+    if hunit is not None and g is not None and g != hunit:
+        raise DataFileError(f"{src}, line {line}: the {origin} gives column {header[k]!r} in {hunit} but {flag} "
+                            f"{g} was given")
+    if hunit is None and g is None:
+        raise DataFileError(f"{src}, line {tab.header_i + 1}: column {header[k]!r} names no unit (no units row "
+                            f"either); give {flag} ({', '.join(_KINDS[kind])})")
+    u = hunit if hunit is not None else g
+    tab.units[key] = {"column": header[k], "unit": u, "from": origin if hunit is not None else "argument"}
+    return _KINDS[kind][u]
+
+
+def _rows(tab: _Table, cols: dict) -> tuple[dict, list]:
+    """({key: values in the file's units}, [line index of each row]): every data row's numbers, checked finite
+    and with increasing time."""
+    src, lines, it = tab.src, tab.lines, cols["t"][0]
+    values = {k: [] for k in cols}
+    line_of = []
+    for i in range(tab.first, len(lines)):
+        s = lines[i].strip()
+        if not s or s.startswith("#"):
+            continue
+        cells = _split(lines[i], tab.sep)
+        row = {}
+        for key, (k, _) in cols.items():
+            try:
+                v = _to_float(cells[k], tab.dc)
+            except IndexError:
+                raise DataFileError(f"{src}, line {i + 1}: {len(cells)} fields, column {tab.header[k]!r} missing") from None
+            except ValueError:
+                raise DataFileError(f"{src}, line {i + 1}: non-numeric value {cells[k]!r} in column "
+                                    f"{tab.header[k]!r}") from None
+            if not math.isfinite(v):
+                raise DataFileError(f"{src}, line {i + 1}: NaN or infinite value in column {tab.header[k]!r}")
+            row[key] = v
+        if line_of and row["t"] <= values["t"][-1]:
+            raise DataFileError(f"{src}, line {i + 1}: time {cells[it]} does not increase (previous "
+                                f"{lines[line_of[-1]].split(tab.sep)[it].strip()})")
+        for key, v in row.items():
+            values[key].append(v)
+        line_of.append(i)
+    if len(line_of) < _MIN_ROWS:
+        raise DataFileError(f"{src}: only {len(line_of)} data rows; need at least {_MIN_ROWS} for a spectrum")
+    return values, line_of
+
+
+def _uniform(src: str, t: np.ndarray, arr: dict, line_of: list):
+    """(t, arr, warning, resampled): a gap is refused; a jittered grid is resampled onto a uniform one (linear
+    interpolation; a direction label takes the nearest earlier sample)."""
+    steps = np.diff(t)
+    med = float(np.median(steps))
+    gaps = np.flatnonzero(steps > _GAP * med)
+    if gaps.size:
+        i = int(gaps[0])
+        raise DataFileError(f"{src}, line {line_of[i + 1] + 1}: gap of {steps[i]:.4g} s after t = {t[i]:.6g} s "
+                            f"({steps[i] / med:.1f} median steps); split the record at the gap")
+    spread = float(np.max(np.abs(steps - med)) / med)
+    if spread <= _JITTER_OK:
+        return t, arr, None, False
+    n = int(round((t[-1] - t[0]) / med)) + 1
+    tu = t[0] + np.arange(n) * med
+    tu = tu[tu <= t[-1]]
+    for key in arr:
+        if key == "direction":  # a label: nearest earlier sample, not an interpolation
+            arr[key] = arr[key][np.clip(np.searchsorted(t, tu, side="right") - 1, 0, len(t) - 1)]
+        else:
+            arr[key] = np.interp(tu, t, arr[key])
+    warning = (f"{src}: non-uniform sampling (steps deviate from the median {med:.4g} s by up to "
+               f"{100 * spread:.2g} %); resampled onto a uniform grid by linear interpolation")
+    return tu, arr, warning, True
+
+
+def read_measured(path, *, time_col: str | None = None, x_col: str | None = None, force_col: str | None = None,
+                  normal_col: str | None = None, direction_col: str | None = None,
+                  time_unit: str | None = None, x_unit: str | None = None, force_unit: str | None = None,
+                  require_x: bool = True) -> MeasuredData:
+    """Read a measured record: time and displacement and/or friction force (optional normal force, direction).
+
+    Parameters
+    ----------
+    time_col, x_col, force_col, normal_col, direction_col : str, optional
+        Column names (the full header text or its name without the unit: ``"F"`` finds ``F [N]``). Defaults:
+        time is the first column; with ``require_x`` and no ``force_col``, displacement is the second.
+    time_unit, x_unit, force_unit : str, optional
+        Units, required when neither the header nor a units row names them (see :data:`TIME_UNITS`,
+        :data:`X_UNITS`, :data:`FORCE_UNITS`). ``normal_col`` uses the force unit rules.
+    """
+    path = Path(path)
+    src = str(path)
+    for kind, u in (("time", time_unit), ("x", x_unit), ("force", force_unit)):
+        if u is not None and _norm_unit(u) not in _KINDS[kind]:
+            raise DataFileError(f"{kind} unit must be one of {', '.join(_KINDS[kind])} (got {u!r})")
+    tab = _table(_read_lines(path, src), src)
+    it = _find(tab, time_col, 0, "time")
+    ix = _find(tab, x_col, 1 if (require_x and force_col is None) else None, "displacement")
+    iF = _find(tab, force_col, None, "force")
+    iN = _find(tab, normal_col, None, "normal force")
+    iD = _find(tab, direction_col, None, "direction")
+    cols = {"t": (it, _unit_scale(tab, it, "time", time_unit, "--time-unit", "time"))}
+    if ix is not None:
+        cols["x"] = (ix, _unit_scale(tab, ix, "x", x_unit, "--x-unit", "x"))
+    if iF is not None:
+        cols["F"] = (iF, _unit_scale(tab, iF, "force", force_unit, "--force-unit", "force"))
+    if iN is not None:
+        cols["N"] = (iN, _unit_scale(tab, iN, "force", force_unit, "--force-unit", "normal"))
+    if iD is not None:
+        cols["direction"] = (iD, 1.0)
+    values, line_of = _rows(tab, cols)
+    arr = {key: np.asarray(values[key]) * cols[key][1] for key in cols}
+    t, arr, warning, resampled = _uniform(src, arr.pop("t"), arr, line_of)
+    layout = {"separator": {";": "semicolon", "\t": "tab", ",": "comma"}[tab.sep], "decimal_comma": tab.dc,
+              "preamble_lines": sum(1 for i in range(tab.header_i) if tab.lines[i].strip()),
+              "header_line": tab.header_i + 1, "units_row_line": None if tab.units_i is None else tab.units_i + 1,
+              "first_data_line": tab.first + 1}
+    return MeasuredData(t=t - t[0], x=arr.get("x"), source=src, resampled=resampled, warning=warning,
+                        n_rows=len(line_of), F=arr.get("F"), N=arr.get("N"), direction=arr.get("direction"),
+                        units=tab.units, layout=layout)
+
+
+def read_displacement_csv(path, time_col: str | None = None, x_col: str | None = None,
+                          x_unit: str | None = None, time_unit: str | None = None) -> MeasuredData:
+    """Read time and displacement columns (default: the first two); see :func:`read_measured`."""
+    return read_measured(path, time_col=time_col, x_col=x_col, x_unit=x_unit, time_unit=time_unit)
+
+
+def units_line(data: MeasuredData) -> str:
+    """One line saying which unit each column was read in and where the unit came from."""
+    parts = [f"{v['column']!r} in {v['unit']} (from the {v['from']})" if v["from"] != "argument"
+             else f"{v['column']!r} in {v['unit']} (as given)" for v in data.units.values()]
+    return "read " + ", ".join(parts)

@@ -1,0 +1,17 @@
+"""The report's studies, in page order. A study is one module defining ``STUDY`` (see ``compare.report.study``);
+the scenes contribute one study per shipped scenario."""
+from __future__ import annotations
+
+from . import (model_I, model_II, model_III, model_ageing, multiscale, scene_multiscale, scene_rough_multiscale,
+               work_precision)
+from .scenes import scene_studies
+
+__all__ = ["STUDIES", "selected"]
+
+STUDIES = [model_I.STUDY, multiscale.STUDY, model_III.STUDY, model_II.STUDY, model_ageing.STUDY, *scene_studies(), scene_rough_multiscale.STUDY,
+           scene_multiscale.STUDY, work_precision.STUDY]
+
+
+def selected(quick: bool) -> list:
+    """The studies of a quick or full report, in page order."""
+    return [s for s in STUDIES if s.quick or not quick]

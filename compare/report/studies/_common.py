@@ -1,0 +1,96 @@
+"""Small helpers shared by the studies: per-band ratios, timings, balances."""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from ..html import esc
+from ...analysis.balances import balances  # noqa: F401  (re-exported for the studies)
+from ...analysis.spectra import band_average
+
+__all__ = ["band_ratios", "ratio_rows", "log_err", "param_rows", "timed", "timing", "balances", "ratio_range",
+           "require_band", "whole_run", "run_scene"]
+
+
+def require_band(spec, band, T: float, dt_out: float, nominal_low: float | None = None,
+                 what: str = "the fit band 3-30 v/a"):
+    """ValueError naming the duration a run needs when its spectrum (segments of 2^floor(log2(n / 3)) samples, as the
+    scene studies take them) does not resolve the band's bottom: one line for the CLI, not 'band ... lies outside
+    the resolved range'. v / a read from a short run scatters (pads_friction_patches' band bottom: 59 rad/s at 0.2 s,
+    28 at 0.5 s, 18.8 at 1 s, against 15 from the law's speed and the patch length), so the advice takes the lower
+    of the measured bottom over 1.25 and ``nominal_low`` (the scene's own, when it has one): a run of the length it
+    names resolves its band."""
+    if band[0] >= spec.omega_min * (1 - 1e-9):
+        return
+    low = min(band[0] / 1.25, nominal_low or math.inf)
+    n_need = 1 << math.ceil(math.log2(2 * math.pi / (low * dt_out)))
+    raise ValueError(f"a {T:g} s run is too short for {what} = ({band[0]:.3g}, {band[1]:.3g}) rad/s: it needs at "
+                     f"least {math.ceil(3 * n_need * dt_out):.0f} s (--duration)")
+
+
+def band_ratios(spec, theory_values, edges) -> list:
+    """[{"band": [lo, hi], "ratio": measured / theory}] over consecutive log bands."""
+    r = band_average(spec, edges) / band_average(spec, edges, theory_values)
+    return [{"band": [float(edges[i]), float(edges[i + 1])], "ratio": float(r[i])} for i in range(len(r))]
+
+
+def ratio_rows(ratios) -> list:
+    return [[f"{b['band'][0]:.3g} - {b['band'][1]:.3g}", f"{b['ratio']:.3f}"] for b in ratios]
+
+
+def ratio_range(ratios, fmt=".2f") -> str:
+    """"lo-hi" of the per-band ratios."""
+    r = [b["ratio"] for b in ratios]
+    return f"{min(r):{fmt}}-{max(r):{fmt}}"
+
+
+def log_err(ratios) -> float:
+    """Band-averaged |ln ratio|."""
+    return float(np.mean([abs(math.log(b["ratio"])) for b in ratios]))
+
+
+def param_rows(ex: dict) -> list:
+    """Table rows (name, value, unit, provenance) of an extracted-parameter dict."""
+    return [[k, f"{v['value']:.4g}", esc(v["unit"]), esc(v["provenance"])] for k, v in ex.items()]
+
+
+def whole_run(sc, seed=None, progress=None):
+    """``engine_sim.run`` for a study: a run that Ctrl-C cut short is not analysed (its partial trace would go on
+    into the spectra and end as a misleading error); the interrupt goes on to the caller."""
+    import engine_sim
+
+    tr = engine_sim.run(sc, seed=seed, progress=progress)
+    if tr.metadata.get("partial"):
+        raise KeyboardInterrupt
+    return tr
+
+
+def timed(fn, *a, **k):
+    """(fn(*a, **k), wall seconds)."""
+    t0 = time.perf_counter()
+    out = fn(*a, **k)
+    return out, time.perf_counter() - t0
+
+
+def timing(model: str, run: str, wall, err) -> dict:
+    """A row of the report's speed table: wall time (s) and error as numbers (None for n/a), so summary.json holds
+    numbers; the table shows them as given."""
+    def num(v):
+        try:
+            return float(v)
+        except (TypeError, ValueError):
+            return None
+    return {"model": model, "run": run, "wall_s": num(wall), "mean_abs_log_ratio": num(err)}
+
+
+def run_scene(sc, quick, seed, trace, duration, progress):
+    """The scene's trace (run now unless given), its wall time and duration."""
+    if trace is None:
+        T = duration or (sc.substrate_part.quick_duration if quick else sc.run.duration)
+        tr, wall = timed(whole_run, sc.with_run(duration=T), seed=seed, progress=progress)
+    else:
+        tr, wall = trace, float(trace.metadata.get("wall_s", float("nan")))
+        T = float(tr.t[-1])
+    return tr, wall, T

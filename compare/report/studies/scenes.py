@@ -1,0 +1,155 @@
+"""Every shipped scene against the reduced model that fits it, built from the scene's own measured parameters.
+The scene's parts name the model (``reduced_model``) and the quick run's length (``quick_duration``): model I for
+pads on tracks (here), model III for a sole on sparse asperities (:mod:`.scene_asperity`), paired runs and model II
+for wear particles (:mod:`.scene_wear`).
+
+One study per shipped scenario (``STUDIES``); :func:`scene_result` also serves ``frictionnoise compare``.
+"""
+from __future__ import annotations
+
+import math
+from functools import partial
+
+import numpy as np
+
+from ...analysis.fits import fit_power_law
+from ..html import esc, paragraphs, table
+from ...analysis.spectra import displacement_spectrum, force_series_spectrum
+from ..study import Figure, Study, StudyResult
+from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
+
+# relative wall cost, to hand the longest studies to workers first (measured in the quick report: the wear pair
+# 18 s, the rough profile 9 s, the asperity field 7 s, every other stage 0.5-3 s)
+_COST_HINT = {"pads_with_wear": 18.0, "pads_rough_profile": 9.0, "asperity_field": 7.0}
+
+
+def fitting_part(sc):
+    """The scene's part that names the reduced model fitting it (``reduced_model``, a key of
+    ``reduced_models.MODELS``) and the recorded seconds of a quick comparison (``quick_duration``): its wear
+    particles when it has any, else its substrate."""
+    return next(part for part in (sc.wear_part, sc.substrate_part) if part.reduced_model)
+
+
+# each reduced model's comparison with a scene: (module of this package, function), looked up when called
+COMPARISONS = {"model_I": ("scenes", "_model_I_result"), "model_II": ("scene_wear", "wear_result"),
+               "model_III": ("scene_asperity", "asperity_result")}
+# models compared beside the fitting one on the same trace, when a part names them (``also_fits``)
+BESIDE = {"model_Ib": ("scene_multiscale", "scene_against_model_Ib")}
+SCENE_RUNS = {"model_II": 2}  # scene runs a comparison makes when not 1: model II's pairs the scene with and without
+
+
+def scene_runs(sc) -> int:
+    """How many times the comparison that fits ``sc`` runs the scene (for a progress bar's total)."""
+    return SCENE_RUNS.get(fitting_part(sc).reduced_model, 1)
+
+
+def beside_results(sc, seed, trace) -> list:
+    """The comparisons of the models the scene's arrangement names beside the fitting one (``also_fits``), on
+    ``trace``."""
+    from importlib import import_module
+
+    out = []
+    for key in sc.arrangement_part.also_fits:
+        module, function = BESIDE[key]
+        out.append(getattr(import_module(f".{module}", __package__), function)(sc.name, sc, False, seed, trace=trace))
+    return out
+
+
+def scene_result(name, sc, quick, seed, trace=None, duration=None, progress=None) -> StudyResult:
+    """One scenario against the reduced model its parts name (runs it unless given a trace)."""
+    from importlib import import_module
+
+    part = fitting_part(sc)
+    if part.reduced_model not in COMPARISONS:
+        raise ValueError(f"scene {name}: no comparison with {part.reduced_model} (comparisons: {', '.join(COMPARISONS)})")
+    module, function = COMPARISONS[part.reduced_model]
+    compare = getattr(import_module(f".{module}", __package__), function)
+    return compare(name, sc, quick, seed, trace, duration or (part.quick_duration if quick else None), progress)
+
+
+def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult:
+    from reduced_models import spring_block
+
+    from .. import plots
+    from ...analysis.extract import model_I_parameters, spring_block_params
+
+    tr, wall, T = run_scene(sc, quick, seed, trace, duration, progress)
+    nper = min(2**12 if quick else 2**13, 1 << int(math.floor(math.log2(len(tr.t) / 3))))
+    spec = displacement_spectrum(tr.t, tr.x, nperseg=nper)
+    ex = model_I_parameters(tr, sc)
+    w0 = ex["v"]["value"] / ex["a"]["value"]
+    band = (3 * w0, 30 * w0)
+    a_sub = getattr(sc.substrate, "a", None)  # the patches' renewal length (a rough track's roll-off: a longer advice)
+    require_band(spec, band, T, float(tr.t[1] - tr.t[0]), 3 * sc.steady_velocity / a_sub if a_sub else None)
+    fit = fit_power_law(spec, band=band)
+    p = spring_block_params(ex)
+    m1 = spring_block.simulate(p, T, tr.t[1] - tr.t[0], seed=seed)
+    s1 = displacement_spectrum(m1.t, m1.x, nperseg=nper)
+    fit_m1 = fit_power_law(s1, band=band)
+    top = min(2000.0, math.pi / (tr.t[1] - tr.t[0]) / 2)
+    edges = np.logspace(np.log10(max(2.0, 4 * spec.omega_min)), np.log10(top), 7 if quick else 9)
+    ratios = band_ratios(spec, spring_block.theory_spectrum(p, spec.omega), edges)
+    # is the substrate force white above v/a (C_f ~ omega^-2 for a piecewise-constant force)?
+    sf = force_series_spectrum(tr.t, tr.pad_force.sum(axis=1), nperseg=nper)
+    fit_f = fit_power_law(sf, band=band)
+    wstar, wc = ex["omega_star"]["value"], ex["omega_c"]["value"]
+    viscous = band[1] < 0.3 * min(wstar, wc)
+    worst = max(abs(math.log(b["ratio"])) for b in ratios)
+    d = {
+        **fit.to_dict(), "model_I_sim": fit_m1.to_dict(), "band_ratios_vs_model_I": ratios,
+        "model_I_within_factor_1p5": bool(worst < math.log(1.5)), "substrate_force_fit": fit_f.to_dict(),
+        "extracted": ex, "wall_s": wall, "duration_s": T, "us_per_step": tr.metadata["us_per_step"],
+        "mean_velocity": ex["v"]["value"], "law_velocity": sc.steady_velocity, **balances(tr),
+    }
+    w = np.logspace(np.log10(spec.omega_min), np.log10(spec.omega_max), 300)
+    fig = plots.spectrum_figure([(spec, f"scene {name}, {T:g} s"), (s1, "model I simulation, extracted parameters")],
+                                [(w, spring_block.theory_spectrum(p, w), "model I (A10), extracted parameters")],
+                                fits=[(fit, "scene ")], band=band, title=f"Scene {name} against model I")
+    verdict = " (within a factor 1.5)." if worst < math.log(1.5) else f" (outside a factor 1.5: worst ln ratio {worst:.2f})."
+    parts = [
+        esc(sc.description.replace("\n", " ")),
+        f"{T:g} s simulated in {wall:.1f} s ({tr.metadata['us_per_step']:.0f} us per step). Mean speed "
+        f"{1e3 * ex['v']['value']:.3f} mm/s (friction law: {1e3 * sc.steady_velocity:.3f} mm/s); friction balances the drive "
+        f"to {100 * d['force_balance_rel']:+.3f} %; energy balance {100 * d['energy_balance_rel']:+.4f} %.",
+        f"Scene gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} over {band[0]:.3g}-{band[1]:.3g} rad/s (3-30 v/a); "
+        f"model I with the extracted parameters: {fit_m1.gamma:.3f} &plusmn; {fit_m1.gamma_err:.3f}. Per-band ratio "
+        f"scene / model I (A10): {ratio_range(ratios)} over {edges[0]:.3g}-{edges[-1]:.3g} rad/s" + verdict,
+        f"Model I's assumptions here: viscous response needs the band below omega* = N c / M = {wstar:.0f} rad/s and "
+        f"the resonance sqrt(N k0 / M) = {wc:.0f} rad/s; the fit band ends at {band[1]:.0f} rad/s, "
+        + ("so the response is viscous across it. " if viscous else "so the band reaches the crossover and the response is not purely viscous. ")
+        + f"The substrate force on the pads falls as omega^-{fit_f.gamma:.2f} &plusmn; {fit_f.gamma_err:.2f} there "
+        "(model I: omega^-2, abrupt renewals of a force white on long times). The renewal length from the pad-force "
+        f"correlation is {1e3 * ex['a']['value']:.3f} mm (substrate: {1e3 * sc.substrate.a:.3f} mm) and alpha = "
+        f"{ex['alpha']['value']:.3f} (substrate: {getattr(sc.substrate, 'alpha', float('nan')):g}).",
+        "Models II and III do not apply to this scene: it has no wear particles, and its contacts are spring-mounted "
+        "pads rather than a rigid flat block on sparse asperities.",
+    ]
+    if sc.drive_part.extra_mass > 0:  # a drive with a body of its own on a rope (Leonardo's slider)
+        parts.append(
+            f"Leonardo's slider: model I uses M = block + hanging mass = {ex['M']['value']:.4g} kg (the rope taut). Above "
+            f"the bare block's resonance on its pads, sqrt(N k0 / M_block) = {math.sqrt(ex['N']['value'] * sc.pads.k0 / sc.block.M):.0f} "
+            "rad/s, the block moves apart from the hanging mass: the rope joint is not perfectly rigid in pymunk's "
+            "solver (it stretched by up to 0.33 um, measured), so the top band exceeds model I (see the ratio table).")
+    text = (paragraphs(parts)
+            + table("Model I parameters extracted from the scene", ["parameter", "value", "unit", "provenance"], param_rows(ex))
+            + table("C_x(scene) / C_x(model I, A10), per log band", ["band (rad/s)", "ratio"], ratio_rows(ratios)))
+    caption = (f"Scene {name} ({T:g} s) against model I simulated and in closed form (A10), both with the parameters "
+               f"extracted from the scene. Scene / (A10) {ratio_range(ratios)} per band over {edges[0]:.3g}-{edges[-1]:.3g} "
+               f"rad/s{verdict[:-1]}; gamma = {fit.gamma:.2f} ± {fit.gamma_err:.2f} (scene) and {fit_m1.gamma:.2f} ± "
+               f"{fit_m1.gamma_err:.2f} (model I) over the shaded band.")
+    return StudyResult(f"scenarios/{name}", f"Scene: {name}", d, (Figure(f"scene_{name}", plots.figure_png_bytes(fig), caption),),
+                       text, (timing(f"scene {name}", f"{T:g} s, dt = {sc.run.dt:g} s", f"{wall:.2f}", f"{log_err(ratios):.3f}"),))
+
+
+def _run_shipped(name: str, quick: bool, seed: int) -> StudyResult:
+    from engine_sim import load_scenario, shipped_scenarios
+
+    return scene_result(name, load_scenario(shipped_scenarios()[name]), quick, seed)
+
+
+def scene_studies() -> list:
+    """One study per shipped scenario, in the order engine_sim lists them."""
+    from engine_sim import shipped_scenarios
+
+    return [Study(f"scenarios/{name}", f"scene {name}", partial(_run_shipped, name), cost=_COST_HINT.get(name, 1.0))
+            for name in shipped_scenarios()]
