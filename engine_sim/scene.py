@@ -129,6 +129,13 @@ class Scene:
         self.arrangement.maintain(self)
 
     def advance(self, n: int):
-        """n pymunk steps, as the friction law steps them (the linear law: no Python inside a step)."""
+        """n pymunk steps, as the friction law steps them (the linear law: no Python inside a step), or as the
+        vibration steps them when the scene has one (engine_sim/vibration.py).
+
+        Parameters
+        ----------
+        n : int
+            Number of steps of ``dt`` (s) each.
+        """
         (self.law if self.vibration is None else self.vibration).advance(self, n)
         self.steps += n

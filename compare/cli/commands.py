@@ -65,6 +65,19 @@ def cmd_sweep(args) -> int:
     return 0 if counts["failed"] == 0 else 1
 
 
+def _print_breaks(timeline, most: int = 10):
+    """The breaks of a record's time stamps, one line each (at most ``most``), and its uniform segments."""
+    if timeline is None or not timeline.events:
+        return
+    for e in timeline.events[:most]:
+        print(f"time stamps: {e.describe()}")
+    if len(timeline.events) > most:
+        print(f"time stamps: ... and {len(timeline.events) - most} more breaks (all in summary.json)")
+    used = timeline.usable()
+    print(f"time stamps: {len(timeline.segments)} uniform segments, {len(used)} long enough to analyse (steps "
+          f"{', '.join(f'{s.dt:.4g}' for s in used)} s)")
+
+
 def cmd_analyze(args) -> int:
     from pathlib import Path
 
@@ -95,11 +108,13 @@ def cmd_analyze(args) -> int:
     try:
         data = read_measured(args.data, time_col=args.time_col, x_col=args.x_col, force_col=args.force_col,
                              normal_col=args.normal_col, direction_col=args.direction_col, time_unit=args.time_unit,
-                             x_unit=args.x_unit, force_unit=args.force_unit, require_x=not force)
+                             x_unit=args.x_unit, force_unit=args.force_unit, require_x=not force,
+                             resample=args.resample)
     except DataFileError as e:
         raise UserError(str(e)) from None
     if data.warning:
         print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)
+    _print_breaks(data.timeline)
     out = output_dir(args.output, f"analyze-{Path(args.data).stem}", "index.html and summary.json")
     band = tuple(args.band) if args.band else None
     try:
@@ -195,6 +210,24 @@ def cmd_run(args) -> int:
         raise
 
 
+def _before_run(sc, args, resuming: bool):
+    """What the run says before it starts: what its parts did to their inputs (a measured profile resampled), and
+    its projected wall time when that exceeds a minute (engine_sim.forecast: a probe of about a second)."""
+    from engine_sim.forecast import LONG_RUN_S, forecast
+
+    from .compile_notice import compile_notice
+
+    for note in sc.substrate_part.notes():
+        print(f"frictionnoise: note: {note}", file=sys.stderr, flush=True)
+    if resuming:
+        return
+    with compile_notice():  # the probe records a sample: the recorder's kernel loads (or compiles) here
+        fc = forecast(sc, duration=args.duration, seed=args.seed)
+    if fc.wall_s > LONG_RUN_S:
+        print(f"frictionnoise: note: {fc.line()}; --duration shortens it, Ctrl-C stops it and keeps what was "
+              "recorded", file=sys.stderr, flush=True)
+
+
 def _run_into(args, sc, out, ck) -> int:
     import engine_sim
 
@@ -210,6 +243,7 @@ def _run_into(args, sc, out, ck) -> int:
             print(f"checkpoints every {every_s:g} s (whole epochs of {epoch_s:g} s)", file=sys.stderr)
     from .compile_notice import compile_notice
 
+    _before_run(sc, args, resuming=ck is not None and ck.exists())
     bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration)
     with bar, compile_notice():  # the recorder's and friction laws' kernels compile on a fresh install
         try:

@@ -122,6 +122,10 @@ def build_parser() -> argparse.ArgumentParser:
     an.add_argument("--method", default=None, choices=["whittle", "lsq"],
                     help="exponent fit for force data (default: compare.fits.DEFAULT_METHOD)")
     an.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"), help="fit band (rad/s)")
+    an.add_argument("--resample", type=float, default=None, metavar="DT",
+                    help="time stamps that change rate, skip, repeat or step back: put the record on one grid of DT "
+                         "seconds (faster segments low-passed first; the filter is stated) instead of analysing its "
+                         "uniform segments separately and together")
     an.add_argument("-o", "--output", default=None, help="output folder (default: analyze-<file stem>)")
     an.set_defaults(func=cmd_analyze)
     return ap

@@ -23,6 +23,8 @@ from .html import esc, paragraphs, table
 from ..io.measured import MeasuredData, units_line
 from ..analysis.spectra import G_STANDARD, Spectrum, rescaled, average_spectra, rms_from_spectrum, series_spectrum
 from .study import Figure, StudyResult
+from .timeline_section import timeline_html
+from ..analysis.segments import segment_fits, segment_spectra, with_line_flag
 
 __all__ = ["Strokes", "ForceAnalysis", "find_strokes", "analyze_force", "build_force_report", "build_measured_report"]
 
@@ -172,6 +174,14 @@ class ForceAnalysis:
     notes: list = field(default_factory=list)
 
     def summary(self) -> dict:
+        """The analysis as JSON-able numbers (the report's summary.json).
+
+        Returns
+        -------
+        dict
+            Source, units, strokes, the force exponent with its 95 % interval and band (rad/s), F_rms (N), and
+            the C_mu, equivalent-C_x and distance-domain entries when present.
+        """
         st = self.strokes
         s = {
             "source": self.data.source, "units": self.data.units, "layout": self.data.layout,
@@ -211,11 +221,36 @@ def analyze_force(data: MeasuredData, *, band=None, mass: float | None = None, s
 
     ``mass`` (kg) adds the equivalent C_x = C_F / (M^2 omega^4) of a free block (eq. 3); ``speed`` (m/s)
     adds the distance-domain spectrum C_F(q) = v C_F(omega = q v) (q in rad/m) and the stroke length; a
-    normal-force column adds C_mu of mu(t) = F(t) / N(t). ``method`` is the fit method (see
-    :func:`compare.fits.fit_power_law`); ``cut`` the seconds removed at each end of a stroke.
+    normal-force column adds C_mu of mu(t) = F(t) / N(t).
+
+    Parameters
+    ----------
+    data : MeasuredData
+        A record with a friction-force column (and optionally normal force, position or direction).
+    band : tuple of float, optional
+        Fit band (Units: rad/s); default automatic.
+    mass : float, optional
+        Block mass M (Units: kg).
+    speed : float, optional
+        Imposed sliding speed (Units: m/s).
+    cut : float, optional
+        Seconds removed at each end of a stroke (Units: s); default 10 % of the median stroke.
+    method : {"whittle", "lsq"}, optional
+        Fit method (see :func:`compare.fits.fit_power_law`).
+    prewhiten, nperseg
+        As in :func:`compare.spectra.series_spectrum`.
+
+    Returns
+    -------
+    ForceAnalysis
+        The strokes, C_F (N^2 s) and its fit, and C_mu (s), the equivalent C_x (m^2 s) and C_F(q) (N^2 m) when
+        their inputs were given.
     """
     if data.F is None:
         raise ValueError("the record holds no friction-force column")
+    if data.segmented:
+        raise ValueError(f"force data whose time stamps break ({data.timeline.events[0].describe()}; "
+                         f"{len(data.timeline.events)} breaks in all): give --resample DT to put it on one grid")
     if mass is not None and not mass > 0:
         raise ValueError(f"mass must be positive (got {mass!r})")
     if speed is not None and not speed > 0:
@@ -223,7 +258,7 @@ def analyze_force(data: MeasuredData, *, band=None, mass: float | None = None, s
     strokes = find_strokes(data, cut=cut)
     t, F = np.asarray(data.t), np.asarray(data.F)
     C_F = _stroke_spectrum(t, F, strokes, "F", "N^2 s", prewhiten, nperseg)
-    fit_F = fit_power_law(C_F, band=band, method=method)
+    fit_F = with_line_flag(fit_power_law(C_F, band=band, method=method), C_F)
     notes = []
     C_mu = fit_mu = None
     if data.N is not None:
@@ -321,26 +356,36 @@ def build_measured_report(data, mass: float, band=None, g: float = G_STANDARD):
     from . import plots
     from ..analysis.spectra import displacement_spectrum, force_spectrum, friction_coefficient_spectrum, rms_from_spectrum
 
-    spec = displacement_spectrum(data.t, data.x)
-    fit = fit_power_law(spec, band=band)
+    segs = None
+    if data.segmented:  # time stamps in uniform segments: each on its own, and their spectra averaged
+        segs = segment_spectra(data.t, data.x, data.timeline, quantity="x", unit="m^2 s", detrend="linear", name="x")
+        spec = segs.combined
+    else:
+        spec = displacement_spectrum(data.t, data.x)
+    fit = with_line_flag(fit_power_law(spec, band=band), spec)
     cf = force_spectrum(spec, mass)
     cmu = friction_coefficient_spectrum(spec, g)
     zeta_rms = rms_from_spectrum(spec)
     mu_rms = rms_from_spectrum(cmu)
     summary = {"version": package_version(), "source": data.source, "mass_kg": mass, "n_samples": len(data.t),
-               "dt_s": float(data.t[1] - data.t[0]), "resampled": data.resampled, "warning": data.warning,
+               "dt_s": float(spec.provenance["dt"]), "resampled": data.resampled, "warning": data.warning,
                "gamma": fit.gamma, "gamma_err": fit.gamma_err, "band": list(fit.band), "fit": fit.to_dict(),
                "mean_velocity": spec.provenance["mean_velocity"], "zeta_rms_m": zeta_rms, "mu_rms": mu_rms,
                "spectrum_steps": spec.provenance["steps"]}
+    if data.timeline is not None:
+        summary["timeline"] = data.timeline.summary()
+    if segs is not None:
+        summary["segment_fits"] = segment_fits(segs, band=band)
+    every = "in uniform segments (below)" if segs is not None else f"every {spec.provenance['dt']:.4g} s"
     text = paragraphs([
-        f"{len(data.t)} samples every {data.t[1] - data.t[0]:.4g} s; mean velocity {1e3 * summary['mean_velocity']:.4g} mm/s"
+        f"{len(data.t)} samples {every}; mean velocity {1e3 * summary['mean_velocity']:.4g} mm/s"
         + (f". {esc(data.warning)}" if data.warning else "."),
         f"gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} (95 %) over {fit.band[0]:.3g}-{fit.band[1]:.3g} rad/s"
         f"{' (automatic band)' if fit.band_auto else ''}; zeta_rms = {zeta_rms:.4g} m and mu_rms = {mu_rms:.4g} "
         "(dimensionless) over the resolved band (eq. 4). C_F = M^2 omega^4 C_x assumes the block is free (inertial "
         f"relation, eq. 3), with M = {mass:g} kg.",
         "Processing: " + esc("; ".join(spec.provenance["steps"])) + ".",
-    ])
+    ]) + (timeline_html(data.timeline, summary.get("segment_fits"), segs.notes) if segs is not None else "")
     figures = (
         Figure("measured_Cx", plots.figure_png_bytes(plots.spectrum_figure([(spec, "C_x")], fits=[(fit, "")], band=fit.band,
                                                                           title="Displacement spectrum")),
