@@ -30,7 +30,6 @@ from typing import ClassVar
 import numba
 import numpy as np
 import pymunk
-from pymunk._chipmunk_cffi import ffi, lib  # raw writes or the C setters, not pymunk's Vec2d wrapping
 
 from . import units as U
 
@@ -109,9 +108,6 @@ class Vibration:
         self.M = scene.block.mass
         self.anchor, self.v_anchor = None, 0.0
         self.plain = type(scene.law).advance is _plain_advance()
-        self.g_slot = _slot(scene.space, "gravity", scene.space._space)
-        self.f_slot = _slot(self.block, "force", self.block._body)
-        self.v_slot = None
         if self.pseudo:
             u0 = self._s(1) / dt  # mean substrate velocity over the first step
             for b in scene.space.bodies:
@@ -123,7 +119,6 @@ class Vibration:
             if self.axis == 0 and anchor is not None and anchor.body_type == pymunk.Body.KINEMATIC \
                     and anchor.velocity.x != 0.0:  # a moving anchor (velocity drive): it stays in the laboratory
                 self.anchor, self.v_anchor = anchor, anchor.velocity.x
-                self.v_slot = _slot(anchor, "velocity", anchor._body)
 
     def _s(self, n) -> float:
         """Displacement of the shaken part after n steps (mm)."""
@@ -137,7 +132,9 @@ class Vibration:
         """n steps, each after setting the step's inertial acceleration (substrate target) or shaker force (block
         target) and the anchor's velocity; the law steps the space (in one loop when it needs no Python inside a
         step, else one step at a time). sin(omega t_n) by the two-term recurrence, re-anchored on math.sin at every
-        call (its rounding over one call of tens of steps is ~1e-15)."""
+        call (its rounding over one call of tens of steps is ~1e-15). pymunk's gravity setter wakes every sleeping
+        body: in the substrate's frame a resting grain feels the inertial force, so no grain sleeps while the
+        substrate is shaken."""
         if not self.active:
             scene.law.advance(scene, n)
             return
@@ -153,57 +150,21 @@ class Vibration:
             do, arg = (lambda _: law.advance(scene, 1)), None
         if self.pseudo:
             gx, gy = self.g0
-            if self.g_slot is not None:  # raw write of the space's gravity (see _slot)
-                gd = ffi.cast("double *", space._space)
-                gi = self.g_slot + self.axis
-                g_axis = gd[gi]
-                set_g = None
-            else:
-                set_g, sp = lib.cpSpaceSetGravity, space._space
-            if self.anchor is not None:  # the laboratory moves by -s: the anchor's step-mean velocity
-                va, Kv = self.v_anchor, self.A / dt
-                if self.v_slot is not None:
-                    vd, vi = ffi.cast("double *", self.anchor._body), self.v_slot
-                else:
-                    vd, vi = None, 0
-            raw, moving = set_g is None, self.anchor is not None
-            if raw and not moving:  # the common case, kept lean
-                for _ in range(n):
-                    gd[gi] = g_axis + K * s_cur
-                    do(arg)
-                    s_prev, s_cur = s_cur, c2 * s_cur - s_prev
-                n = 0
+            anchor, va, Kv = self.anchor, self.v_anchor, self.A / dt  # the laboratory moves by -s
             for _ in range(n):
                 s_next = c2 * s_cur - s_prev
-                if raw:
-                    gd[gi] = g_axis + K * s_cur
-                else:
-                    set_g(sp, (gx + K * s_cur, gy) if self.axis == 0 else (gx, gy + K * s_cur))
-                if moving:
-                    if vd is not None:
-                        vd[vi] = va - Kv * (s_next - s_cur)
-                    else:
-                        lib.cpBodySetVelocity(self.anchor._body, (va - Kv * (s_next - s_cur), 0.0))
+                space.gravity = (gx + K * s_cur, gy) if self.axis == 0 else (gx, gy + K * s_cur)
+                if anchor is not None:  # the anchor's step-mean velocity in the substrate's frame
+                    anchor.velocity = (va - Kv * (s_next - s_cur), 0.0)
                 do(arg)
                 s_prev, s_cur = s_cur, s_next
-            if set_g is None:  # samples and pickles see the plain gravity (the recorder's potential energy uses it)
-                gd[gi] = g_axis
-            else:
-                set_g(sp, self.g0)
+            space.gravity = self.g0  # samples and pickles see the plain gravity (the recorder's potential energy)
         else:
-            KM = K * self.M
-            if self.f_slot is not None:
-                fd, fi = ffi.cast("double *", self.block._body), self.f_slot + self.axis
-                for _ in range(n):
-                    fd[fi] = KM * s_cur
-                    do(arg)
-                    s_prev, s_cur = s_cur, c2 * s_cur - s_prev
-            else:
-                bb, set_f = self.block._body, lib.cpBodySetForce
-                for _ in range(n):
-                    set_f(bb, (KM * s_cur, 0.0) if self.axis == 0 else (0.0, KM * s_cur))
-                    do(arg)
-                    s_prev, s_cur = s_cur, c2 * s_cur - s_prev
+            block, KM = self.block, K * self.M
+            for _ in range(n):
+                block.force = (KM * s_cur, 0.0) if self.axis == 0 else (0.0, KM * s_cur)
+                do(arg)
+                s_prev, s_cur = s_cur, c2 * s_cur - s_prev
 
     def record(self, scene, ids, fl, tab, slider_terms, grain_table, drive_mass) -> tuple[float, float]:
         """(displacement s [mm], power [N mm/ms]) at the present sample, from the recorder's body buffer (ids,
@@ -239,21 +200,6 @@ class Vibration:
             "vib_caption": ("caption", f"{what} {s.direction} {s.amplitude * 1e6:.3g} um at {s.frequency:.4g} Hz: "
                                        f"s = {self._s(scene.steps) * 1e3:+.1f} um", {}),
         }
-
-
-def _slot(obj, attr: str, ptr) -> int | None:
-    """Index, among the doubles at ``ptr`` (a pymunk object's C struct), of the vector ``attr`` (gravity of a space,
-    velocity or force of a body), found by writing sentinels through pymunk's API and restored; None if not found
-    (then the API is used: ~0.4 us a call against ~0.1 us for the raw write, which also skips chipmunk's waking of
-    sleeping bodies on a gravity change: a grain asleep on its track stays at rest in the substrate's frame)."""
-    from pymunk._chipmunk_cffi import ffi
-    old = tuple(getattr(obj, attr))
-    probe = (-1.2345678901234567e-7, 9.876543210987654e-5)
-    setattr(obj, attr, probe)
-    d = ffi.cast("double *", ptr)
-    found = next((i for i in range(40) if d[i] == probe[0] and d[i + 1] == probe[1]), None)
-    setattr(obj, attr, old)
-    return found
 
 
 def _plain_advance():
