@@ -18,9 +18,9 @@ model I, once at a random point within every distance a of the block's displacem
 (its running maximum, so a vibration does not renew a contact twice).
 
 Numerics. The Coulomb part makes the model nonlinear, so the exact modal propagation of model I does not apply:
-the equations are stepped at a fixed step h = T_v / steps_per_period (a whole number of steps per vibration
-period, so the cycle averages are exact), explicit for the springs and the block, implicit for the miniblocks'
-damping and friction, whose update is the proximal (soft-threshold) solution of the set-valued law:
+the equations are stepped at a fixed step h <= T_v / steps_per_period (in the prediction a whole number of
+steps per period, so its cycle averages are exact; in ``simulate`` the largest such step that divides dt_out),
+explicit for the springs and the block, implicit for the miniblocks' damping and friction, whose update is the proximal (soft-threshold) solution of the set-valued law:
 
     m (1 + h (eta0 + eta1)) w' + h f_kin sign(w') = m (x_i' - u') + h (F_i - m eta0 (u' - x'))
 
@@ -269,7 +269,7 @@ def _renewals(p: SpringBlockParams, rng, n_int: int, j0: int):
 
 def simulate(params: VibratingBlockParams, duration: float, dt_out: float = 5e-4, seed=None, *,
              warmup: float = 1.0) -> ModelTrace:
-    """Simulate model I on a vibrating substrate and sample the block every ``dt_out`` (rounded to whole steps).
+    """Simulate model I on a vibrating substrate and sample the block every ``dt_out``.
 
     Parameters
     ----------
@@ -277,8 +277,9 @@ def simulate(params: VibratingBlockParams, duration: float, dt_out: float = 5e-4
     duration : float
         Recorded time (Units: s).
     dt_out : float
-        Output step (Units: s), rounded to a whole number of time steps h (the actual one is in
-        ``metadata["dt_out"]`` and in ``t``). Keep omega_v below pi / dt_out to keep the line out of aliasing.
+        Output step (Units: s): a whole number of time steps, each at most ``params.h`` (so at least
+        ``steps_per_period`` steps per vibration period; the step used is ``metadata["step"]``). Keep omega_v
+        below pi / dt_out to keep the line out of aliasing.
     seed : int or numpy.random.Generator
     warmup : float
         Simulated and discarded first (Units: s): the miniblocks settle at rate k0 / (m eta1) (30 1/s in the
@@ -294,8 +295,9 @@ def simulate(params: VibratingBlockParams, duration: float, dt_out: float = 5e-4
     check_run(duration, dt_out)
     if not (warmup >= 0 and math.isfinite(warmup)):
         raise ValueError(f"warmup must be a finite number of seconds >= 0 (got {warmup!r})")
-    b, h = params, params.h
-    n_sub = max(1, int(round(dt_out / h)))
+    b = params
+    n_sub = max(1, math.ceil(dt_out / params.h * (1 - 1e-12)))  # whole steps per sample, none longer than h
+    h = dt_out / n_sub
     n_warm = int(math.ceil(warmup / (n_sub * h)))
     n = int(round(duration / (n_sub * h)))
     n_all = n_warm + n
@@ -313,6 +315,7 @@ def simulate(params: VibratingBlockParams, duration: float, dt_out: float = 5e-4
     ev_time = np.empty(b.N * n_int + 16)
     ev_index = np.empty(len(ev_time), dtype=np.int64)
     prm = _scalars(params)
+    prm[11] = h
     k, n_ev, j0 = 0, 0, n_int
     while k < n_all:
         k, n_ev = _run(st, xi, xid, forces, pos, val, ptr, prm, n_sub, k, n_all, out_x, out_s, out_f, ev_time,
