@@ -22,6 +22,7 @@ from .drives.force import ForceSpec
 from .laws import LAWS, FrictionSpec
 from .substrates import SUBSTRATES, SubstrateSpec
 from .substrates.patches import PatchesSpec
+from .vibration import Vibration, VibrationSpec
 from .wear import WearSpec, wear_part
 
 __all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", "SubstrateSpec", "DriveSpec",
@@ -67,6 +68,7 @@ class Scenario:
     drive: DriveSpec = field(default_factory=ForceSpec)  # the drive's own spec (engine_sim/drives/)
     wear: WearSpec = field(default_factory=WearSpec)
     run: RunSpec = field(default_factory=RunSpec)
+    vibration: VibrationSpec | None = None  # [vibration] (engine_sim/vibration.py); None: the section is absent
 
     # ------------------------------------------------------------------ the parts (engine_sim/*/): each asked, none checked
     @property
@@ -84,6 +86,10 @@ class Scenario:
     @property
     def substrate_part(self):
         return SUBSTRATES[self.substrate.kind](self.substrate, self)
+
+    @property
+    def vibration_part(self):
+        return None if self.vibration is None else Vibration(self.vibration, self)
 
     @property
     def wear_part(self):
@@ -200,12 +206,15 @@ class Scenario:
         out = {"name": self.name, "description": self.description}
         for sec in _SECTIONS:
             obj = getattr(self, sec)
+            if obj is None:  # an optional section left out ([vibration])
+                continue
             out[sec] = {f.name: getattr(obj, f.name) for f in fields(obj)}
         return out
 
 
 _SECTIONS = {"block": BlockSpec, "pads": PadSpec, "friction": FrictionSpec, "substrate": SubstrateSpec,
-             "drive": DriveSpec, "wear": WearSpec, "run": RunSpec}
+             "drive": DriveSpec, "wear": WearSpec, "run": RunSpec, "vibration": VibrationSpec}
+_OPTIONAL = {"vibration"}  # sections that are None when absent
 _CHOICES = {("wear", "distribution"): ("lognormal", "power"), ("wear", "rotation"): ("locked", "free")}
 _POSITIVE = {("block", "M"), ("run", "dt"), ("run", "dt_out"), ("run", "duration"), ("run", "iterations"),
              ("wear", "r_min"), ("wear", "r_max"), ("wear", "r_median"), ("wear", "sigma"), ("wear", "density"),
@@ -228,6 +237,8 @@ def _rules(sec, spec_cls=None):
         registry, key = _KINDED[sec]
         part = next(k for k in registry.values() if k.Spec is spec_cls)
         return part.positive, part.non_negative, {**part.choices, key: tuple(registry)}
+    if sec == "vibration":
+        return Vibration.positive, Vibration.non_negative, Vibration.choices
     pick = lambda table: {k for s, k in table if s == sec}  # noqa: E731
     return pick(_POSITIVE), pick(_NON_NEGATIVE), {k: v for (s, k), v in _CHOICES.items() if s == sec}
 
@@ -303,6 +314,9 @@ def scenario_from_dict(data: dict, where: str = "", strict: bool = True) -> Scen
         raw = data.get(sec, {})
         if not isinstance(raw, dict):
             raise _err(where, f"[{sec}] must be a table (got {type(raw).__name__})")
+        if sec in _OPTIONAL and sec not in data:
+            parts[sec] = None
+            continue
         default = SUBSTRATES[parts["substrate"].kind].arrangement if sec == "pads" else None
         parts[sec] = _section(where, sec, _SECTIONS[sec], raw, strict, default)
     for key in ("name", "description"):
@@ -329,6 +343,8 @@ def _check_consistency(sc: Scenario, where: str):
         sc.drive_part.validate(sc.drive, sc)
         sc.substrate_part.validate(sc.substrate, sc, where)
         sc.wear_part.validate(where)
+        if sc.vibration is not None:
+            Vibration.validate(sc.vibration, sc)
     except ValueError as e:
         raise _err(where, str(e)) from None
 

@@ -106,3 +106,5 @@ register("model_II", wear_particle)
 register("model_III", asperity_force)
 from . import ageing, rate_state  # noqa: E402  model I with ageing contacts; the rate-and-state law and spring-slider
 register("model_ageing", ageing)
+from . import vibrating_block  # noqa: E402  model I on a substrate vibrating along the sliding direction
+register("model_Iv", vibrating_block)
