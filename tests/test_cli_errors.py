@@ -192,6 +192,9 @@ def test_format_by_content_not_name(tmp_path, out, capsys):
     bad.write_text("name = \n")  # text that is neither TOML nor a table
     assert main(["run", str(bad), "-o", str(out)]) == 2
     _assert_user_error(capsys, out, "bad.toml", "not valid TOML")
+    bad.write_text('name = "s"\nv = [\n  1e-4, 2e-4,\n  3e-4, 4e-4,\n]\n[grid\nk = 1\nj = 2\nm = 3\n')  # numbers in a
+    assert main(["run", str(bad), "-o", str(out)]) == 2  # broken TOML's array are not a data table
+    _assert_user_error(capsys, out, "bad.toml", "not valid TOML")
 
 
 @pytest.mark.parametrize("cmd", ["run", "render", "compare", "report"])

@@ -73,18 +73,23 @@ def nearest_names(name: str, names) -> str:
 
 
 def data_table(path) -> bool:
-    """Whether a text file reads as a table of numbers (a CSV/TXT data export) rather than TOML: at least two of its
-    first lines split, by one separator, into two or more numbers (decimal commas allowed with ';' or tab)."""
+    """Whether a text file reads as a table of numbers (a CSV/TXT data export) rather than TOML: from its first line
+    that splits, by one separator, into two or more numbers (decimal commas allowed with ';' or tab), at least two
+    lines do and they are most of the lines (a TOML array spread over lines is not a table)."""
     with open(path, "rb") as fh:
-        lines = fh.read(8192).decode("utf-8", "replace").splitlines()
+        lines = [ln for ln in fh.read(8192).decode("utf-8", "replace").splitlines()[:200] if ln.strip()]
     for sep in (",", ";", "\t"):
-        rows = 0
-        for line in lines[:200]:
-            cells = [c.strip() for c in line.split(sep) if c.strip()]
-            rows += len(cells) >= 2 and all(_number(c if sep == "," else c.replace(",", ".")) for c in cells)
-        if rows >= 2:
-            return True
+        numeric = [_numeric_row(ln, sep) for ln in lines]
+        if True in numeric:
+            rest = numeric[numeric.index(True):]
+            if sum(rest) >= 2 and 2 * sum(rest) > len(rest):
+                return True
     return False
+
+
+def _numeric_row(line: str, sep: str) -> bool:
+    cells = [c.strip() for c in line.split(sep) if c.strip()]
+    return len(cells) >= 2 and all(_number(c if sep == "," else c.replace(",", ".")) for c in cells)
 
 
 def _number(cell: str) -> bool:
