@@ -18,13 +18,14 @@ from pathlib import Path
 
 import numpy as np
 
+from ..analysis.displacement import C_F_NEEDS_MASS, DisplacementAnalysis
 from ..analysis.fits import PowerLawFit, fit_power_law
 from .html import esc, paragraphs, table
 from ..io.measured import MeasuredData, units_line
-from ..analysis.spectra import G_STANDARD, Spectrum, rescaled, average_spectra, rms_from_spectrum, series_spectrum
+from ..analysis.spectra import Spectrum, rescaled, average_spectra, rms_from_spectrum, series_spectrum
 from .study import Figure, StudyResult
 from .timeline_section import timeline_html
-from ..analysis.segments import segment_fits, segment_spectra, with_line_flag
+from ..analysis.segments import with_line_flag
 
 __all__ = ["Strokes", "ForceAnalysis", "find_strokes", "analyze_force", "build_force_report", "build_measured_report"]
 
@@ -349,53 +350,51 @@ def build_force_report(an: ForceAnalysis):
     return [result], summary
 
 
-def build_measured_report(data, mass: float, band=None, g: float = G_STANDARD):
-    """Results (StudyResult list) and summary of measured x(t), with block mass ``mass`` (kg)."""
+def build_measured_report(an: DisplacementAnalysis, data):
+    """Results (StudyResult list) and the JSON summary of a displacement analysis of the record ``data``.
+
+    C_F and its figure appear only when the analysis was given a mass; otherwise the page says that C_F needs it.
+    """
     from frictionnoise import package_version
 
     from . import plots
-    from ..analysis.spectra import displacement_spectrum, force_spectrum, friction_coefficient_spectrum, rms_from_spectrum
 
-    segs = None
-    if data.segmented:  # time stamps in uniform segments: each on its own, and their spectra averaged
-        segs = segment_spectra(data.t, data.x, data.timeline, quantity="x", unit="m^2 s", detrend="linear", name="x")
-        spec = segs.combined
-    else:
-        spec = displacement_spectrum(data.t, data.x)
-    fit = with_line_flag(fit_power_law(spec, band=band), spec)
-    cf = force_spectrum(spec, mass)
-    cmu = friction_coefficient_spectrum(spec, g)
-    zeta_rms = rms_from_spectrum(spec)
-    mu_rms = rms_from_spectrum(cmu)
-    summary = {"version": package_version(), "source": data.source, "mass_kg": mass, "n_samples": len(data.t),
+    fit, spec, segs = an.fit, an.C_x, an.segments
+    summary = {"version": package_version(), "source": data.source, "n_samples": len(data.t),
                "dt_s": float(spec.provenance["dt"]), "resampled": data.resampled, "warning": data.warning,
-               "gamma": fit.gamma, "gamma_err": fit.gamma_err, "band": list(fit.band), "fit": fit.to_dict(),
-               "mean_velocity": spec.provenance["mean_velocity"], "zeta_rms_m": zeta_rms, "mu_rms": mu_rms,
-               "spectrum_steps": spec.provenance["steps"]}
+               **an.summary()}
     if data.timeline is not None:
         summary["timeline"] = data.timeline.summary()
-    if segs is not None:
-        summary["segment_fits"] = segment_fits(segs, band=band)
+    relation = (f"C_F = M^2 omega^4 C_x assumes the block is free (inertial relation, eq. 3), with M = {an.mass:g} kg: "
+                f"C_F ~ omega^-{an.fit_F.gamma:.3f} &plusmn; {an.fit_F.gamma_err:.3f}, F_rms = {an.F_rms:.4g} N."
+                if an.mass is not None else esc(C_F_NEEDS_MASS) + ".")
     every = "in uniform segments (below)" if segs is not None else f"every {spec.provenance['dt']:.4g} s"
     text = paragraphs([
-        f"{len(data.t)} samples {every}; mean velocity {1e3 * summary['mean_velocity']:.4g} mm/s"
+        f"{len(data.t)} samples {every}; mean velocity {1e3 * an.mean_velocity:.4g} mm/s"
         + (f". {esc(data.warning)}" if data.warning else "."),
-        f"gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} (95 %) over {fit.band[0]:.3g}-{fit.band[1]:.3g} rad/s"
-        f"{' (automatic band)' if fit.band_auto else ''}; zeta_rms = {zeta_rms:.4g} m and mu_rms = {mu_rms:.4g} "
-        "(dimensionless) over the resolved band (eq. 4). C_F = M^2 omega^4 C_x assumes the block is free (inertial "
-        f"relation, eq. 3), with M = {mass:g} kg.",
+        f"gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} (95 %, {fit.method}) over "
+        f"{fit.band[0]:.3g}-{fit.band[1]:.3g} rad/s{' (automatic band)' if fit.band_auto else ''}"
+        + (f" <b>not a power law: {esc('; '.join(fit.flags))}</b>" if fit.flags else "")
+        + f"; zeta_rms = {an.zeta_rms:.4g} m and mu_rms = {an.mu_rms:.4g} (dimensionless, C_mu = omega^4 C_x / g^2 "
+        "of a free block, whatever its mass) over the resolved band (eq. 4).",
+        relation,
         "Processing: " + esc("; ".join(spec.provenance["steps"])) + ".",
-    ]) + (timeline_html(data.timeline, summary.get("segment_fits"), segs.notes) if segs is not None else "")
-    figures = (
+    ]) + (timeline_html(data.timeline, an.segment_fits, segs.notes) if segs is not None else "")
+    figures = [
         Figure("measured_Cx", plots.figure_png_bytes(plots.spectrum_figure([(spec, "C_x")], fits=[(fit, "")], band=fit.band,
                                                                           title="Displacement spectrum")),
                f"C_x of the measured displacement (m^2 s) with the power-law fit: gamma = {fit.gamma:.2f} ± "
                f"{fit.gamma_err:.2f} over {fit.band[0]:.3g}-{fit.band[1]:.3g} rad/s (shaded)."),
-        Figure("measured_CF", plots.figure_png_bytes(plots.spectrum_figure([(cf, "C_F = M^2 omega^4 C_x")], ylabel=r"$C_F$ (N$^2$ s)",
-                                                                          title="Force spectrum (eq. 3)")),
-               f"C_F (N^2 s) of a free block of M = {mass:g} kg, from C_x by eq. (3): slope {4 - fit.gamma:+.2f} in the fit band."),
-        Figure("measured_Cmu", plots.figure_png_bytes(plots.spectrum_figure([(cmu, "C_mu = omega^4 C_x / g^2")], ylabel=r"$C_\mu$ (s)",
+        Figure("measured_Cmu", plots.figure_png_bytes(plots.spectrum_figure([(an.C_mu, "C_mu = omega^4 C_x / g^2")],
+                                                                           ylabel=r"$C_\mu$ (s)",
                                                                            title="Friction coefficient spectrum")),
-               f"C_mu (s) = omega^4 C_x / g^2; mu_rms = {mu_rms:.3g} over the resolved band (eq. 4)."),
-    )
-    return [StudyResult("measured", f"Measured displacement: {Path(data.source).name}", {}, figures, text)], summary
+               f"C_mu (s) = omega^4 C_x / g^2; mu_rms = {an.mu_rms:.3g} over the resolved band (eq. 4)."),
+    ]
+    if an.C_F is not None:
+        figures.insert(1, Figure(
+            "measured_CF", plots.figure_png_bytes(plots.spectrum_figure([(an.C_F, "C_F = M^2 omega^4 C_x")],
+                                                                        ylabel=r"$C_F$ (N$^2$ s)",
+                                                                        title="Force spectrum (eq. 3)")),
+            f"C_F (N^2 s) of a free block of M = {an.mass:g} kg, from C_x by eq. (3): slope {4 - fit.gamma:+.2f} in the "
+            "fit band."))
+    return [StudyResult("measured", f"Measured displacement: {Path(data.source).name}", {}, tuple(figures), text)], summary
