@@ -231,7 +231,8 @@ def rs_step(vel, NA, m, th, vp, prm, dt):
         if speed > 0.0:
             ln_s = (mu_ref + B * math.log(V0 * to_si * t / Dc)) / A - math.log(2.0 * V0)
             # h(r) = r - speed + c asinh(r e^ln_s) is increasing in r with its root in (0, speed]
-            lo, hi, u = 0.0, speed, speed
+            u = abs(vp[i])  # last step's root: Newton starts next to this one's in steady sliding
+            lo, hi, u = 0.0, speed, u if 0.0 < u < speed else speed
             c = dt * NA[i] / m[i]
             e2 = math.exp(-2.0 * ln_s) if ln_s > -300.0 else math.inf
             for _ in range(100):
@@ -241,11 +242,11 @@ def rs_step(vel, NA, m, th, vp, prm, dt):
                 else:
                     lo = u
                 un = u - h / (1.0 + c / math.sqrt(e2 + u * u))
-                if not (lo < un < hi):
-                    un = 0.5 * (lo + hi)
-                if abs(un - u) <= 1e-13 * speed:
+                if abs(un - u) <= 1e-13 * speed:  # before the bracket test: a converged step may land on its edge
                     u = un
                     break
+                if not (lo < un < hi):
+                    un = 0.5 * (lo + hi)
                 u = un
             vel[2 * i] = math.copysign(u, w)
         vp[i] = vel[2 * i]

@@ -108,6 +108,8 @@ def slider_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
     """The one-pad spring-slider against the closed forms (module docstring)."""
     from reduced_models import rate_state as rs
 
+    from .. import plots
+
     tr, wall, T = run_scene(sc, quick, seed, trace, duration, progress)
     fr = sc.friction
     V = sc.steady_velocity
@@ -124,7 +126,11 @@ def slider_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
     starts = _cycles(t[half], v[half], V)
     period = float(np.median(np.diff(starts))) if starts.size > 2 else float("nan")
     stick = bool(np.min(v[half]) < 0.1 * V)
-    d = {"k": k, "k_c": kc, "k_over_k_c": k / kc, "onset_period": period0, "stick_slip_period": period,
+    spec = displacement_spectrum(t, tr.x, nperseg=1 << int(math.floor(math.log2(len(t) / 3))))
+    w_on = 2 * math.pi / period0
+    band = (2 * w_on, 20 * w_on)  # the harmonics of stick-slip above the onset frequency
+    fit = fit_power_law(spec, band=band)
+    d = {**fit.to_dict(), "k": k, "k_c": kc, "k_over_k_c": k / kc, "onset_period": period0, "stick_slip_period": period,
          "sticks": stick, "v_min_over_V": float(np.min(v[half]) / V), "v_max_over_V": float(np.max(v[half]) / V),
          "wall_s": wall, "duration_s": T, "us_per_step": tr.metadata["us_per_step"],
          "stick_slip_as_predicted": bool(stick == (k < kc))}
@@ -138,5 +144,12 @@ def slider_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
          + f"Stick-slip period {period:.3g} s against the neutral period at onset 2 pi D_c / (V sqrt((B - A)/A)) = "
            f"{period0:.3g} s (the two agree only at k -> k_c; below it the cycles are nonlinear and longer)."),
     ]
-    return StudyResult(f"scenarios/{name}", f"Scene: {name}", d, (), paragraphs(parts),
+    parts.append(f"C_x falls as omega^-{fit.gamma:.2f} &plusmn; {fit.gamma_err:.2f} over {band[0]:.3g}-{band[1]:.3g} "
+                 "rad/s (2-20 times the onset frequency): the harmonics of the stick-slip cycle.")
+    fig = plots.spectrum_figure([(spec, f"scene {name}, {T:g} s")], fits=[(fit, "scene ")], band=band,
+                                title=f"Scene {name}: k = {k / kc:.2f} k_c")
+    caption = (f"Scene {name}: the block's C_x, k = {k / kc:.2f} k_c; gamma = {fit.gamma:.2f} ± {fit.gamma_err:.2f} "
+               "over the shaded band (2-20 times the neutral frequency at onset).")
+    return StudyResult(f"scenarios/{name}", f"Scene: {name}", d,
+                       (Figure(f"scene_{name}", plots.figure_png_bytes(fig), caption),), paragraphs(parts),
                        (timing(f"scene {name}", f"{T:g} s, dt = {sc.run.dt:g} s", f"{wall:.2f}", "n/a"),))
