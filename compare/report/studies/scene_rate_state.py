@@ -98,10 +98,17 @@ def ageing_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
                        text, (timing(f"scene {name}", f"{T:g} s, dt = {sc.run.dt:g} s", f"{wall:.2f}", f"{log_err(ratios):.3f}"),))
 
 
-def _cycles(t, v, V):
-    """Start times of the slips: the block's speed rising through 2 V."""
-    up = np.flatnonzero((v[:-1] < 2 * V) & (v[1:] >= 2 * V))
-    return t[up]
+def cycle_period(v, dt: float, shortest: float) -> float:
+    """The stick-slip period (s): the lag of the highest autocorrelation of the block's speed between ``shortest``
+    (s, beyond the block's ringing on its springs) and a third of the record."""
+    x = v - np.mean(v)
+    n = len(x)
+    f = np.fft.rfft(x, 2 * n)
+    ac = np.fft.irfft(f * np.conj(f))[:n]
+    lo, hi = int(math.ceil(shortest / dt)), n // 3
+    if hi <= lo + 1:
+        return float("nan")
+    return float((lo + int(np.argmax(ac[lo:hi]))) * dt)
 
 
 def slider_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult:
@@ -123,9 +130,9 @@ def slider_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
     t = tr.t
     v = np.gradient(tr.x, t)
     half = t >= t[0] + 0.5 * (t[-1] - t[0])  # the second half: past the start's transient
-    starts = _cycles(t[half], v[half], V)
-    period = float(np.median(np.diff(starts))) if starts.size > 2 else float("nan")
-    stick = bool(np.min(v[half]) < 0.1 * V)
+    ring = 2 * math.pi * math.sqrt(sc.block.M / (k0 + kd))  # the block's period on its springs (s)
+    period = cycle_period(v[half], float(t[1] - t[0]), 3 * ring)
+    stick = bool(np.max(v[half]) > 2 * V)  # steady sliding stays near V; slips exceed it many times
     spec = displacement_spectrum(t, tr.x, nperseg=1 << int(math.floor(math.log2(len(t) / 3))))
     w_on = 2 * math.pi / period0
     band = (2 * w_on, 20 * w_on)  # the harmonics of stick-slip above the onset frequency
