@@ -5,25 +5,30 @@ The velocity-and-state part is the regularised law of Rice, Lapusta & Ranjith (2
     mu_rs(V, theta) = A asinh[ V / (2 V0) exp(psi / A) ],    psi = mu_ref + B ln(V0 theta / D_c),        (1)
 
 which equals the rate-and-state law mu_ref + A ln(V / V0) + B ln(V0 theta / D_c) of
-:mod:`reduced_models.rate_state` once V exp(psi / A) / (2 V0) >> 1 (relative error below (A / mu_rs) e^-2x ...,
-about 1e-8 for the shipped scenes) and stays finite (zero) at V = 0, where the log form diverges. It is odd in V.
+:mod:`reduced_models.rate_state` once X = V exp(psi / A) / (2 V0) >> 1 (asinh X = ln 2X + 1 / (4 X^2) + ...:
+X ~ 150 in pads_rate_state) and stays finite (zero) at V = 0, where the log form diverges. It is odd in V.
 The Coulomb part mu0 N_pad is pymunk's contact solver's, as for every law (mu0 = 0 leaves only (1)).
 
-Stepping, per pymunk step (one numba kernel, :func:`rs_step`, on the velocities read through pymunk.batch):
+Stepping: after each pymunk step (springs, contacts, drive: v* = v + dt F / m), one numba kernel,
+:func:`rs_step`, on the velocities read through pymunk.batch:
 
-1. the state, exactly at the start-of-step speed V held over the step: the ageing law
+1. the state, exactly at the step's speed V = |v| (pymunk moved the body with its start-of-step velocity v, the one
+   this kernel wrote after the previous step) held over the step: the ageing law
    theta' = 1 - V theta / D_c gives theta(t + dt) = theta e^-x + dt (1 - e^-x) / x, x = V dt / D_c (dt at V = 0);
    the slip law, ln(V theta / D_c) decaying as e^-x, gives theta(t + dt) = (D_c / V)(V theta / D_c)^(e^-x)
    (unchanged at V = 0). Both are exact for constant V, hence unconditionally stable;
-2. the friction (1) as an implicit (backward Euler) impulse on the body's velocity at fixed state,
-   m (v' - v) = -dt N_pad mu_rs(v', theta), solved by safeguarded Newton in [0, v] (mu_rs is increasing and odd in
-   v, so the root is unique and |v'| <= |v|): unconditionally stable however steep the slope dmu_rs/dV
-   (A exp(psi / A) / (2 V0) at V = 0, far above the explicit limit m / (N_pad dt)); the new velocity is written back
-   through pymunk.batch before pymunk steps its springs and contacts (Lie splitting, first order in dt).
+2. the friction (1) as an implicit (backward Euler) impulse on the body's velocity at the new state,
+   m (u - v*) = -dt N_pad mu_rs(u, theta), solved by safeguarded Newton in [0, v*] (mu_rs is increasing and odd in
+   u, so the root is unique and |u| <= |v*|): unconditionally stable however steep the slope dmu_rs/dV
+   (A exp(psi / A) / (2 V0) at V = 0, far above the explicit limit m / (N_pad dt)); u is written back through
+   pymunk.batch as the body's velocity, the one pymunk moves it with over the next step (Lie splitting: the other
+   forces explicit as pymunk steps them, the law implicit; first order in dt).
 
 What remains explicit is the coupling of the state to the speed over a step; its accuracy needs the state's
-relaxation resolved, V dt / D_c <= 0.1 at the scene's steady speed (checked at load), and the splitting's needs the
-pad's spring period resolved as every law does (the arrangement's dt limit).
+relaxation resolved, V dt / D_c <= 0.1 at the drive's speed (checked at load), and the splitting needs the pad's
+spring period resolved as every law does (the arrangement's dt limit). A state the slider must reach through
+fast slips (stick-slip) is aged at each step's speed, so the slips' state drop is resolved while V dt / D_c stays
+small during them (the spring-slider's slips reach 50 V: 0.05).
 
 The recorder reads the law's drag in the log law's form; here that is the steady-state law,
 N_pad (A - B) ln(1 + v / v_ss), v_ss = V0 exp(-mu_ref / (A - B)) (B < A; none for B >= A), so the recorded drag
