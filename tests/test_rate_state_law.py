@@ -138,13 +138,17 @@ def _amplitudes(scene, T, parts=3):
     return [np.ptp(seg) / 2 for seg in np.array_split(v, parts)]
 
 
-def test_spring_slider_turns_to_stick_slip_at_k_c():
+@pytest.mark.parametrize("state_law", ["ageing", "slip"])
+def test_spring_slider_turns_to_stick_slip_at_k_c(state_law):
     # k_c = N_pad (B - A) / D_c = 991 N/m; the block's inertia raises it by M V^2 / (N_pad A D_c) = 1 % (Rice &
     # Ruina 1983), inside the bracket. Steady sliding is reached at 3 k_c (4 s), the state perturbed by 10 %, then
     # 6 s at 1.1 k_c and at 0.9 k_c from that same state. Linear theory: a growth rate of about -/+(V / 2 D_c)
     # ((B - A)/A)(1 - k/k_c) ~ -/+0.5 1/s, a factor e^(+-2) between the first and last 2 s; the test asks for a
-    # factor 3 each way (decay at 1.1 k_c, growth into stick-slip at 0.9 k_c, where the speed reaches 0).
+    # factor 3 each way (decay at 1.1 k_c, growth into stick-slip at 0.9 k_c, where the speed reaches 0). Both state
+    # laws share k_c and the linear growth rate (measured: 0.163 -> 0.037 V and 0.46 -> 19 V for the ageing law,
+    # 0.168 -> 0.038 V and 0.54 -> 12 V for the slip law).
     sc = load_scenario("spring_slider_rate_state")
+    sc = replace(sc, friction=replace(sc.friction, state_law=state_law))
     fr = sc.friction
     kc = sc.normal_load_per_pad * (fr.B - fr.A) / fr.D_c
     scene = Scene(sc)
