@@ -80,8 +80,14 @@ class DisplacementAnalysis:
         return [] if self.mass is not None else [C_F_NEEDS_MASS]
 
     def summary(self) -> dict:
-        """JSON-ready numbers: ``gamma``, ``gamma_err``, ``band``, ``fit`` (C_x), ``fit_mu``, the velocity and
-        rms values in SI units; ``fit_F`` and ``F_rms_N`` only when a mass was given."""
+        """The analysis as JSON-ready numbers.
+
+        Returns
+        -------
+        dict
+            ``gamma``, ``gamma_err``, ``band`` (rad/s), ``fit`` (C_x), ``fit_mu``, ``mean_velocity`` (m/s),
+            ``zeta_rms_m`` (m), ``mu_rms``; ``fit_F`` and ``F_rms_N`` (N) only when a mass was given.
+        """
         s = {"kind": "displacement", "mass_kg": self.mass, "gamma": self.fit.gamma, "gamma_err": self.fit.gamma_err,
              "band": list(self.fit.band), "fit": self.fit.to_dict(), "mean_velocity": self.mean_velocity,
              "zeta_rms_m": self.zeta_rms, "fit_mu": self.fit_mu.to_dict(), "mu_rms": self.mu_rms, "g_m_per_s2": self.g,
