@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.fits import PowerLawFit, fit_power_law
-from .html import esc, paragraphs, table
+from .html import esc, span, paragraphs, table
 from ..io.measured import MeasuredData, units_line
 from ..analysis.spectra import G_STANDARD, Spectrum, rescaled, average_spectra, rms_from_spectrum, series_spectrum
 from .study import Figure, StudyResult
@@ -266,7 +266,7 @@ def build_force_report(an: ForceAnalysis):
         + f"; {st.cut_s:.4g} s cut at each end of a stroke (reversal transients); every stroke {st.used_s:.4g} s long "
           f"after the cut, detrended by its own line; spectra averaged over the strokes.",
         f"Force exponent: C_F ~ omega^-{f.gamma:.3f} &plusmn; {f.gamma_err:.3f} (95 %, {f.method}) over "
-        f"{f.band[0]:.3g}-{f.band[1]:.3g} rad/s{' (automatic band)' if f.band_auto else ''}"
+        f"{span(f.band[0], f.band[1])} rad/s{' (automatic band)' if f.band_auto else ''}"
         + (f" <b>not a power law: {esc('; '.join(f.flags))}</b>" if f.flags else "")
         + f"; F_rms = {summary['F_rms_N']:.4g} N over the resolved band (eq. 4), mean |F| = {summary['mean_abs_F_N']:.4g} N.",
     ]
@@ -280,14 +280,14 @@ def build_force_report(an: ForceAnalysis):
     if an.speed is not None:
         paras.append(f"Sliding speed {an.speed:g} m/s: stroke length {summary['stroke_length_m']:.4g} m "
                      f"({summary['used_stroke_length_m']:.4g} m used); distance-domain spectrum over "
-                     f"q = {an.C_F_distance.omega_min:.3g}-{an.C_F_distance.omega_max:.3g} rad/m.")
+                     f"q = {span(an.C_F_distance.omega_min, an.C_F_distance.omega_max)} rad/m.")
     paras += [esc(n) for n in an.notes]
     paras.append("Processing: " + esc("; ".join(an.C_F.provenance["steps"])) + ".")
     figures = [Figure("measured_force_CF", plots.figure_png_bytes(plots.spectrum_figure(
         [(an.C_F, "C_F (measured)")], fits=[(f, "")], band=f.band, ylabel=r"$C_F$ (N$^2$ s)",
         title="Friction-force spectrum")),
         f"C_F of the measured friction force (N^2 s), averaged over {len(st.segments)} strokes, with the power-law fit: "
-        f"C_F slope -{f.gamma:.2f} ± {f.gamma_err:.2f} over {f.band[0]:.3g}-{f.band[1]:.3g} rad/s"
+        f"C_F slope -{f.gamma:.2f} ± {f.gamma_err:.2f} over {span(f.band[0], f.band[1])} rad/s"
         + (" (not a power law: " + "; ".join(f.flags) + ")." if f.flags else "."))]
     dt = float(d.t[1] - d.t[0])
     rows = [[str(i + 1), f"{a * dt:.4g}", f"{b * dt:.4g}", "used"] for i, (a, b) in enumerate(st.segments)]
@@ -335,7 +335,7 @@ def build_measured_report(data, mass: float, band=None, g: float = G_STANDARD):
     text = paragraphs([
         f"{len(data.t)} samples every {data.t[1] - data.t[0]:.4g} s; mean velocity {1e3 * summary['mean_velocity']:.4g} mm/s"
         + (f". {esc(data.warning)}" if data.warning else "."),
-        f"gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} (95 %) over {fit.band[0]:.3g}-{fit.band[1]:.3g} rad/s"
+        f"gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} (95 %) over {span(fit.band[0], fit.band[1])} rad/s"
         f"{' (automatic band)' if fit.band_auto else ''}; zeta_rms = {zeta_rms:.4g} m and mu_rms = {mu_rms:.4g} "
         "(dimensionless) over the resolved band (eq. 4). C_F = M^2 omega^4 C_x assumes the block is free (inertial "
         f"relation, eq. 3), with M = {mass:g} kg.",
@@ -345,7 +345,7 @@ def build_measured_report(data, mass: float, band=None, g: float = G_STANDARD):
         Figure("measured_Cx", plots.figure_png_bytes(plots.spectrum_figure([(spec, "C_x")], fits=[(fit, "")], band=fit.band,
                                                                           title="Displacement spectrum")),
                f"C_x of the measured displacement (m^2 s) with the power-law fit: gamma = {fit.gamma:.2f} ± "
-               f"{fit.gamma_err:.2f} over {fit.band[0]:.3g}-{fit.band[1]:.3g} rad/s (shaded)."),
+               f"{fit.gamma_err:.2f} over {span(fit.band[0], fit.band[1])} rad/s (shaded)."),
         Figure("measured_CF", plots.figure_png_bytes(plots.spectrum_figure([(cf, "C_F = M^2 omega^4 C_x")], ylabel=r"$C_F$ (N$^2$ s)",
                                                                           title="Force spectrum (eq. 3)")),
                f"C_F (N^2 s) of a free block of M = {mass:g} kg, from C_x by eq. (3): slope {4 - fit.gamma:+.2f} in the fit band."),
