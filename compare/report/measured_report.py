@@ -18,8 +18,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..analysis.fits import PowerLawFit, fit_power_law
+from ..analysis.fits import PowerLawFit, fit_power_law, flag_mark
 from .html import esc, span, paragraphs, table
+from .verdict import fit_text
 from ..io.measured import MeasuredData, units_line
 from ..analysis.spectra import G_STANDARD, Spectrum, rescaled, average_spectra, rms_from_spectrum, series_spectrum
 from .study import Figure, StudyResult
@@ -265,18 +266,17 @@ def build_force_report(an: ForceAnalysis):
                                         if st.dropped else "")
         + f"; {st.cut_s:.4g} s cut at each end of a stroke (reversal transients); every stroke {st.used_s:.4g} s long "
           f"after the cut, detrended by its own line; spectra averaged over the strokes.",
-        f"Force exponent: C_F ~ omega^-{f.gamma:.3f} &plusmn; {f.gamma_err:.3f} (95 %, {f.method}) over "
+        f"Force exponent: C_F ~ omega^-({fit_text(f, 3)}) (95 %, {f.method}) over "
         f"{span(f.band[0], f.band[1])} rad/s{' (automatic band)' if f.band_auto else ''}"
-        + (f" <b>not a power law: {esc('; '.join(f.flags))}</b>" if f.flags else "")
+        + (f" <b>({esc('; '.join(f.flags))})</b>" if f.flags else "")
         + f"; F_rms = {summary['F_rms_N']:.4g} N over the resolved band (eq. 4), mean |F| = {summary['mean_abs_F_N']:.4g} N.",
     ]
     if an.fit_mu is not None:
-        paras.append(f"C_mu of mu(t) = F(t)/N(t): exponent {an.fit_mu.gamma:.3f} &plusmn; {an.fit_mu.gamma_err:.3f}; "
+        paras.append(f"C_mu of mu(t) = F(t)/N(t): exponent {fit_text(an.fit_mu, 3)}; "
                      f"mu_rms = {summary['mu_rms']:.4g}, mean |mu| = {summary['mean_abs_mu']:.4g}.")
     if an.fit_x_equiv is not None:
         paras.append(f"Equivalent C_x of a free block of M = {an.mass:g} kg (C_F / (M^2 omega^4), eq. (3); inferred, "
-                     f"not a measured displacement): gamma = {an.fit_x_equiv.gamma:.3f} &plusmn; "
-                     f"{an.fit_x_equiv.gamma_err:.3f}.")
+                     f"not a measured displacement): gamma = {fit_text(an.fit_x_equiv, 3)}.")
     if an.speed is not None:
         paras.append(f"Sliding speed {an.speed:g} m/s: stroke length {summary['stroke_length_m']:.4g} m "
                      f"({summary['used_stroke_length_m']:.4g} m used); distance-domain spectrum over "
@@ -335,7 +335,7 @@ def build_measured_report(data, mass: float, band=None, g: float = G_STANDARD):
     text = paragraphs([
         f"{len(data.t)} samples every {data.t[1] - data.t[0]:.4g} s; mean velocity {1e3 * summary['mean_velocity']:.4g} mm/s"
         + (f". {esc(data.warning)}" if data.warning else "."),
-        f"gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} (95 %) over {span(fit.band[0], fit.band[1])} rad/s"
+        f"gamma = {fit_text(fit, 3)} (95 %) over {span(fit.band[0], fit.band[1])} rad/s"
         f"{' (automatic band)' if fit.band_auto else ''}; zeta_rms = {zeta_rms:.4g} m and mu_rms = {mu_rms:.4g} "
         "(dimensionless) over the resolved band (eq. 4). C_F = M^2 omega^4 C_x assumes the block is free (inertial "
         f"relation, eq. 3), with M = {mass:g} kg.",
@@ -345,7 +345,7 @@ def build_measured_report(data, mass: float, band=None, g: float = G_STANDARD):
         Figure("measured_Cx", plots.figure_png_bytes(plots.spectrum_figure([(spec, "C_x")], fits=[(fit, "")], band=fit.band,
                                                                           title="Displacement spectrum")),
                f"C_x of the measured displacement (m^2 s) with the power-law fit: gamma = {fit.gamma:.2f} ± "
-               f"{fit.gamma_err:.2f} over {span(fit.band[0], fit.band[1])} rad/s (shaded)."),
+               f"{fit.gamma_err:.2f}{flag_mark(fit)} over {span(fit.band[0], fit.band[1])} rad/s (shaded)."),
         Figure("measured_CF", plots.figure_png_bytes(plots.spectrum_figure([(cf, "C_F = M^2 omega^4 C_x")], ylabel=r"$C_F$ (N$^2$ s)",
                                                                           title="Force spectrum (eq. 3)")),
                f"C_F (N^2 s) of a free block of M = {mass:g} kg, from C_x by eq. (3): slope {4 - fit.gamma:+.2f} in the fit band."),

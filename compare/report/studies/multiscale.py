@@ -230,7 +230,7 @@ def _sensor(out):
     ax.plot(w, c1, "--", color="C0", lw=1.0, label="macro part")
     ax.plot(w, c2, ":", color="C3", lw=1.5, label="micro part")
     reg = ms.regime_frequencies(p)
-    for k, ls, y, name in (("v_over_a2", "-.", 0.05, "v/a2"), ("omega3", ":", 0.05, "omega3"),
+    for k, ls, y, name in (("v_over_a2", "-.", 0.05, "v/a2"), ("omega3", ":", 0.55, "omega3"),
                            ("omega_c", "--", 0.3, "omega_c"), ("omega2", "-", 0.05, "micro resonance")):
         ax.axvline(reg[k], color="0.5", lw=0.7, ls=ls)
         ax.text(reg[k] * (0.75 if k == "omega3" else 1.15), y, name, rotation=90, fontsize=6, color="0.4",

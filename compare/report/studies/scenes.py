@@ -32,6 +32,12 @@ def fitting_part(sc):
     return next(part for part in (sc.wear, sc.substrate_part) if part.reduced_model)
 
 
+# Recorded seconds of a scene in the full report (the quick one takes each part's ``quick_duration``, 8-16 s;
+# ``frictionnoise compare`` the scenario's own duration). 20 s resolve 3-30 v/a with 4 s Welch segments, so
+# gamma's 95 % half-width is about 0.13 (0.20 at 12 s; see benchmarks/results/report_speed.md), and every
+# per-band ratio averages at least 9 segments.
+FULL_DURATION = 20.0
+
 # each reduced model's comparison with a scene: (module of this package, function), looked up when called
 COMPARISONS = {"model_I": ("scenes", "_model_I_result"), "model_II": ("scene_wear", "wear_result"),
                "model_III": ("scene_asperity", "asperity_result")}
@@ -158,11 +164,11 @@ def _run_shipped(name: str, quick: bool, seed: int) -> list:
     from engine_sim.scene import describe
 
     sc = load_scenario(shipped_scenarios()[name])
+    duration = fitting_part(sc).quick_duration if quick else FULL_DURATION
     if "micro" not in describe(sc):
-        return [scene_result(name, sc, quick, seed)]
+        return [scene_result(name, sc, quick, seed, duration=duration)]
     from .scene_multiscale import scene_against_model_Ib
 
-    duration = fitting_part(sc).quick_duration if quick else None
     trace = run_scene(sc, quick, seed, None, duration, None)[0]
     return [scene_result(name, sc, quick, seed, trace=trace),
             scene_against_model_Ib(name, sc, quick, seed, trace=trace)]
