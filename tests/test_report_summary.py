@@ -86,6 +86,7 @@ def test_summary_table_follows_the_contents_and_links_each_row():
 
 def test_one_number_format():
     assert span(3.07, 1.57e3) == "3.07-1570"  # not "3.07-1.57e+03"
+    assert span(1.79e-4, 0.00424) == "1.79e-04-4.24e-03"  # both ends alike
     assert num(2.5e-7) == "2.50e-07" and num(float("nan")) == "n/a" and num(-1e-9, 3) == "-1.00e-09"
     assert num(-0.004, 1) == "-0.004" and num(0.00001) == "1.00e-05"
     assert pct(-1e-7) == "0 % (below 0.001 %)" and pct(0.00106) == "+0.106 %"  # never "-0.000 %"

@@ -56,7 +56,11 @@ def pct(fraction, decimals: int = 3) -> str:
 
 
 def span(lo, hi, digits: int = 3) -> str:
-    """A range "lo-hi" in the report's number format (both ends alike: "3.07-1570")."""
+    """A range "lo-hi" in the report's number format, both ends alike: "3.07-1570", and "1.79e-04-4.24e-03" when
+    either end needs the scientific form."""
+    ends = [x for x in (lo, hi) if x is not None and math.isfinite(x) and x != 0]
+    if any(not 1e-3 <= abs(x) < 1e5 for x in ends):
+        return "-".join(f"{x:.{max(0, digits - 1)}e}" if x in ends else num(x, digits) for x in (lo, hi))
     return f"{num(lo, digits)}-{num(hi, digits)}"
 
 

@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass
 
 from ..analysis.fits import flag_mark
-from .html import num
+from .html import num, span
 
 __all__ = ["Verdict", "fit_text", "flags_of", "gamma_verdict", "interval_verdict", "ratio_verdict", "summary_lines", "prose_flag_problems",
            "NOT_A_POWER_LAW"]
@@ -108,7 +108,7 @@ def ratio_verdict(study: str, what: str, ratios, factor: float, reference: str) 
     when every band lies within it; "by" names the worst band's factor."""
     r = [b["ratio"] if isinstance(b, dict) else float(b) for b in ratios]
     worst = max(max(r), 1 / min(r))
-    return Verdict(study, what, f"{num(min(r))}-{num(max(r))} per band", reference, worst <= factor,
+    return Verdict(study, what, f"{span(min(r), max(r))} per band", reference, worst <= factor,
                    f"worst band x{num(worst)} (limit x{factor:g})")
 
 
