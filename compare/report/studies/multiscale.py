@@ -310,7 +310,7 @@ def run(quick: bool, seed: int) -> StudyResult:
                        numbers=numbers, figures=figs, html="\n".join(parts), verdicts=verdicts)
 
 
-STUDY = Study(key="model_Ib", label="model Ib (multiscale)", run=run)
+STUDY = Study(key="model_Ib", label="model Ib (multiscale)", run=run, cost=5.0)
 
 
 def _png_bytes(fig) -> bytes:

@@ -20,9 +20,11 @@ from ..study import Figure, Study, StudyResult
 from ..verdict import NOT_A_POWER_LAW, fit_text, ratio_verdict
 from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
 
-# relative wall cost, to hand the longest studies to workers first (measured in the quick report: the wear pair
-# 18 s, the rough profile 9 s, the asperity field 7 s, every other stage 0.5-3 s)
-_COST_HINT = {"pads_with_wear": 18.0, "pads_rough_profile": 9.0, "asperity_field": 7.0, "pads_multiscale": 12.0}
+# relative cost, to hand the longest studies to workers first (CPU seconds per study are printed by
+# benchmarks/bench_report.py: the wear pair, pads_multiscale with both models, and the line-scan and rough-profile
+# substrates, whose pads cost about 1.5 CPU s per simulated second, lead; a friction-patch scene costs about 0.35)
+_COST_HINT = {"pads_with_wear": 18.0, "pads_multiscale": 12.0, "pads_rough_profile": 9.0, "line_scan_example": 9.0,
+              "asperity_field": 7.0}
 
 
 def fitting_part(sc):
