@@ -52,6 +52,7 @@ def main(argv=None) -> int:
     ap.add_argument("--full", action="store_true", help="the full report (default: both)")
     ap.add_argument("--workers", type=int, default=2, help="processes for the whole-report run (0: skip it)")
     ap.add_argument("--only", nargs="*", help="study keys or labels to time")
+    ap.add_argument("--whole-only", action="store_true", help="only the whole report with its worker pool")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--json", help="write the timings here")
     args = ap.parse_args(argv)
@@ -61,7 +62,7 @@ def main(argv=None) -> int:
         quick = mode == "quick"
         before = load()
         print(f"{mode} report, studies one by one ({before})", flush=True)
-        rows = per_study(quick, args.seed, args.only)
+        rows = [] if args.whole_only else per_study(quick, args.seed, args.only)
         entry = {"load_before": before, "studies": {k: {"wall_s": w, "cpu_s": c} for k, w, c in rows},
                  "sum_s": sum(r[1] for r in rows), "sum_cpu_s": sum(r[2] for r in rows), "load_after": load()}
         print(f"  {'sum':32s} {entry['sum_s']:7.1f} s wall {entry['sum_cpu_s']:7.1f} s CPU ({entry['load_after']})")

@@ -60,7 +60,8 @@ def _paired(name, sc, quick, seed, trace, duration, progress) -> SimpleNamespace
     bal = {k: balances(tr) for k, tr in runs.items()}
     # the particles' cost, measured with both scenes taking turns (the runs' own wall times depend on what the
     # report runs beside them)
-    us_w, us_0 = step_costs([sc, sc.with_wear(count=0)], seed=seed)
+    # (quick: 0.5 s of warm-up and the fastest of 4 turns, as tests/test_report_parallel.py measures it)
+    us_w, us_0 = step_costs([sc, sc.with_wear(count=0)], seed=seed, **({"warmup": 0.5, "chunks": 4} if quick else {}))
     cost_ratio = us_w / us_0
     band_rows = [{"band": [float(edges[i]), float(edges[i + 1])], "C_x_ratio": float(level[i]), "C_F_ratio": float(levelF[i]),
                   "particle_force_over_B2": float(r_b2[i]), "delta_C_F_over_B2": float(r_dCF[i])} for i in range(len(level))]
