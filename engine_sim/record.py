@@ -20,6 +20,7 @@ import pymunk.batch as B
 
 from . import reduction as R, units as U
 from .reduction import COLS, PRM, reduce_sample
+from .vibration import VIB_COLS
 
 __all__ = ["EngineTrace", "Recorder"]
 
@@ -62,6 +63,10 @@ class EngineTrace:
     particle_penetration: np.ndarray
     micro_force: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
     metadata: dict = field(default_factory=dict)
+    # [vibration] (engine_sim/vibration.py): s(t) of the shaken part [m] (0 without vibration) and the work it
+    # did [J] (the inertial force on every body in the substrate's frame, or the shaker's force on the block)
+    vibration: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    work_vibration: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
 
 class Recorder:
@@ -81,7 +86,7 @@ class Recorder:
         self.t = np.empty(n_samples)
         # scalar channels per sample, columns in reduction.COLS order (one array: numba's dispatch cost grows with
         # the number of arguments, and this kernel runs every output step)
-        self.out = np.empty((n_samples, len(COLS)))
+        self.out = np.empty((n_samples, len(COLS) + len(VIB_COLS)))  # the vibration's two columns last
         self.pad_force = np.empty((n_samples, N))
         self.micro_force = np.empty((n_samples, len(scene.sliders) - N))
         self.n_contact = np.empty(n_samples, dtype=np.int32)
@@ -153,6 +158,9 @@ class Recorder:
         reduce_sample(ids, fl, ai, af, self._tab, self.grain_table, self._bs, self._pp, self._prm, sc.slider_terms,
                       self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact, self.p_state,
                       self.p_force)
+        vib = getattr(sc, "vibration", None)
+        self.out[k, len(COLS):] = (0.0, 0.0) if vib is None else vib.record(
+            sc, ids, fl, self._tab, sc.slider_terms, self.grain_table, self._drive_mass)
         self.t[k] = sc.steps * sc.dt / U.TIME
         self.k += 1
 
@@ -179,4 +187,5 @@ class Recorder:
             work_recycle=(self.recycle[:n] - self.recycle[0]) / U.ENERGY,
             p_state=self.p_state[:n], p_force=self.p_force[:n] / U.FORCE,
             particle_penetration=o["p_pen"] / U.LENGTH, micro_force=self.micro_force[:n] / U.FORCE, metadata=metadata,
+            vibration=self.out[:n, len(COLS)] / U.LENGTH, work_vibration=cum(self.out[:n, len(COLS) + 1]),
         )

@@ -147,6 +147,8 @@ class SceneRenderer:
                 self._shapes(pn, s.arrangement.draw(s, lo, hi, pn["view"]))
             if k == 0:
                 self._shapes(pn, s.drive.draw(s, lo, hi))
+                if getattr(s, "vibration", None) is not None:  # [vibration]: its phase dial and caption
+                    self._shapes(pn, s.vibration.draw(s, lo, hi))
                 self._shapes(pn, s.wear.draw(self.states))
             half = pn["view"]["block_half"]
             pn["block"].set_x(bx - half)

@@ -126,7 +126,7 @@ def _record(scene, rec, k: int, n_out: int, e_out: int, interrupts, checkpoint, 
             # moved between a step and a sample would report a bogus overlap
             if k % MAINTAIN_EVERY == 0:
                 scene.maintain()
-                if report is not None and k % (MAINTAIN_EVERY * 16) == 0:
+                if report is not None:  # every maintenance: a log's progress lines need fresh figures
                     report(k)
             if k + 1 < n_out:
                 scene.advance(n_sub)
@@ -163,7 +163,31 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     the same scenario, duration, seed, epoch and version resumes from it. A checkpoint of another run or a
     corrupt one raises :class:`CheckpointError`. SIGINT or SIGTERM (KeyboardInterrupt) stops at the next output
     step, writes the latest epoch as checkpoint if one is configured and returns the trace so far with
-    ``metadata["partial"] = True``. ``on_plan(epoch_s, every_s)`` is told the epoch and checkpoint interval.
+    ``metadata["partial"] = True``.
+
+    Parameters
+    ----------
+    scenario : str, pathlib.Path or Scenario
+        The scenario file or object.
+    duration : float, optional
+        Recorded simulated time (Units: s); default the scenario's.
+    seed : int, optional
+        Seed of the substrate and the scene; default the scenario's.
+    progress : callable, optional
+        ``progress(t_done, t_total)`` (Units: s of simulated time).
+    checkpoint : str, optional
+        Checkpoint file to write to and resume from.
+    checkpoint_every : float, optional
+        Simulated seconds between checkpoints (Units: s; rounded to whole epochs, at least one).
+    epoch : float, optional
+        Simulated seconds between the state round trips (Units: s); default the scene's.
+    on_plan : callable, optional
+        ``on_plan(epoch_s, every_s)`` is told the epoch and checkpoint interval (Units: s).
+
+    Returns
+    -------
+    EngineTrace
+        The recorded arrays in SI units and the metadata.
     """
     sc = scenario if isinstance(scenario, Scenario) else load_scenario(Path(scenario))
     if duration is not None:

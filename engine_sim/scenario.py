@@ -22,6 +22,7 @@ from .drives.force import ForceSpec
 from .laws import LAWS, FrictionSpec
 from .substrates import SUBSTRATES, SubstrateSpec
 from .substrates.patches import PatchesSpec
+from .vibration import Vibration, VibrationSpec
 from .wear import WearSpec, wear_part
 
 __all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", "SubstrateSpec", "DriveSpec",
@@ -67,6 +68,7 @@ class Scenario:
     drive: DriveSpec = field(default_factory=ForceSpec)  # the drive's own spec (engine_sim/drives/)
     wear: WearSpec = field(default_factory=WearSpec)
     run: RunSpec = field(default_factory=RunSpec)
+    vibration: VibrationSpec | None = None  # [vibration] (engine_sim/vibration.py); None: the section is absent
 
     # ------------------------------------------------------------------ the parts (engine_sim/*/): each asked, none checked
     @property
@@ -86,6 +88,10 @@ class Scenario:
         return SUBSTRATES[self.substrate.kind](self.substrate, self)
 
     @property
+    def vibration_part(self):
+        return None if self.vibration is None else Vibration(self.vibration, self)
+
+    @property
     def wear_part(self):
         return wear_part(self.wear, self)
 
@@ -96,15 +102,48 @@ class Scenario:
         return self.block.M * G * self.drive_part.load_factor() / self.pads.N + self.arrangement_part.column_mass * G
 
     def law_force(self, v: float) -> float:
-        """The friction law's steady force per pad at sliding speed v >= 0 (N), with mu = mu0."""
+        """The friction law's steady force per pad at a sliding speed, with mu = mu0.
+
+        Parameters
+        ----------
+        v : float
+            Sliding speed (Units: m/s), >= 0.
+
+        Returns
+        -------
+        float
+            The force (Units: N).
+        """
         return self.law_part.force(v, self.normal_load_per_pad, self.friction.c)
 
     def column_force(self, v: float) -> float:
-        """Steady friction of one pad column (a pad and what it carries) at speed v (N)."""
+        """Steady friction of one pad column (a pad and what it carries) at a sliding speed.
+
+        Parameters
+        ----------
+        v : float
+            Sliding speed (Units: m/s), >= 0.
+
+        Returns
+        -------
+        float
+            The force (Units: N).
+        """
         return self.arrangement_part.column_force(v)
 
     def friction_slope(self, v: float) -> float:
-        """dF/dv of one pad column at speed v (N s/m): c, plus b N_pad / (v_c + v) for the log law."""
+        """dF/dv of one pad column: c, plus b N_pad / (v_c + v) for the log law.
+
+        Parameters
+        ----------
+        v : float
+            Sliding speed (Units: m/s), >= 0.
+
+        Returns
+        -------
+        float
+            The slope (Units: N s/m).
+        """
         return self.arrangement_part.column_slope(v)
 
     @property
@@ -129,22 +168,53 @@ class Scenario:
         return self.arrangement_part.dt_limit()
 
     def with_run(self, **kw) -> "Scenario":
+        """A copy with ``[run]`` fields replaced, e.g. ``with_run(duration=10.0)``.
+
+        Parameters
+        ----------
+        **kw
+            ``[run]`` fields and their new values (SI units).
+
+        Returns
+        -------
+        Scenario
+        """
         return replace(self, run=replace(self.run, **kw))
 
     def with_wear(self, **kw) -> "Scenario":
-        """A copy with [wear] fields replaced, e.g. ``with_wear(count=0)`` for the particle-free twin of a paired run."""
+        """A copy with ``[wear]`` fields replaced, e.g. ``with_wear(count=0)`` for the particle-free twin of a paired run.
+
+        Parameters
+        ----------
+        **kw
+            ``[wear]`` fields and their new values (SI units).
+
+        Returns
+        -------
+        Scenario
+        """
         return replace(self, wear=replace(self.wear, **kw))
 
     def to_dict(self) -> dict:
+        """The scenario as a TOML-like dict (what :func:`scenario_from_dict` reads back).
+
+        Returns
+        -------
+        dict
+            ``name``, ``description`` and one dict per section, values in SI units.
+        """
         out = {"name": self.name, "description": self.description}
         for sec in _SECTIONS:
             obj = getattr(self, sec)
+            if obj is None:  # an optional section left out ([vibration])
+                continue
             out[sec] = {f.name: getattr(obj, f.name) for f in fields(obj)}
         return out
 
 
 _SECTIONS = {"block": BlockSpec, "pads": PadSpec, "friction": FrictionSpec, "substrate": SubstrateSpec,
-             "drive": DriveSpec, "wear": WearSpec, "run": RunSpec}
+             "drive": DriveSpec, "wear": WearSpec, "run": RunSpec, "vibration": VibrationSpec}
+_OPTIONAL = {"vibration"}  # sections that are None when absent
 _CHOICES = {("wear", "distribution"): ("lognormal", "power"), ("wear", "rotation"): ("locked", "free")}
 _POSITIVE = {("block", "M"), ("run", "dt"), ("run", "dt_out"), ("run", "duration"), ("run", "iterations"),
              ("wear", "r_min"), ("wear", "r_max"), ("wear", "r_median"), ("wear", "sigma"), ("wear", "density"),
@@ -167,6 +237,8 @@ def _rules(sec, spec_cls=None):
         registry, key = _KINDED[sec]
         part = next(k for k in registry.values() if k.Spec is spec_cls)
         return part.positive, part.non_negative, {**part.choices, key: tuple(registry)}
+    if sec == "vibration":
+        return Vibration.positive, Vibration.non_negative, Vibration.choices
     pick = lambda table: {k for s, k in table if s == sec}  # noqa: E731
     return pick(_POSITIVE), pick(_NON_NEGATIVE), {k: v for (s, k), v in _CHOICES.items() if s == sec}
 
@@ -214,8 +286,23 @@ def _section(where, sec, cls, raw, strict=True, default=None):
 
 
 def scenario_from_dict(data: dict, where: str = "", strict: bool = True) -> Scenario:
-    """Build and validate a Scenario from a TOML-like dict (SI units). ``strict=False`` (a trace's metadata) ignores
-    substrate fields that belong to other substrate kinds (older traces list every kind's fields)."""
+    """Build and validate a Scenario from a TOML-like dict (SI units).
+
+    Parameters
+    ----------
+    data : dict
+        The scenario's sections, as a TOML file reads (values in SI units).
+    where : str, optional
+        Where the data came from, for error messages (a file name).
+    strict : bool, optional
+        False (a trace's metadata) ignores substrate fields that belong to other substrate kinds (older traces
+        list every kind's fields).
+
+    Returns
+    -------
+    Scenario
+        The validated scenario; :class:`ScenarioError` (one line naming the field) otherwise.
+    """
     if not isinstance(data, dict):
         raise _err(where, "a scenario must be a table of sections")
     top_keys = {"name", "description", *_SECTIONS}
@@ -227,6 +314,9 @@ def scenario_from_dict(data: dict, where: str = "", strict: bool = True) -> Scen
         raw = data.get(sec, {})
         if not isinstance(raw, dict):
             raise _err(where, f"[{sec}] must be a table (got {type(raw).__name__})")
+        if sec in _OPTIONAL and sec not in data:
+            parts[sec] = None
+            continue
         default = SUBSTRATES[parts["substrate"].kind].arrangement if sec == "pads" else None
         parts[sec] = _section(where, sec, _SECTIONS[sec], raw, strict, default)
     for key in ("name", "description"):
@@ -253,6 +343,8 @@ def _check_consistency(sc: Scenario, where: str):
         sc.drive_part.validate(sc.drive, sc)
         sc.substrate_part.validate(sc.substrate, sc, where)
         sc.wear_part.validate(where)
+        if sc.vibration is not None:
+            Vibration.validate(sc.vibration, sc)
     except ValueError as e:
         raise _err(where, str(e)) from None
 
@@ -272,7 +364,18 @@ def resolve_scenario(name_or_path) -> Path:
 
 
 def load_scenario(path) -> Scenario:
-    """Read and validate a TOML scenario file, given as a path or a shipped scenario's name."""
+    """Read and validate a TOML scenario file, given as a path or a shipped scenario's name.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A scenario file, or the name of a shipped one (``"pads_friction_patches"``); an existing file wins.
+
+    Returns
+    -------
+    Scenario
+        The validated scenario (SI units); :class:`ScenarioError` (one line) otherwise.
+    """
     path = resolve_scenario(path)
     try:
         data = tomllib.loads(path.read_text())
@@ -284,7 +387,13 @@ def load_scenario(path) -> Scenario:
 
 
 def shipped_scenarios() -> dict:
-    """name -> path of the scenarios shipped in the ``scenarios`` package."""
+    """The scenarios shipped in the ``scenarios`` package (installed with every install).
+
+    Returns
+    -------
+    dict
+        Name -> path of its TOML file.
+    """
     return {p.stem: p for p in sorted(SCENARIO_DIR.glob("*.toml"))}
 
 

@@ -49,6 +49,7 @@ def describe(sc: Scenario) -> dict:
         "pads": {"N": p.N, "mass": p.mass, "k0": p.k0, "c0": p.c0, "foot_length": p.foot_length},
         "contact_width": arr.contact_width(), "substrate": sc.to_dict()["substrate"], **arr.describe(),
         "grain_step": grain_step(sc),
+        **({} if sc.vibration is None else {"vibration": sc.vibration_part.describe()}),
     }
 
 
@@ -104,6 +105,10 @@ class Scene:
             self.sliders, (self.law.drag_terms(load, c) for load, c in zip(self.slider_load, self.slider_c)))])
         self.ahead, self.behind = self.substrate.margins(self)
         self.wear.build(self, self.seeds[p.N], f_particle)
+        # an imposed vibration, built last: it shifts every body's velocity into the substrate's frame
+        self.vibration = sc.vibration_part  # None without a [vibration] section (engine_sim/vibration.py)
+        if self.vibration is not None:
+            self.vibration.build(self)
         self.maintain()
         self.steps = 0
 
@@ -124,6 +129,13 @@ class Scene:
         self.arrangement.maintain(self)
 
     def advance(self, n: int):
-        """n pymunk steps, as the friction law steps them (the linear law: no Python inside a step)."""
-        self.law.advance(self, n)
+        """n pymunk steps, as the friction law steps them (the linear law: no Python inside a step), or as the
+        vibration steps them when the scene has one (engine_sim/vibration.py).
+
+        Parameters
+        ----------
+        n : int
+            Number of steps of ``dt`` (s) each.
+        """
+        (self.law if self.vibration is None else self.vibration).advance(self, n)
         self.steps += n

@@ -15,7 +15,7 @@ __all__ = ["PatchTrack", "SelfAffineTrack", "BumpTrack", "self_affine_kernel"]
 _CHUNK = 32  # patches generated at a time
 
 
-class _StreamedTrack:
+class StreamedTrack:
     """Segments generated ahead of a pad and dropped behind it. Subclasses implement ``_extend`` (add the next
     chunk via ``_link_and_add``) and ``_frontier`` (x up to which the track exists)."""
 
@@ -76,7 +76,7 @@ class _StreamedTrack:
             seg.set_neighbors(a, b)
 
 
-class PatchTrack(_StreamedTrack):
+class PatchTrack(StreamedTrack):
     """A flat track of friction patches (model I's renewal, section 3), optionally with cavities.
 
     Patch boundaries lie at (j + r_j) a, so the distance between renewals is a (1 + r - r'), exactly the
@@ -160,7 +160,7 @@ def self_affine_kernel(hurst: float, lambda_r: float, lambda_s: float, dx: float
     return k * (rms_slope / np.sqrt(np.sum(slope**2)))
 
 
-class SelfAffineTrack(_StreamedTrack):
+class SelfAffineTrack(StreamedTrack):
     """A randomly rough self-affine track, streamed: white noise filtered by a fixed FIR kernel, keeping the
     last kernel-length of noise between chunks, so the profile is exactly stationary across chunk joins.
     Straight segments between grid points, consecutive segments linked with set_neighbors; friction mu0."""
@@ -185,7 +185,7 @@ class SelfAffineTrack(_StreamedTrack):
         self._x_next = float(xs[-1] + self.dx)
 
 
-class BumpTrack(_StreamedTrack):
+class BumpTrack(StreamedTrack):
     """Sparse random asperities (the substrate of model III, section 6): the axis is cut into cells of length
     ``cell``; each cell holds a bump with probability p, a static circle of radius ``bump_radius`` centred in
     the cell whose top stands r h_max above the datum y (r uniform in [0, 1], as model III's cell force

@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import ClassVar
 
 import numpy as np
 import pymunk
@@ -80,13 +79,6 @@ class WearSpec:
     trapped_speed: float = 0.1
     ahead: float = 2e-3
     behind: float = 1e-3
-    quick_duration: ClassVar[float] = 8.0  # s recorded by each of a quick comparison's paired runs (with, without)
-
-    @property
-    def reduced_model(self) -> str | None:
-        """The key in ``reduced_models.MODELS`` of the model that fits a scene with these particles: model II (their
-        forces) when there are any; None without, when the substrate's model fits."""
-        return "model_II" if self.count > 0 else None
 
 
 def check_wear(sc) -> None:
@@ -183,6 +175,8 @@ class NoWear:
     count = 0
     bodies: tuple = ()
     recycle_work = 0.0  # scene energy units
+    reduced_model = None  # no particles: the substrate's model fits the scene
+    quick_duration = None
 
     def __init__(self, spec, scenario):
         self.spec, self.sc = spec, scenario
@@ -261,6 +255,9 @@ class _States:
 
 class Wear(NoWear):
     """The particles of a scene (``wear.count > 0``): built into the scene's space by :meth:`build`."""
+
+    reduced_model = "model_II"  # the key in reduced_models.MODELS of the model that fits a scene with particles
+    quick_duration = 8.0  # s recorded by each of a quick comparison's paired runs (with and without particles)
 
     def validate(self, where: str = "") -> None:
         sc = self.sc

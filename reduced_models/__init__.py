@@ -51,7 +51,21 @@ PARAMS: dict = {}
 
 def register(name: str, module, registry: dict | None = None):
     """Make ``module`` the model ``name`` in ``registry`` (default :data:`MODELS`, and its class in :data:`PARAMS`).
-    Raises TypeError naming the first attribute of :data:`PROTOCOL` the module lacks. Returns the module."""
+
+    Parameters
+    ----------
+    name : str
+        The model's key (a sweep's ``target``, the argument of ``frictionnoise compare``), e.g. ``"model_I"``.
+    module : module
+        The model's module, providing every name of :data:`PROTOCOL`.
+    registry : dict, optional
+        The registry to fill; default :data:`MODELS`.
+
+    Returns
+    -------
+    module
+        ``module``; TypeError naming the first attribute of :data:`PROTOCOL` it lacks otherwise.
+    """
     missing = [a for a in PROTOCOL if not hasattr(module, a)]
     if missing:
         raise TypeError(f"model {name!r} ({getattr(module, '__name__', module)!r}) lacks {missing[0]}: a registered "
@@ -68,7 +82,18 @@ def register(name: str, module, registry: dict | None = None):
 
 
 def model(name: str):
-    """The registered model module ``name``; KeyError naming the registered ones otherwise."""
+    """The registered model module ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`MODELS`.
+
+    Returns
+    -------
+    module
+        The model's module; KeyError naming the registered ones otherwise.
+    """
     try:
         return MODELS[name]
     except KeyError:
@@ -79,3 +104,7 @@ register("model_I", spring_block)
 register("model_Ib", multiscale)
 register("model_II", wear_particle)
 register("model_III", asperity_force)
+from . import ageing, rate_state  # noqa: E402  model I with ageing contacts; the rate-and-state law and spring-slider
+register("model_ageing", ageing)
+from . import vibrating_block  # noqa: E402  model I on a substrate vibrating along the sliding direction
+register("model_Iv", vibrating_block)

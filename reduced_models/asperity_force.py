@@ -33,7 +33,20 @@ RESPONSE = "inertial"  # C_x = C_F / (M^2 omega^4), eq. (3): no velocity-strengt
 
 def fit_band(params: "AsperityForceParams", dt_out: float | None = None) -> tuple[float, float]:
     """The omega^-6 band: 30 v / w (well above the window's first zero 2 pi v / w) to a quarter of the output
-    Nyquist pi / dt_out (the grid's, by default) (Units: rad/s)."""
+    Nyquist pi / dt_out (the grid's, by default).
+
+    Parameters
+    ----------
+    params : AsperityForceParams
+        The model's parameters (SI units).
+    dt_out : float, optional
+        Output step (Units: s); default the grid step ``params.dt``.
+
+    Returns
+    -------
+    tuple of float
+        (low, high) (Units: rad/s).
+    """
     dt = params.dt if dt_out is None else dt_out
     return 30 * params.v / params.w, math.pi / dt / 4
 
@@ -74,7 +87,17 @@ class AsperityForceParams:
 
     @classmethod
     def reference(cls, N: float = 30.0) -> "AsperityForceParams":
-        """Section 7: F_f = 5 N, v = 0.5 mm/s, p = 0.1, M = 1 kg, w = 1 cm; N = 30 (or 300)."""
+        """Section 7 of the paper: F_f = 5 N, v = 0.5 mm/s, p = 0.1, M = 1 kg, w = 1 cm.
+
+        Parameters
+        ----------
+        N : float, optional
+            Mean number of asperity contacts under the block (the paper shows 30 and 300).
+
+        Returns
+        -------
+        AsperityForceParams
+        """
         return cls(N=N)
 
     @property
@@ -98,13 +121,31 @@ class AsperityForceParams:
         return 2.0 * self.F_f / self.N
 
     def to_dict(self) -> dict:
+        """The parameters as a JSON-able dict (SI units), with the derived grid.
+
+        Returns
+        -------
+        dict
+            Field name -> value, plus ``dx`` (m), ``dt`` (s), ``N_w`` (cells under the block) and ``f0`` (N).
+        """
         d = asdict(self)
         d.update(dx=self.dx, dt=self.dt, N_w=self.N_w, f0=self.f0)
         return d
 
 
 def grid_force_variance(params: AsperityForceParams) -> float:
-    """Variance of one cell's force: E[f^2] - E[f]^2 = p f0^2 / 3 - p^2 f0^2 / 4 (Units: N^2)."""
+    """Variance of one cell's force: E[f^2] - E[f]^2 = p f0^2 / 3 - p^2 f0^2 / 4.
+
+    Parameters
+    ----------
+    params : AsperityForceParams
+        The model's parameters (SI units).
+
+    Returns
+    -------
+    float
+        The variance (Units: N^2).
+    """
     p, f0 = params.p, params.f0
     return p * f0**2 / 3.0 - (p * f0 / 2.0) ** 2
 
@@ -145,8 +186,24 @@ def simulate(params: AsperityForceParams, duration: float, dt_out: float | None 
 
     The step is set by the grid, ``params.dt = dx / v``. ``dt_out`` (default: the grid step) samples it: it
     must be a whole number s of grid steps; ``x`` is then every s-th position and ``force`` the mean of F over
-    each output interval (same convention as the other models). Returns a ModelTrace: ``force`` is F(t) on
-    [t_k, t_k + dt_out), ``x`` the block position v t + zeta with M zeta'' = F_f - F, zeta(0) = zeta'(0) = 0.
+    each output interval (same convention as the other models).
+
+    Parameters
+    ----------
+    params : AsperityForceParams
+        The model's parameters (SI units).
+    duration : float
+        Simulated time (Units: s).
+    dt_out : float, optional
+        Output step (Units: s), a whole number of grid steps; default the grid step.
+    seed : int or numpy.random.Generator, optional
+        Seed of the grid's random forces.
+
+    Returns
+    -------
+    ModelTrace
+        ``force`` (N) is F(t) averaged over [t_k, t_k + dt_out); ``x`` (m) the block position v t + zeta with
+        M zeta'' = F_f - F, zeta(0) = zeta'(0) = 0.
     """
     if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
         raise ValueError(f"duration must be a positive number of seconds (got {duration!r})")
@@ -185,23 +242,64 @@ def simulate(params: AsperityForceParams, duration: float, dt_out: float | None 
 
 
 def theory_force_spectrum(params: AsperityForceParams, omega) -> np.ndarray:
-    """Exact C_F of the sampled moving-window force: sigma_g^2 dt/(2 pi) sin^2(N_w theta/2)/sin^2(theta/2),
-    theta = omega dt (Units: N^2 s). Valid for 0 < omega < pi / dt."""
+    """Exact C_F of the sampled moving-window force.
+
+    sigma_g^2 dt/(2 pi) sin^2(N_w theta/2)/sin^2(theta/2), theta = omega dt. Valid for 0 < omega < pi / dt.
+
+    Parameters
+    ----------
+    params : AsperityForceParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s), 0 < omega < pi / dt.
+
+    Returns
+    -------
+    numpy.ndarray
+        C_F at ``omega`` (Units: N^2 s).
+    """
     w = np.asarray(omega, dtype=float)
     th = w * params.dt
     return grid_force_variance(params) * params.dt / (2 * np.pi) * np.sin(params.N_w * th / 2) ** 2 / np.sin(th / 2) ** 2
 
 
 def theory_spectrum(params: AsperityForceParams, omega) -> np.ndarray:
-    """C_x = C_F / (M^2 omega^4), eq. (3) (Units: m^2 s); omega is the angular frequency (Units: rad/s)."""
+    """C_x = C_F / (M^2 omega^4), eq. (3).
+
+    Parameters
+    ----------
+    params : AsperityForceParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s), 0 < omega < pi / dt.
+
+    Returns
+    -------
+    numpy.ndarray
+        C_x at ``omega`` (Units: m^2 s).
+    """
     w = np.asarray(omega, dtype=float)
     return theory_force_spectrum(params, w) / (params.M**2 * w**4)
 
 
 def theory_spectrum_sampled(params: AsperityForceParams, omega) -> np.ndarray:
-    """C_x of the trajectory sampled at the grid: for a piecewise-constant force, x_{k+1} - 2 x_k + x_{k-1}
-    = dt^2 (a_k + a_{k-1}) / 2, so |H|^2 = dt^4 cos^2(theta/2) / (16 sin^4(theta/2)) / M^2. Equals
-    theory_spectrum to O(theta^2) (Units: m^2 s)."""
+    """C_x of the trajectory sampled at the grid.
+
+    For a piecewise-constant force, ``x_{k+1} - 2 x_k + x_{k-1} = dt^2 (a_k + a_{k-1}) / 2``, so
+    ``|H|^2 = dt^4 cos^2(theta/2) / (16 sin^4(theta/2)) / M^2``. Equals :func:`theory_spectrum` to O(theta^2).
+
+    Parameters
+    ----------
+    params : AsperityForceParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s), 0 < omega < pi / dt.
+
+    Returns
+    -------
+    numpy.ndarray
+        C_x at ``omega`` (Units: m^2 s).
+    """
     w = np.asarray(omega, dtype=float)
     th = w * params.dt
     gain = params.dt**4 * np.cos(th / 2) ** 2 / (16 * np.sin(th / 2) ** 4) / params.M**2

@@ -1,5 +1,5 @@
 """Model Ib: the multiscale spring-block model the paper proposes (Xu, Zhou & Persson 2025, Fig. 1c and
-sections 10-11): model I (eqs. A1-A2) with n microblocks elastically tied to each miniblock.
+sections 10-11): model I (eqs. A1-A2) with n microblocks elastically tied to each miniblock::
 
     M x''     = F_drive - sum_i [k0 (x - x_i) + m eta0 (x' - x_i')]
     m x_i''   = -k0 (x_i - x) - m eta0 (x_i' - x') - m eta1 x_i' - f_kin - f_i(t)
@@ -27,14 +27,14 @@ Theory: the transfer-function route of Appendix A, one level down
 ------------------------------------------------------------------
 Fourier transform, per microblock (zeta_ij its deviation):  Q2 zeta_ij = P2 zeta_i - f_ij, with
 Q2 = -m2 w^2 + k2 + i w m2 (eta2 + eta3), P2 = k2 + i w m2 eta2. Per miniblock, (A3) gains the micro
-springs: (Q1 + n P2) zeta_i = P1 zeta + P2 sum_j zeta_ij - f_i. Eliminating zeta_ij,
+springs: (Q1 + n P2) zeta_i = P1 zeta + P2 sum_j zeta_ij - f_i. Eliminating zeta_ij::
 
     Q1~ zeta_i = P1 zeta - (f_i + T2 sum_j f_ij),    Q1~ = Q1 + n P2 (Q2 - P2) / Q2,   T2 = P2 / Q2,
 
 i.e. the miniblock carries, in series, the micro spring P2 and the microblock's own impedance
 Q2 - P2 = -m2 w^2 + i w m2 eta3 (n of them in parallel), and the micro forces reach it filtered by T2. (A4)
 is unchanged, so (A5) holds with Q1 -> Q1~: zeta = Z~ (1/N) sum_i (f_i + T2 sum_j f_ij), Z~ = -P0 / (Q0 Q1~
-- P0 P1). With all forces independent, (A10) becomes
+- P0 P1). With all forces independent, (A10) becomes::
 
     C_x(w) = |Z~(w)|^2 / N * [ C_f1(w) + n |T2(w)|^2 C_f2(w) ],
 
@@ -147,6 +147,11 @@ class MultiscaleParams(_m1.SpringBlockParams):
         A weaker caveat: the miniblock itself moves against the block by up to alpha f_kin / (2 k0) =
         8e-6 m = 0.8 a2 after a macro renewal, so micro renewal phases (not their rate) are off by up to one
         micro interval.
+
+        Returns
+        -------
+        MultiscaleParams
+            Model I's reference case with the micro level above.
         """
         return cls()
 
@@ -168,6 +173,13 @@ class MultiscaleParams(_m1.SpringBlockParams):
                                      F_drive=self.F_drive - self.micro_friction, F_kin=self.F_kin)
 
     def to_dict(self) -> dict:
+        """The parameters as a JSON-able dict (SI units).
+
+        Returns
+        -------
+        dict
+            Model I's fields (as :meth:`SpringBlockParams.to_dict`), the micro level's, and f_kin, f_kin2 (N).
+        """
         d = super().to_dict()
         d.update(f_kin=self.f_kin, f_kin2=self.f_kin2)
         return d
@@ -217,6 +229,21 @@ def simulate(params: MultiscaleParams, duration: float, dt_out: float = 1e-3, se
     (same solver, same trace bit for bit). ``crossing_tol``: renewal crossings are located to this fraction of
     a2 in position (default 1e-6, i.e. 2e-8 s at the reference; the motion between renewals is exact
     whatever it is; benchmarks/bench_multiscale.py gives its cost against the trajectory error).
+
+    Parameters
+    ----------
+    params : MultiscaleParams
+        The model's parameters (SI units).
+    duration : float
+        Simulated time (Units: s); ``round(duration / dt_out)`` samples, the first at t = 0.
+    dt_out : float, optional
+        Output step (Units: s).
+    seed : int or numpy.random.Generator, optional
+        Seed of the renewals' random numbers.
+    micro_events : bool, optional
+        Also return the micro renewal times (``events["micro_times"]``, Units: s).
+    crossing_tol : float, optional
+        Tolerance of the renewal crossings, as a fraction of a2 (dimensionless).
 
     Returns
     -------
@@ -312,8 +339,22 @@ def _simulate_two_level(p: MultiscaleParams, duration, dt_out, seed, micro_event
 
 # ----------------------------------------------------------------------------- theory
 def transfer_functions(params: MultiscaleParams, omega):
-    """(Z~, T2): zeta = Z~ (1/N) sum_i (f_i + T2 sum_j f_ij) (module docstring; (A5) with Q1 -> Q1~)
-    (Units: m/N and 1)."""
+    """(Z~, T2): zeta = Z~ (1/N) sum_i (f_i + T2 sum_j f_ij), (A5) with Q1 -> Q1~ (module docstring).
+
+    Parameters
+    ----------
+    params : MultiscaleParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s), positive.
+
+    Returns
+    -------
+    Z : numpy.ndarray of complex
+        The block's response to the mean miniblock force (Units: m/N).
+    T2 : numpy.ndarray of complex
+        How much of a micro force reaches its miniblock (dimensionless).
+    """
     w = np.asarray(omega, dtype=float)
     p = params
     iw = 1j * w
@@ -341,7 +382,22 @@ def contact_force_spectrum(v, a, amp, omega, closure):
 
 
 def theory_components(params: MultiscaleParams, omega, closure: str = "cumulant"):
-    """(macro, micro) parts of C_x: |Z~|^2 C_f1 / N and |Z~|^2 n |T2|^2 C_f2 / N (Units: m^2 s)."""
+    """(macro, micro) parts of C_x: ``|Z~|^2 C_f1 / N`` and ``|Z~|^2 n |T2|^2 C_f2 / N``.
+
+    Parameters
+    ----------
+    params : MultiscaleParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s), positive.
+    closure : {"cumulant", "exact"}, optional
+        How eq. (A8) averages <cos omega tau> over the renewal interval (see :func:`theory_spectrum`).
+
+    Returns
+    -------
+    macro, micro : numpy.ndarray
+        The two parts at ``omega`` (Units: m^2 s); their sum is :func:`theory_spectrum`.
+    """
     p = params
     Z, T2 = transfer_functions(p, omega)
     Cf1 = contact_force_spectrum(p.v, p.a, p.alpha * p.f_kin, omega, closure)
@@ -350,20 +406,48 @@ def theory_components(params: MultiscaleParams, omega, closure: str = "cumulant"
 
 
 def theory_spectrum(params: MultiscaleParams, omega, closure: str = "cumulant") -> np.ndarray:
-    """C_x(omega) = |Z~|^2 / N [C_f1 + n |T2|^2 C_f2], the generalisation of eq. (A10) (Units: m^2 s), at the
-    angular frequencies omega (Units: rad/s; omega = 2 pi f). ``closure``: how eq. (A8) averages <cos omega tau> over
-    the renewal interval tau = tau0 (1 + r - r') (tau0 = a / v, r and r' uniform), at both levels: "cumulant"
-    (default, the paper's) a Gaussian of tau's mean and variance, exp(-s^2 omega^2 / 2) cos(omega tau0), s^2 =
-    tau0^2 / 6; "exact" tau's own triangular law, cos(omega tau0) sinc^2(omega tau0 / 2), as the simulators draw
-    it. They differ by under 0.03 % below omega tau0 = 0.5 and by at most 5 % near omega tau0 = 4-6.
-    With n = 0 it equals :func:`reduced_models.spring_block.theory_spectrum` (closure "cumulant")."""
+    """C_x(omega) = ``|Z~|^2 / N [C_f1 + n |T2|^2 C_f2]``, the generalisation of eq. (A10).
+
+    ``closure``: how eq. (A8) averages <cos omega tau> over the renewal interval tau = tau0 (1 + r - r')
+    (tau0 = a / v, r and r' uniform), at both levels: "cumulant" (default, the paper's) a Gaussian of tau's mean
+    and variance, exp(-s^2 omega^2 / 2) cos(omega tau0), s^2 = tau0^2 / 6; "exact" tau's own triangular law,
+    cos(omega tau0) sinc^2(omega tau0 / 2), as the simulators draw it. They differ by under 0.03 % below
+    omega tau0 = 0.5 and by at most 5 % near omega tau0 = 4-6. With n = 0 it equals
+    :func:`reduced_models.spring_block.theory_spectrum` (closure "cumulant").
+
+    Parameters
+    ----------
+    params : MultiscaleParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s; omega = 2 pi f), positive.
+    closure : {"cumulant", "exact"}, optional
+        How eq. (A8) averages <cos omega tau> over the renewal interval (see :func:`theory_spectrum`).
+
+    Returns
+    -------
+    numpy.ndarray
+        C_x at ``omega`` (Units: m^2 s), two-sided in angular frequency (eq. 2).
+    """
     c1, c2 = theory_components(params, omega, closure)
     return c1 + c2
 
 
 def micro_macro_ratio(params: MultiscaleParams) -> float:
-    """R = n (a / a2) (alpha2 f_kin2 / (alpha f_kin))^2: the micro part of C_x over the macro part where both
-    forces are white (omega >> v/a2) and T2 ~ 1 (omega << omega3 = k2 / (m2 eta3))."""
+    """R = n (a / a2) (alpha2 f_kin2 / (alpha f_kin))^2, the micro part of C_x over the macro part.
+
+    Where both forces are white (omega >> v/a2) and T2 ~ 1 (omega << omega3 = k2 / (m2 eta3)).
+
+    Parameters
+    ----------
+    params : MultiscaleParams
+        The model's parameters (SI units).
+
+    Returns
+    -------
+    float
+        R (dimensionless); inf when the macro force has no fluctuation.
+    """
     p = params
     if p.alpha * p.f_kin == 0:
         return math.inf
@@ -371,10 +455,22 @@ def micro_macro_ratio(params: MultiscaleParams) -> float:
 
 
 def crossover_frequency(params: MultiscaleParams) -> float:
-    """omega_x where the micro part overtakes the macro part below v/a2 (Units: rad/s), or nan if it never
-    does (R < 12/7). There the micro force is still flat (C_f2 -> <tau2^2> ... = 7 a2 (alpha2 f_kin2)^2 /
-    (144 pi v)) while the macro one falls as v (alpha f_kin)^2 / (12 pi a omega^2) (A9), so their ratio is
-    R (7/12) (omega a2 / v)^2 and omega_x = (v / a2) sqrt(12 / (7 R)) (valid for R >> 1, omega_x >> v/a)."""
+    """omega_x, where the micro part overtakes the macro part below v/a2.
+
+    There the micro force is still flat (C_f2 -> 7 a2 (alpha2 f_kin2)^2 / (144 pi v)) while the macro one falls as
+    v (alpha f_kin)^2 / (12 pi a omega^2) (A9), so their ratio is R (7/12) (omega a2 / v)^2 and
+    omega_x = (v / a2) sqrt(12 / (7 R)) (valid for R >> 1, omega_x >> v/a).
+
+    Parameters
+    ----------
+    params : MultiscaleParams
+        The model's parameters (SI units).
+
+    Returns
+    -------
+    float
+        omega_x (Units: rad/s), or nan if the micro part never overtakes (R < 12/7).
+    """
     R = micro_macro_ratio(params)
     if not R > 12.0 / 7.0:
         return math.nan
@@ -382,10 +478,21 @@ def crossover_frequency(params: MultiscaleParams) -> float:
 
 
 def regime_frequencies(params: MultiscaleParams) -> dict:
-    """The corner frequencies that bound the regimes (Units: rad/s): v/a and v/a2 (renewal), omega3 =
-    k2 / (m2 eta3) (micro contact relaxes through its own friction: T2 falls as omega3/omega above), omega_c
-    (block resonance sqrt(N k0 / M) or viscous N c / M, as in model I), omega2 = sqrt(k2/m2) (micro
-    resonance; overdamped when eta3 > omega2), and omega_x (crossover, nan if none)."""
+    """The corner frequencies that bound the regimes of C_x.
+
+    Parameters
+    ----------
+    params : MultiscaleParams
+        The model's parameters (SI units).
+
+    Returns
+    -------
+    dict
+        (Units: rad/s) ``v_over_a`` and ``v_over_a2`` (renewal rates); ``omega3`` = k2 / (m2 eta3) (the micro
+        contact relaxes through its own friction: T2 falls as omega3/omega above); ``omega_c`` (block resonance
+        sqrt(N k0 / M) or viscous N c / M, as in model I); ``omega2`` = sqrt(k2/m2) (micro resonance; overdamped
+        when eta3 > omega2); ``omega_x`` (the crossover, nan if none).
+    """
     p = params
     c = p.m * p.eta1 + p.n_micro * p.m2 * p.eta3
     return {"v_over_a": p.v / p.a, "v_over_a2": p.v / p.a2, "omega3": p.k2 / (p.m2 * p.eta3) if p.eta3 else math.inf,
@@ -394,13 +501,27 @@ def regime_frequencies(params: MultiscaleParams) -> dict:
 
 
 def asymptotic_spectrum(params: MultiscaleParams, omega, regime: str) -> np.ndarray:
-    """Power-law asymptotes of the two parts of C_x, with c = m eta1 + n m2 eta3 (Z~ -> -1/(i omega c)):
+    """Power-law asymptotes of the two parts of C_x, with c = m eta1 + n m2 eta3 (Z~ -> -1/(i omega c)).
 
     - "macro": v/a << omega << omega_c: alpha^2 v f_kin^2 / (12 pi N a c^2 omega^4) (eq. A11), gamma = 4;
     - "micro_low": omega << v/a2, omega_c: 7 n a2 (alpha2 f_kin2)^2 / (144 pi N v c^2 omega^2), gamma = 2;
     - "micro_white": v/a2 << omega << omega3, omega_c: n alpha2^2 v f_kin2^2 / (12 pi N a2 c^2 omega^4), 4;
     - "micro_filtered": omega3, v/a2 << omega << omega_c: "micro_white" * (omega3 / omega)^2, gamma = 6.
-    (Units: m^2 s)."""
+
+    Parameters
+    ----------
+    params : MultiscaleParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s), positive.
+    regime : {"macro", "micro_low", "micro_white", "micro_filtered"}
+        Which asymptote.
+
+    Returns
+    -------
+    numpy.ndarray
+        The asymptote at ``omega`` (Units: m^2 s).
+    """
     p = params
     w = np.asarray(omega, dtype=float)
     c = p.m * p.eta1 + p.n_micro * p.m2 * p.eta3
@@ -417,7 +538,20 @@ def asymptotic_spectrum(params: MultiscaleParams, omega, regime: str) -> np.ndar
 
 
 def fit_band(params: MultiscaleParams, dt_out: float | None = None) -> tuple[float, float]:
-    """The macro omega^-4 band as in model I: 10 v/a to omega_c / 10 (Units: rad/s)."""
+    """The macro omega^-4 band as in model I: 10 v/a to omega_c / 10.
+
+    Parameters
+    ----------
+    params : MultiscaleParams
+        The model's parameters (SI units).
+    dt_out : float, optional
+        Output step (Units: s); unused, accepted as every model's ``fit_band`` is.
+
+    Returns
+    -------
+    tuple of float
+        (low, high) (Units: rad/s).
+    """
     return 10 * params.v / params.a, regime_frequencies(params)["omega_c"] / 10
 
 

@@ -123,7 +123,13 @@ class SpringBlockParams:
 
     @classmethod
     def reference(cls) -> "SpringBlockParams":
-        """The paper's reference case (section 4): eta1 = 3.33e7 1/s follows from steady sliding."""
+        """The paper's reference case (section 4): eta1 = 3.33e7 1/s follows from steady sliding.
+
+        Returns
+        -------
+        SpringBlockParams
+            N = 30, v = 0.5 mm/s, a = 1 mm, k0 = 1e4 N/m, k1 = 100 N/m, M = 1 kg, m = 1e-5 kg, eta0 = 8e3 1/s, alpha = 1.
+        """
         return cls()
 
     @property
@@ -137,6 +143,13 @@ class SpringBlockParams:
         return self.a / self.v
 
     def to_dict(self) -> dict:
+        """The parameters as a JSON-able dict (SI units).
+
+        Returns
+        -------
+        dict
+            Field name -> value; ``eta1_derived_from_steady_sliding`` says whether eta1 was derived.
+        """
         d = asdict(self)
         d.pop("eta1_derived")
         d["eta1_derived_from_steady_sliding"] = self.eta1_derived
@@ -267,9 +280,8 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float = 1e-3, s
     n_rows = md.C_r.shape[0]
     every = n if not checkpoint_every else max(1, int(round(checkpoint_every / dt_out)))
     key_seed = seed if not n_rows else ("contacts", tuple(_contact_indices(params, contacts).tolist()), seed)
-    st = _load_checkpoint(checkpoint, params, n, dt_out, key_seed) if checkpoint else None
-    if st is None:
-        st = _initial_state(params, md, n, duration, seed)
+    st = (_load_checkpoint(checkpoint, params, n, dt_out, key_seed) if checkpoint else None) or _initial_state(
+        params, md, n, duration, seed)
     st.setdefault("xc", np.empty((0, n_rows)))
     st.setdefault("need_block", True)
     for k_stop in [*range((st["k"] // every + 1) * every, n, every), n]:  # the checkpoints, then the end
@@ -279,17 +291,11 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float = 1e-3, s
     x, ev_count = st["x"], st["ev_count"]
     if not np.all(np.isfinite(x)):
         raise FloatingPointError("model I produced non-finite positions; please report the parameters")
-    meta = {
-        "model": "I (spring-block)",
-        "params": params.to_dict(),
-        "seed": seed if isinstance(seed, (int, type(None))) else "Generator",
-        "duration": n * dt_out,
-        "dt_out": dt_out,
-        "method": ("exact modal propagation between renewals of the " + ("full (N+1)-body system" if contacts else
-                   "2-DOF system block + sum of miniblocks") + "; renewal times by Newton on the exact solution"),
-        "version": package_version(),
-        "n_renewals": ev_count,
-    }
+    meta = {"model": "I (spring-block)", "params": params.to_dict(), "duration": n * dt_out, "dt_out": dt_out,
+            "seed": seed if isinstance(seed, (int, type(None))) else "Generator", "version": package_version(),
+            "method": ("exact modal propagation between renewals of the " + ("full (N+1)-body system" if contacts else
+                       "2-DOF system block + sum of miniblocks") + "; renewal times by Newton on the exact solution"),
+            "n_renewals": ev_count}
     events = {"times": st["ev_time"][:ev_count].copy(), "index": st["ev_index"][:ev_count].copy()}
     if n_rows:
         events["contacts"] = st["xc"]
@@ -304,13 +310,11 @@ def _initial_state(p: SpringBlockParams, md: Modes, n: int, duration: float, see
     forces = p.alpha * p.f_kin * (rng.random(p.N) - 0.5)
     n_rows = md.C_r.shape[0]
     ev_time = np.empty(int(p.N * (p.v * duration * 1.5 / p.a + 2 * BLOCK_INTERVALS)) + 16)
-    return {
-        "rng": rng, "forces": forces, "qr": np.zeros(len(md.lam_r)), "qc": np.zeros(len(md.lam_c), dtype=np.complex128),
-        "gr": md.B_r @ forces, "gc": md.B_c @ forces.astype(np.complex128), "x": np.empty(n), "f": np.empty(n),
-        "xc": np.empty((n if n_rows else 0, n_rows)), "ev_time": ev_time,
-        "ev_index": np.empty(len(ev_time), dtype=np.int64), "ev_count": 0, "k": 0, "b": 0, "pos": np.empty(0),
-        "idx": np.empty(0, dtype=np.int64), "val": np.empty(0), "ptr": 0, "boundary": -np.inf, "need_block": True,
-    }
+    return {"rng": rng, "forces": forces, "qr": np.zeros(len(md.lam_r)), "qc": np.zeros(len(md.lam_c), dtype=complex),
+            "gr": md.B_r @ forces, "gc": md.B_c @ forces.astype(np.complex128), "x": np.empty(n), "f": np.empty(n),
+            "xc": np.empty((n if n_rows else 0, n_rows)), "ev_time": ev_time,
+            "ev_index": np.empty(len(ev_time), dtype=np.int64), "ev_count": 0, "k": 0, "b": 0, "pos": np.empty(0),
+            "idx": np.empty(0, dtype=np.int64), "val": np.empty(0), "ptr": 0, "boundary": -np.inf, "need_block": True}
 
 
 def _next_block(p: SpringBlockParams, st: dict):
@@ -358,8 +362,22 @@ def _advance(p: SpringBlockParams, md: Modes, st: dict, k_stop: int, dt_out: flo
 
 # ----------------------------------------------------------------------------- theory
 def random_force_spectrum(params: SpringBlockParams, omega) -> np.ndarray:
-    """C_f(omega) of one miniblock's random force, eq. (A8) with <cos omega tau> = exp(-s^2 omega^2/2)
-    cos(omega tau0), s^2 = tau0^2 / 6 (Units: N^2 s)."""
+    """C_f(omega) of one miniblock's random force, eq. (A8).
+
+    The renewal interval's <cos omega tau> is closed as exp(-s^2 omega^2/2) cos(omega tau0), s^2 = tau0^2 / 6.
+
+    Parameters
+    ----------
+    params : SpringBlockParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s), positive.
+
+    Returns
+    -------
+    numpy.ndarray
+        C_f at ``omega`` (Units: N^2 s).
+    """
     w = np.asarray(omega, dtype=float)
     tau0 = params.tau0
     mean_cos = np.exp(-(tau0**2 / 6.0) * w**2 / 2.0) * np.cos(w * tau0)
@@ -367,7 +385,20 @@ def random_force_spectrum(params: SpringBlockParams, omega) -> np.ndarray:
 
 
 def transfer_function(params: SpringBlockParams, omega) -> np.ndarray:
-    """Z(omega) = -P0 / S of eq. (A5): zeta(omega) = Z (1/N) sum_i f_i(omega) (Units: m/N). Ignores k1."""
+    """Z(omega) = -P0 / S of eq. (A5): zeta(omega) = Z (1/N) sum_i f_i(omega). Ignores k1.
+
+    Parameters
+    ----------
+    params : SpringBlockParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s), positive.
+
+    Returns
+    -------
+    numpy.ndarray of complex
+        Z at ``omega`` (Units: m/N).
+    """
     w = np.asarray(omega, dtype=float)
     p = params
     iw = 1j * w
@@ -379,15 +410,44 @@ def transfer_function(params: SpringBlockParams, omega) -> np.ndarray:
 
 
 def theory_spectrum(params: SpringBlockParams, omega) -> np.ndarray:
-    """C_x(omega) = |Z|^2 C_f / N, eq. (A10), full Z of (A5) and C_f of (A8) (Units: m^2 s); omega is the angular
-    frequency (Units: rad/s). C_f uses the paper's cumulant closure of <cos omega tau>
-    (:func:`reduced_models.multiscale.theory_spectrum` offers the exact one)."""
+    """C_x(omega) = ``|Z|^2 C_f / N``, eq. (A10), with the full Z of (A5) and C_f of (A8).
+
+    C_f uses the paper's cumulant closure of <cos omega tau> (:func:`reduced_models.multiscale.theory_spectrum`
+    offers the exact one).
+
+    Parameters
+    ----------
+    params : SpringBlockParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s), positive.
+
+    Returns
+    -------
+    numpy.ndarray
+        C_x at ``omega`` (Units: m^2 s), two-sided in angular frequency (eq. 2).
+    """
     return np.abs(transfer_function(params, omega)) ** 2 * random_force_spectrum(params, omega) / params.N
 
 
 def theory_spectrum_coupled(params: SpringBlockParams, omega) -> np.ndarray:
-    """C_x(omega) with the lateral coupling k1, eta_lat included: sum_i |Z_i|^2 C_f, Z_i from the full
-    (N+1)-body dynamic stiffness (the generalisation of eq. A10 to non-identical miniblocks)."""
+    """C_x(omega) with the lateral coupling k1, eta_lat included.
+
+    ``sum_i |Z_i|^2 C_f``, Z_i from the full (N+1)-body dynamic stiffness (the generalisation of eq. A10 to
+    non-identical miniblocks); one linear solve per frequency.
+
+    Parameters
+    ----------
+    params : SpringBlockParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s), positive.
+
+    Returns
+    -------
+    numpy.ndarray
+        C_x at ``omega`` (Units: m^2 s).
+    """
     Mm, D, K = _second_order(params)
     w = np.atleast_1d(np.asarray(omega, dtype=float))
     out = np.empty(len(w))
@@ -400,37 +460,101 @@ def theory_spectrum_coupled(params: SpringBlockParams, omega) -> np.ndarray:
 
 
 def asymptotic_spectrum(params: SpringBlockParams, omega) -> np.ndarray:
-    """eq. (A11): alpha^2 v f_kin^2 / (12 pi N a (m eta1)^2 omega^4); equals eq. (6)/(A12),
-    alpha^2 v^3 / (12 pi N a omega^4), when m eta1 v = f_kin. Valid for v/a << omega << omega_c."""
+    """The omega^-4 asymptote, eq. (A11): alpha^2 v f_kin^2 / (12 pi N a (m eta1)^2 omega^4).
+
+    Equals eq. (6)/(A12), alpha^2 v^3 / (12 pi N a omega^4), when m eta1 v = f_kin. Valid for v/a << omega << omega_c.
+
+    Parameters
+    ----------
+    params : SpringBlockParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s), positive.
+
+    Returns
+    -------
+    numpy.ndarray
+        The asymptote at ``omega`` (Units: m^2 s).
+    """
     w = np.asarray(omega, dtype=float)
     p = params
     return p.alpha**2 * p.v * p.f_kin**2 / (12.0 * np.pi * p.N * p.a * (p.m * p.eta1) ** 2 * w**4)
 
 
 def crossover_frequency(params: SpringBlockParams) -> float:
-    """omega_c: where the block-on-springs resonance sqrt(N k0 / M) ends the omega^-4 band, or the viscous
-    crossover N m eta1 / M if that is lower (Units: rad/s). From the expansion of S(omega) in (A5)."""
+    """omega_c, the top of the omega^-4 band.
+
+    The block-on-springs resonance sqrt(N k0 / M), or the viscous crossover N m eta1 / M if that is lower; from the
+    expansion of S(omega) in (A5).
+
+    Parameters
+    ----------
+    params : SpringBlockParams
+        The model's parameters (SI units).
+
+    Returns
+    -------
+    float
+        omega_c (Units: rad/s).
+    """
     p = params
     return min(math.sqrt(p.N * p.k0 / p.M), p.N * p.m * p.eta1 / p.M)
 
 
 def fit_band(params: SpringBlockParams, dt_out: float | None = None) -> tuple[float, float]:
-    """The omega^-4 band of eq. (6): 10 v/a to omega_c / 10 (Units: rad/s). May be empty (hi < 2 lo) when
-    v/a approaches omega_c; callers then fall back on the automatic band."""
+    """The omega^-4 band of eq. (6): 10 v/a to omega_c / 10.
+
+    May be empty (hi < 2 lo) when v/a approaches omega_c; callers then fall back on the automatic band.
+
+    Parameters
+    ----------
+    params : SpringBlockParams
+        The model's parameters (SI units).
+    dt_out : float, optional
+        Output step (Units: s); unused (the band does not depend on it), accepted as every model's ``fit_band`` is.
+
+    Returns
+    -------
+    tuple of float
+        (low, high) (Units: rad/s).
+    """
     return 10 * params.v / params.a, crossover_frequency(params) / 10
 
 
 def mean_renewal_interval(params: SpringBlockParams) -> float:
-    """Mean time between renewals on the whole block, a / (N v) (Fig. 14) (Units: s)."""
+    """Mean time between renewals on the whole block, a / (N v) (Fig. 14).
+
+    Parameters
+    ----------
+    params : SpringBlockParams
+        The model's parameters (SI units).
+
+    Returns
+    -------
+    float
+        The interval (Units: s).
+    """
     return params.a / (params.N * params.v)
 
 
 def displacement_variance(params: SpringBlockParams, L0) -> np.ndarray:
-    """<(zeta(t + L0/v) - zeta(t))^2> for L0 >> a: the random walk of Appendix A (Units: m^2).
+    """<(zeta(t + L0/v) - zeta(t))^2> for L0 >> a: the random walk of Appendix A.
 
     Each renewal interval tau of a force u moves the block by -u tau / (N m eta1); with the renewal rate
     N v / a, <u^2> = alpha^2 f_kin^2 / 12 and <tau^2> = 7 tau0^2 / 6 this diffuses as
     7 alpha^2 a L0 f_kin^2 / (72 N (m eta1 v)^2), i.e. 7 alpha^2 a L0 / (72 N) when m eta1 v = f_kin.
+
+    Parameters
+    ----------
+    params : SpringBlockParams
+        The model's parameters (SI units).
+    L0 : float or array_like
+        Sliding distance (Units: m).
+
+    Returns
+    -------
+    numpy.ndarray
+        The variance (Units: m^2).
     """
     p = params
     L0 = np.asarray(L0, dtype=float)
@@ -438,8 +562,22 @@ def displacement_variance(params: SpringBlockParams, L0) -> np.ndarray:
 
 
 def rms_displacement(params: SpringBlockParams, L0) -> np.ndarray:
-    """zeta_rms after sliding L0, eq. (A13): sqrt(7 / (72 pi^2) L0 a / N) (times alpha f_kin / (m eta1 v)),
-    the paper's estimate with the low-frequency cut-off omega_0 = pi v / L0 (Units: m)."""
+    """zeta_rms after sliding L0, eq. (A13): sqrt(7 / (72 pi^2) L0 a / N) (times alpha f_kin / (m eta1 v)).
+
+    The paper's estimate with the low-frequency cut-off omega_0 = pi v / L0.
+
+    Parameters
+    ----------
+    params : SpringBlockParams
+        The model's parameters (SI units).
+    L0 : float or array_like
+        Sliding distance (Units: m).
+
+    Returns
+    -------
+    numpy.ndarray
+        zeta_rms (Units: m).
+    """
     return np.sqrt(displacement_variance(params, L0) / np.pi**2)
 
 

@@ -15,8 +15,11 @@ Two force modes:
   signal); its exact spectrum is a Lorentzian with tau_c = tau_A tau_B / (tau_A + tau_B). Over a
   log-uniform spread of times it gives the same 1/f level as (B2) but corners shifted by up to 2x.
 
-Eq. (B2): C_F(omega) = (N/pi) Int dtau dtau' P_A(tau) P_B(tau') / (omega^2 (tau + tau'))
-            [c_A^2 (1 - <cos omega tau_A>) + c_B^2 (1 - <cos omega tau_B>)];
+Eq. (B2)::
+
+    C_F(omega) = (N/pi) Int dtau dtau' P_A(tau) P_B(tau') / (omega^2 (tau + tau'))
+                 [c_A^2 (1 - <cos omega tau_A>) + c_B^2 (1 - <cos omega tau_B>)];
+
 with P c^2 ~ tau^-beta and tau^-beta', C_F ~ omega^(beta + beta' - 3); log-uniform times (beta = beta' = 1)
 give 1/f force noise and C_x ~ omega^-5.
 """
@@ -41,8 +44,22 @@ RESPONSE = "inertial"  # C_x = C_F / (M^2 omega^4), eq. (3): the block has no ve
 
 
 def fit_band(params: "WearParticleParams", dt_out: float | None = None):
-    """None: the exponent depends on the duration laws (eq. B2), so the automatic straight-stretch band of
-    ``compare.fits.fit_power_law`` is used."""
+    """The band of the model's power law: None, the automatic band.
+
+    The exponent depends on the duration laws (eq. B2), so the automatic straight-stretch band of
+    ``compare.fits.fit_power_law`` is used.
+
+    Parameters
+    ----------
+    params : WearParticleParams
+        The model's parameters (SI units).
+    dt_out : float, optional
+        Output step (Units: s); unused, accepted as every model's ``fit_band`` is.
+
+    Returns
+    -------
+    None
+    """
     return None
 
 _LAWS = ("exponential", "fixed", "pareto")
@@ -88,12 +105,36 @@ class DurationLaw:
                 raise ValueError("pareto durations take one scale: set tau_max equal to tau_min")
 
     def means_at(self, u: np.ndarray) -> np.ndarray:
-        """Per-particle mean durations at uniform variates u in [0, 1) (log-uniform in [tau_min, tau_max])."""
+        """Per-particle mean durations, log-uniform in [tau_min, tau_max].
+
+        Parameters
+        ----------
+        u : array_like
+            Uniform variates in [0, 1) (dimensionless).
+
+        Returns
+        -------
+        numpy.ndarray
+            The mean durations (Units: s).
+        """
         a, b = math.log(self.tau_min), math.log(self.tau_max)
         return np.exp(a + (b - a) * np.asarray(u, dtype=float))
 
     def mean_cos(self, omega: np.ndarray, tau: np.ndarray) -> np.ndarray:
-        """<cos(omega T)> for durations T of this law with mean tau (broadcasting omega against tau)."""
+        """<cos(omega T)> for durations T of this law with mean tau (broadcasting omega against tau).
+
+        Parameters
+        ----------
+        omega : array_like
+            Angular frequencies (Units: rad/s).
+        tau : array_like
+            Mean durations (Units: s).
+
+        Returns
+        -------
+        numpy.ndarray
+            <cos(omega T)> (dimensionless).
+        """
         x = omega * tau
         if self.kind == "exponential":
             return 1.0 / (1.0 + x**2)
@@ -169,17 +210,35 @@ class WearParticleParams:
 
     @classmethod
     def one_over_f(cls, n_particles: int = 1000) -> "WearParticleParams":
-        """Log-uniform relaxation times over 4 decades (10 ms to 100 s), the same for both states of a
-        particle: every particle gives a Lorentzian of level ~ tau and corner 1/tau, and the log-uniform
-        spread sums them to exact 1/f force noise between the corners, gamma = 5.
+        """Log-uniform relaxation times over 4 decades (10 ms to 100 s), the same for both states.
+
+        Every particle gives a Lorentzian of level ~ tau and corner 1/tau, and the log-uniform spread sums them to
+        exact 1/f force noise between the corners, gamma = 5.
 
         With independently drawn tau_A and tau_B (``tau_link="independent"``) eq. (B2) has a logarithmic
         divergence at small tau' (the weight 1/(tau + tau')): C_F ~ omega^-1 ln(1/(omega tau_min)), which
         reads as a slope of about -1.25 over 0.1-10 rad/s here.
+
+        Parameters
+        ----------
+        n_particles : int, optional
+            Number of particles.
+
+        Returns
+        -------
+        WearParticleParams
+            The 1/f case, with the trapped and sliding times of a particle linked (``tau_link="same_rank"``).
         """
         return cls(n_particles=n_particles, tau_link="same_rank")
 
     def to_dict(self) -> dict:
+        """The parameters as a JSON-able dict (SI units).
+
+        Returns
+        -------
+        dict
+            Field name -> value (the duration laws as dicts).
+        """
         return asdict(self)
 
 
@@ -266,6 +325,22 @@ def simulate(params: WearParticleParams, duration: float, dt_out: float = 1e-3, 
     The block moves by M zeta'' = -(F - <F>) integrated exactly over each interval, using each interval's
     force integral and first moment (no within-step approximation). <F> is the ensemble mean (0 in
     "independent" mode; sum_n (c_A tau_A + c_B tau_B)/(tau_A + tau_B) in "telegraph" mode).
+
+    Parameters
+    ----------
+    params : WearParticleParams
+        The model's parameters (SI units).
+    duration : float
+        Simulated time (Units: s).
+    dt_out : float, optional
+        Output step (Units: s).
+    seed : int or numpy.random.Generator, optional
+        Seed of the durations' random numbers.
+
+    Returns
+    -------
+    ModelTrace
+        ``t`` (s), ``x`` (m), ``force`` (N: the particles' summed force averaged over each output step).
     """
     for name, val in (("duration", duration), ("dt_out", dt_out)):
         if not (isinstance(val, (int, float)) and math.isfinite(val) and val > 0):
@@ -336,16 +411,33 @@ def _pairs(P: "WearParticleParams", order: int):
 
 def theory_force_spectrum(params: WearParticleParams, omega, *, closure: str = "exact", order: int = 12,
                           dt_avg: float | None = None) -> np.ndarray:
-    """C_F(omega) (Units: N^2 s).
+    """C_F(omega) of the particles' summed force.
 
     Mode "independent": eq. (B2), integrated over the joint law of the per-particle means (independent:
-    P_A(tau) P_B(tau') as in the paper; same_rank: one variate) by Gauss-Legendre panels. ``closure="exact"`` uses the duration law's own <cos omega tau> (1/(1 + omega^2 tau^2) for
-    exponential); ``closure="cumulant"`` uses the paper's exp(-s^2 omega^2/2) cos(omega tau) with
-    s^2 = tau^2 (exponential), 0 (fixed) or the Pareto variance.
-    Mode "telegraph": the exact random-telegraph Lorentzian sum over the same distribution,
+    P_A(tau) P_B(tau') as in the paper; same_rank: one variate) by Gauss-Legendre panels. ``closure="exact"``
+    uses the duration law's own <cos omega tau> (1/(1 + omega^2 tau^2) for exponential); ``closure="cumulant"``
+    uses the paper's exp(-s^2 omega^2/2) cos(omega tau) with s^2 = tau^2 (exponential), 0 (fixed) or the Pareto
+    variance. Mode "telegraph": the exact random-telegraph Lorentzian sum over the same distribution,
     (c_A - c_B)^2 p_A p_B tau_c / (pi (1 + omega^2 tau_c^2)).
-    ``dt_avg``: the spectrum of the force averaged over intervals of that length (as ``simulate`` returns
-    it), i.e. times sinc^2(omega dt_avg / 2) (aliases neglected: they fall as omega^-4 here).
+
+    Parameters
+    ----------
+    params : WearParticleParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s), positive.
+    closure : {"exact", "cumulant"}, optional
+        The average of <cos omega tau> over a duration law.
+    order : int, optional
+        Gauss-Legendre points per panel of the integral over the per-particle means.
+    dt_avg : float, optional
+        Averaging interval (Units: s): the spectrum of the force averaged over intervals of that length (as
+        ``simulate`` returns it), i.e. times sinc^2(omega dt_avg / 2) (aliases neglected: they fall as omega^-4).
+
+    Returns
+    -------
+    numpy.ndarray
+        C_F at ``omega`` (Units: N^2 s).
     """
     P = params
     w = np.atleast_1d(np.asarray(omega, dtype=float))
@@ -387,7 +479,22 @@ def _avg_gain(w, dt_avg):
 
 
 def theory_spectrum(params: WearParticleParams, omega, **kw) -> np.ndarray:
-    """C_x = C_F / (M^2 omega^4), eq. (3) (Units: m^2 s); omega is the angular frequency (Units: rad/s)."""
+    """C_x = C_F / (M^2 omega^4), eq. (3).
+
+    Parameters
+    ----------
+    params : WearParticleParams
+        The model's parameters (SI units).
+    omega : array_like
+        Angular frequencies (Units: rad/s), positive.
+    **kw
+        Passed to :func:`theory_force_spectrum` (``closure``, ``order``, ``dt_avg``).
+
+    Returns
+    -------
+    numpy.ndarray
+        C_x at ``omega`` (Units: m^2 s).
+    """
     w = np.asarray(omega, dtype=float)
     return theory_force_spectrum(params, w, **kw) / (params.M**2 * w**4)
 
@@ -399,6 +506,17 @@ def power_law_prediction(params: WearParticleParams) -> dict:
     beta = 1 - 2 kappa_A, beta' = 1 - 2 kappa_B. The power law holds between the corners, about
     10 / tau_max and 0.1 / tau_min (for 4 decades of tau this leaves 2 decades); above 1/tau_min C_F
     tends to omega^-2 (gamma = 6), below 1/tau_max it flattens (gamma = 4).
+
+    Parameters
+    ----------
+    params : WearParticleParams
+        The model's parameters (SI units).
+
+    Returns
+    -------
+    dict
+        ``beta``, ``beta_prime``, ``force_slope`` (the exponent of C_F), ``gamma`` (of C_x = 4 - force_slope),
+        ``band`` ((low, high) in rad/s, or None when the corners leave none) and a ``note``.
     """
     beta = 1 - 2 * params.kappa_A
     beta_p = 1 - 2 * params.kappa_B

@@ -35,3 +35,18 @@ def power_law_series(gamma: int, n: int, seed: int) -> np.ndarray:
     for _ in range(gamma // 2):
         x = np.cumsum(x)
     return x
+
+
+def power_law_record(n: int, dt: float, gamma: float, seed: int, over: int = 4) -> np.ndarray:
+    """n samples of a series whose spectrum is exactly omega^-gamma (any real gamma), by Fourier synthesis.
+
+    Gaussian coefficients with |c|^2 ~ omega^-gamma over a periodic series ``over`` times longer, of which the first
+    n samples are returned: the window is not periodic, so an estimator meets the leakage of a real record.
+    """
+    rng = np.random.default_rng(seed)
+    m = over * n
+    w = 2 * np.pi * np.fft.rfftfreq(m, dt)
+    amp = np.zeros_like(w)
+    amp[1:] = w[1:] ** (-gamma / 2)
+    c = (rng.standard_normal(len(w)) + 1j * rng.standard_normal(len(w))) * amp
+    return np.fft.irfft(c, m)[:n]

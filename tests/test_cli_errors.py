@@ -185,9 +185,16 @@ def test_format_by_content_not_name(tmp_path, out, capsys):
     assert main(["compare", str(csv), "-o", str(out)]) == 2
     _assert_user_error(capsys, out, "data.npz", "not a .npz trace file (text, not a zip archive)")
     csv2 = tmp_path / "data.toml"
-    csv2.write_text("t,x\n0,0\n1,1\n")  # CSV named .toml
+    csv2.write_text("t,x\n0,0\n1,1\n")  # CSV named .toml: a table of numbers, whatever its name
     assert main(["run", str(csv2), "-o", str(out)]) == 2
-    _assert_user_error(capsys, out, "data.toml", "not valid TOML")
+    _assert_user_error(capsys, out, "data.toml", "not a scenario TOML file", "frictionnoise analyze")
+    bad = tmp_path / "bad.toml"
+    bad.write_text("name = \n")  # text that is neither TOML nor a table
+    assert main(["run", str(bad), "-o", str(out)]) == 2
+    _assert_user_error(capsys, out, "bad.toml", "not valid TOML")
+    bad.write_text('name = "s"\nv = [\n  1e-4, 2e-4,\n  3e-4, 4e-4,\n]\n[grid\nk = 1\nj = 2\nm = 3\n')  # numbers in a
+    assert main(["run", str(bad), "-o", str(out)]) == 2  # broken TOML's array are not a data table
+    _assert_user_error(capsys, out, "bad.toml", "not valid TOML")
 
 
 @pytest.mark.parametrize("cmd", ["run", "render", "compare", "report"])
@@ -321,3 +328,60 @@ def test_compare_too_short_for_the_model_I_band_says_how_long(out, capsys):
         need = int(last.split("at least ")[1].split(" s")[0])
         assert need == 2, last  # 3 v/a = 15-19 rad/s needs segments of 512 samples at 1 ms, 3 of them
         assert sorted(p.name for p in out.iterdir()) == ["keep.txt"]
+
+
+# ----------------------------------------------------------------------------- pointers to the right command
+@pytest.mark.parametrize("cmd", ["compare", "run", "render"])
+@pytest.mark.parametrize("name, text", [("my.csv", "time_s,x_um\n0.00,0.0\n0.01,4.67\n0.02,9.37\n"),
+                                        ("export.txt", "Instrument: X\nTime;Ff\ns;N\n0,0;1,5\n0,1;1,6\n0,2;1,4\n"),
+                                        ("tab.dat", "t\tx\n0\t1e-6\n1\t2e-6\n")])
+def test_a_data_table_points_to_analyze(cmd, name, text, tmp_path, out, capsys, monkeypatch):
+    """Measured data given where a scenario or trace belongs: one line saying to use `frictionnoise analyze`
+    (it was "not valid TOML"), exit 2, nothing written; CSV, ;-separated with decimal commas, tab-separated."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / name).write_text(text)
+    before = sorted(p.name for p in tmp_path.iterdir())
+    assert main([cmd, name, "-o", str(out)]) == 2
+    _assert_user_error(capsys, out, name, "measured data", f"`frictionnoise analyze {name}`")
+    assert sorted(p.name for p in tmp_path.iterdir()) == before
+
+
+@pytest.mark.parametrize("cmd", ["run", "compare", "render"])
+def test_near_miss_scenario_name_suggests_the_name(cmd, tmp_path, capsys, monkeypatch):
+    """A typo in a shipped name: "did you mean pads_with_wear?" and the pointer to `frictionnoise scenarios`; exit 2,
+    one line, no output folder (neither -o's nor the default one)."""
+    monkeypatch.chdir(tmp_path)
+    assert main([cmd, "pads_with_wears"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err, err
+    assert "pads_with_wears: no such file" in err and "did you mean pads_with_wear?" in err, err
+    assert "`frictionnoise scenarios`" in err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_near_miss_names_of_models_and_far_misses(tmp_path, out, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["compare", "model_1", "-o", str(out)]) == 2  # compare also takes the registered models' names
+    _assert_user_error(capsys, out, "model_1", "did you mean model_I", "reduced models: model_I")
+    assert main(["run", "pads_friction_patchs.toml", "-o", str(out)]) == 2  # a name with .toml is a name too
+    _assert_user_error(capsys, out, "did you mean pads_friction_patches?")
+    assert main(["run", "zzz", "-o", str(out)]) == 2  # nothing close: no guess, still the pointer
+    err = capsys.readouterr().err
+    assert "did you mean" not in err and "`frictionnoise scenarios`" in err and err.count("\n") == 1, err
+    assert main(["run", "sub/pads_with_wears", "-o", str(out)]) == 2  # a path with a folder is a path, not a name
+    _assert_user_error(capsys, out, "no such file")
+
+
+@pytest.mark.parametrize("args, needle", [(["--mass", "nan"], "--mass must be positive"),
+                                          (["--mass", "0"], "--mass must be positive"),
+                                          (["--mass=-inf"], "--mass must be positive"),
+                                          (["--speed", "1e-3"], "--speed applies to force data only"),
+                                          (["--normal-col", "x"], "--normal-col applies to force data only"),
+                                          (["--band", "nan", "10"], "--band must be two finite")])
+def test_analyze_displacement_flags(args, needle, tmp_path, out, capsys):
+    """x(t) needs no --mass and takes --method; the force-only flags and bad numbers are one line, exit 2."""
+    f = tmp_path / "x.csv"
+    t = np.arange(2000) * 1e-3
+    f.write_text("t_s,x_mm\n" + "".join(f"{a:.3f},{b:.6f}\n" for a, b in zip(t, t)))
+    assert main(["analyze", str(f), *args, "-o", str(out)]) == 2
+    _assert_user_error(capsys, out, needle)

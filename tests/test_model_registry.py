@@ -64,7 +64,7 @@ def test_an_unknown_sweep_target_names_the_registered_models(toy, tmp_path):
     path.write_text('target = "nope"\n[grid]\nv = [1e-3]\n')
     from compare.sweep import SweepError
 
-    with pytest.raises(SweepError, match="model_I, model_Ib, model_II, model_III, toy, scenario"):
+    with pytest.raises(SweepError, match="model_I, model_Ib, model_II, model_III, model_ageing, model_Iv, toy, scenario"):
         load_sweep(path)
 
 

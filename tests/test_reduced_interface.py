@@ -5,7 +5,7 @@ import pytest
 
 from reduced_models import MODELS, PARAMS, asperity_force
 
-DEFAULTS = {"model_I": {}, "model_Ib": {}, "model_II": {"n_particles": 20}, "model_III": {}}
+DEFAULTS = {"model_I": {}, "model_Ib": {}, "model_II": {"n_particles": 20}, "model_III": {}, "model_ageing": {}, "model_Iv": {}}
 
 
 @pytest.mark.parametrize("key", sorted(MODELS))

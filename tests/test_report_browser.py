@@ -4,7 +4,8 @@ reachable from the table of contents, and a screenshot of the first screen is sa
 
 The report is a quick one restricted to two real studies (model III and the tilted-plane scene), so the test
 costs well under a minute. Skipped, with the reason, where no browser or driver is installed (.ci/run installs
-them with apt-get)."""
+them with apt-get); under CI (CI=true) that is a failure."""
+import os
 import shutil
 import time
 
@@ -18,17 +19,24 @@ pytestmark = pytest.mark.slow  # a report built (about 7 s) and a browser starte
 FIRST_SCREEN_PX = 900  # a 1280 x 900 browser window: the summary table ends above its bottom edge
 
 
+def _missing(reason: str):
+    """Skip saying what is missing; under CI (CI=true), which installs the browser, fail instead."""
+    if os.environ.get("CI"):
+        pytest.fail(f"{reason} (CI=true: the browser tests must run)")
+    pytest.skip(reason)
+
+
 def _browser():
-    """(chromium, chromedriver) paths, or skip saying what is missing."""
+    """(chromium, chromedriver) paths, or skip (fail under CI) saying what is missing."""
     try:
         import selenium  # noqa: F401
     except ImportError:
-        pytest.skip("selenium is not installed (pip install -e '.[test]')")
+        _missing("selenium is not installed (pip install -e '.[test]')")
     chrome = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
     driver = shutil.which("chromedriver")
     if not chrome or not driver:
-        pytest.skip("no headless browser: install Debian's chromium and chromium-driver (apt-get install -y chromium "
-                    "chromium-driver), as .ci/run does")
+        _missing("no headless browser: install Debian's chromium and chromium-driver (apt-get install -y chromium "
+                 "chromium-driver), as .ci/run does")
     return chrome, driver
 
 

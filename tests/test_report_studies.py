@@ -200,9 +200,10 @@ def test_paired_runs_fill_one_bar_and_logs_name_the_warm_up():
 
 
 def test_process_pool_returns_results_and_ends_its_workers_on_an_interrupt():
-    # compare.pool: the report's worker processes (spawned). Results come back; a KeyboardInterrupt in the parent
+    # compare.report.pool: the report's worker processes (spawned). Results come back; a KeyboardInterrupt in the parent
     # while a worker is busy ends that worker at once (terminate, then kill) instead of waiting for its task.
     import math
+    import multiprocessing
     import time
 
     from compare.report.pool import process_pool
@@ -213,9 +214,9 @@ def test_process_pool_returns_results_and_ends_its_workers_on_an_interrupt():
     with pytest.raises(KeyboardInterrupt):
         with process_pool(1) as pool:
             busy = pool.submit(time.sleep, 60)
-            procs = list(pool._processes.values())
             while not busy.running():
                 time.sleep(0.01)
+            procs = multiprocessing.active_children()  # the pool's worker, running its task
             raise KeyboardInterrupt
     assert time.perf_counter() - t0 < 30 and procs and not any(p.is_alive() for p in procs)
 

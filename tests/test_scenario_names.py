@@ -30,11 +30,21 @@ def test_unknown_name_lists_the_shipped_ones(tmp_path, monkeypatch, capsys):
     assert "no_such_scene" in capsys.readouterr().err
 
 
-def test_scenarios_command_lists_every_scene_with_one_line(capsys):
+@pytest.mark.parametrize("columns", [80, 100, 200])
+def test_scenarios_command_prints_whole_first_sentences_wrapped(columns, capsys, monkeypatch):
+    """Each scene's name, then the first sentence of its description whole (never cut mid-word, no "..."), wrapped
+    to the terminal's width under a hanging indent."""
+    monkeypatch.setenv("COLUMNS", str(columns))
     assert main(["scenarios"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    assert [ln.split()[0] for ln in lines] == sorted(shipped_scenarios())
-    assert all(len(ln) < 140 for ln in lines)
+    names = sorted(shipped_scenarios())
+    assert [ln.split()[0] for ln in lines if not ln.startswith(" ")] == names
+    assert all(len(ln) < columns for ln in lines)
+    text = " ".join(ln.strip() for ln in lines)
+    for name in names:
+        first = scenario_summary(load_scenario(name).description, width=10**6)
+        assert f"{name} {first}" in " ".join(text.split()), name
+        assert first.endswith(".") and "..." not in first
 
 
 def test_summary_keeps_abbreviations_whole():

@@ -21,11 +21,32 @@ class SpectralAssertionError(AssertionError):
 
 def assert_spectral_slope(t, x, expected: float, tol: float, band=None, method: str | None = None,
                           **spectrum_kwargs) -> PowerLawFit:
-    """Assert that C_x of x(t) falls as omega^-gamma with |gamma - expected| <= tol.
+    """Assert that C_x of x(t) falls as omega^-gamma with ``abs(gamma - expected) <= tol``.
 
-    ``band`` (rad/s) and ``method`` ("whittle" or "lsq"; default :data:`compare.fits.DEFAULT_METHOD`) are
-    passed to :func:`compare.fits.fit_power_law` (auto band when None); extra keyword arguments go to
-    :func:`compare.spectra.displacement_spectrum`. Returns the fit on success.
+    For pytest: on failure it raises :class:`SpectralAssertionError`, an AssertionError whose message carries the
+    measured gamma, its 95 % interval, the band and the method.
+
+    Parameters
+    ----------
+    t : array_like
+        Uniform sample times (Units: s).
+    x : array_like
+        Positions (Units: m).
+    expected : float
+        The expected exponent gamma (dimensionless).
+    tol : float
+        The allowed deviation of the fitted gamma; choose it from the fit's own interval, not from one seed.
+    band : tuple of float, optional
+        Fit band (Units: rad/s); default the automatic band of :func:`compare.fits.fit_power_law`.
+    method : {"whittle", "lsq"}, optional
+        The fit method; default :data:`compare.fits.DEFAULT_METHOD`.
+    **spectrum_kwargs
+        Passed to :func:`compare.spectra.displacement_spectrum` (``detrend``, ``prewhiten``, ``nperseg``).
+
+    Returns
+    -------
+    PowerLawFit
+        The fit, when the assertion holds.
     """
     spec = displacement_spectrum(t, x, **spectrum_kwargs)
     fit = fit_power_law(spec, band=band, method=method)
@@ -39,10 +60,26 @@ def assert_spectral_slope(t, x, expected: float, tol: float, band=None, method: 
 
 
 def assert_spectrum_matches(spectrum: Spectrum, theory, edges, rtol: float) -> np.ndarray:
-    """Assert that the band averages of ``spectrum`` and ``theory(omega)`` agree within ``rtol``.
+    """Assert that the band averages of a spectrum and of a prediction agree within ``rtol``.
 
-    ``theory`` is a callable of omega (rad/s) or an array on ``spectrum.omega``; ``edges`` are the band
-    edges (rad/s). Both are averaged over the same ordinates. Returns the per-band ratios.
+    Both are averaged over the same ordinates (:func:`compare.spectra.band_average`); on failure
+    :class:`SpectralAssertionError` lists the bands outside 1 +- rtol with their ratios.
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        The measured or simulated spectrum.
+    theory : callable or array_like
+        The prediction: a function of omega (Units: rad/s) or an array on ``spectrum.omega``, in the spectrum's unit.
+    edges : array_like
+        Band edges (Units: rad/s), increasing.
+    rtol : float
+        The allowed relative deviation of each band's ratio from 1.
+
+    Returns
+    -------
+    numpy.ndarray
+        The per-band ratios spectrum / theory.
     """
     vals = theory(spectrum.omega) if callable(theory) else np.asarray(theory)
     ratio = band_average(spectrum, edges) / band_average(spectrum, edges, vals)

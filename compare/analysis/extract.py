@@ -21,25 +21,10 @@ import math
 
 import numpy as np
 
+from reduced_models.correlation import correlation_length
+
 __all__ = ["model_I_parameters", "spring_block_params", "model_III_parameters", "asperity_force_params", "scene_info",
            "friction_slope"]
-
-
-def _correlation_length(x: np.ndarray, f: np.ndarray, max_lag_distance: float) -> float:
-    """Int_0^{s0} rho(s) ds over the pads' force series, rho averaged over pads, up to its first zero."""
-    dx = float(np.mean(np.diff(x)))
-    fz = f - f.mean(axis=0)
-    n = len(fz)
-    nfft = 1 << int(math.ceil(math.log2(2 * n)))
-    F = np.fft.rfft(fz, nfft, axis=0)
-    ac = np.fft.irfft(np.abs(F) ** 2, nfft, axis=0)[:n].mean(axis=1)
-    ac /= (n - np.arange(n))  # unbiased
-    rho = ac / ac[0]
-    m = min(n - 1, int(max_lag_distance / dx))
-    seg = rho[: m + 1]
-    stop = np.flatnonzero(seg <= 0)
-    end = int(stop[0]) if stop.size else m
-    return float(np.trapezoid(seg[: end + 1], dx=dx))
 
 
 def scene_info(trace, scenario=None) -> dict:
@@ -70,7 +55,7 @@ def model_I_parameters(trace, scenario=None) -> dict:
     f = trace.pad_force
     f_kin = float(np.mean(f))
     rms = float(np.mean(np.std(f, axis=0)))
-    Lc = _correlation_length(trace.x, f, 10 * info["length_scale"])
+    Lc = correlation_length(trace.x, f, 10 * info["length_scale"])
     a = 12.0 / 7.0 * Lc
     c_law = friction_slope(info["friction_law"], v)
     c_meas = float(np.mean(trace.F_drag) / (N_contact * v))

@@ -92,11 +92,28 @@ class PowerLawFit:
         return not self.flags
 
     def level(self, omega):
-        """The fitted line, prefactor * omega^-gamma, at ``omega`` (rad/s)."""
+        """The fitted line, prefactor * omega^-gamma.
+
+        Parameters
+        ----------
+        omega : array_like
+            Angular frequencies (Units: rad/s).
+
+        Returns
+        -------
+        numpy.ndarray
+            The line's level at ``omega`` (the fitted spectrum's unit).
+        """
         return self.prefactor * np.asarray(omega, dtype=float) ** (-self.gamma)
 
     def to_dict(self) -> dict:
-        """JSON-ready: the keys ``gamma``, ``gamma_err``, ``band`` plus the rest."""
+        """JSON-ready: the keys ``gamma``, ``gamma_err``, ``band`` plus the rest.
+
+        Returns
+        -------
+        dict
+            Every field (arrays as lists), and ``power_law``.
+        """
         return {
             "gamma": self.gamma, "gamma_err": self.gamma_err, "band": [self.band[0], self.band[1]],
             "gamma_se": self.gamma_se, "prefactor": self.prefactor, "n_points": self.n_points,
@@ -287,7 +304,7 @@ def _automatic_band(spectrum: Spectrum, bins_per_decade: int, min_decades: float
 
 def fit_power_law(spectrum: Spectrum, band=None, *, bins_per_decade: int = 10,
                   min_decades: float = 1.0, method: str | None = None) -> PowerLawFit:
-    """Fit C(omega) = A omega^-gamma over ``band`` (rad/s), or over an automatically chosen band.
+    """Fit C(omega) = A omega^-gamma over a band, or over an automatically chosen one.
 
     ``method``: ``"lsq"`` (weighted least squares on log-binned Welch ordinates) or ``"whittle"`` (Whittle
     likelihood on the raw periodogram of the pre-whitened series; needs a spectrum from
@@ -295,6 +312,25 @@ def fit_power_law(spectrum: Spectrum, band=None, *, bins_per_decade: int = 10,
     back to ``"lsq"`` (with a note) for a spectrum that carries no raw periodogram. See the module docstring
     for both methods, the band rules and the meaning of the uncertainty. The fit carries ``flags`` when the
     band spans less than a decade or the log-log residuals curve significantly (``power_law`` is then False).
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        The spectrum to fit (any quantity, eq. 2 convention).
+    band : tuple of float, optional
+        (low, high) (Units: rad/s); default the widest straight stretch between 4 frequency steps and Nyquist/16.
+    bins_per_decade : int, optional
+        Log bins per decade (least squares, the automatic band and the curvature test of binned spectra).
+    min_decades : float, optional
+        The automatic band's least width (decades of frequency).
+    method : {"whittle", "lsq"}, optional
+        The estimator; default :data:`DEFAULT_METHOD`.
+
+    Returns
+    -------
+    PowerLawFit
+        ``gamma`` (dimensionless), ``gamma_err`` (its 95 % half-width), ``gamma_se`` (1 sigma), ``prefactor`` A
+        (the spectrum's unit times (rad/s)^gamma), ``band`` (rad/s), ``flags`` and ``method``.
     """
     notes = []
     if method is None:

@@ -191,6 +191,16 @@ def series_spectrum(
         picks ``k = round(gamma_pilot / 2)`` from a pilot slope estimate.
     nperseg : int, optional
         Welch segment length in samples (default: about 16 half-overlapping segments).
+    quantity, unit : str
+        What the spectrum is of and the unit of its ``C`` (e.g. "x", "m^2 s"), recorded on the result.
+    name : str
+        The series' name in error messages and in the provenance.
+
+    Returns
+    -------
+    Spectrum
+        C(omega) for omega > 0 (Units: rad/s), two-sided in angular frequency (eq. 2), with the raw
+        periodogram for the Whittle fit and ``provenance`` (the processing chain).
     """
     t, y, dt = _as_series(t, y, name)
     n = len(y)
@@ -258,16 +268,44 @@ def series_spectrum(
 
 def displacement_spectrum(t, x, *, detrend: str = "linear", prewhiten: int | str = "auto",
                           nperseg: int | None = None) -> Spectrum:
-    """C_x(omega) of the noise zeta = x - (x0 + v t), eq. (2), with v fitted (Units: m^2 s).
+    """C_x(omega) of the noise zeta = x - (x0 + v t), eq. (2), with v fitted.
 
-    See :func:`series_spectrum` for the parameters. ``provenance["mean_velocity"]`` is the fitted v.
+    Parameters
+    ----------
+    t : array_like
+        Uniform sample times (Units: s).
+    x : array_like
+        Positions (Units: m).
+    detrend, prewhiten, nperseg
+        As in :func:`series_spectrum` (default: the linear trend v t removed, pre-whitening chosen from a pilot
+        slope).
+
+    Returns
+    -------
+    Spectrum
+        C_x (Units: m^2 s) against omega (Units: rad/s); ``provenance["mean_velocity"]`` is the fitted v (m/s).
     """
     return series_spectrum(t, x, quantity="x", unit="m^2 s", detrend=detrend, prewhiten=prewhiten,
                            nperseg=nperseg, name="x")
 
 
 def force_series_spectrum(t, F, *, prewhiten: int | str = "auto", nperseg: int | None = None) -> Spectrum:
-    """C_F(omega) of a recorded force series F(t) (mean removed), eq. (2) convention (Units: N^2 s)."""
+    """C_F(omega) of a recorded force series F(t), mean removed, eq. (2) convention.
+
+    Parameters
+    ----------
+    t : array_like
+        Uniform sample times (Units: s).
+    F : array_like
+        Forces (Units: N).
+    prewhiten, nperseg
+        As in :func:`series_spectrum`.
+
+    Returns
+    -------
+    Spectrum
+        C_F (Units: N^2 s) against omega (Units: rad/s).
+    """
     return series_spectrum(t, F, quantity="F", unit="N^2 s", detrend="constant", prewhiten=prewhiten,
                            nperseg=nperseg, name="F")
 
@@ -282,7 +320,20 @@ def rescaled(spec: Spectrum, factor, quantity: str, unit: str, step: str) -> Spe
 
 
 def force_spectrum(spectrum: Spectrum, mass: float) -> Spectrum:
-    """C_F = M^2 omega^4 C_x, eq. (3) (inertial relation; Units: N^2 s)."""
+    """C_F = M^2 omega^4 C_x, eq. (3): the force spectrum of a free block (inertial relation).
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        A displacement spectrum (``quantity == "x"``, m^2 s).
+    mass : float
+        The block mass M (Units: kg).
+
+    Returns
+    -------
+    Spectrum
+        C_F (Units: N^2 s) on the same frequencies.
+    """
     if spectrum.quantity != "x":
         raise ValueError(f"force_spectrum needs a displacement spectrum (got quantity {spectrum.quantity!r})")
     if not mass > 0:
@@ -292,7 +343,20 @@ def force_spectrum(spectrum: Spectrum, mass: float) -> Spectrum:
 
 
 def friction_coefficient_spectrum(spectrum: Spectrum, g: float = G_STANDARD) -> Spectrum:
-    """C_mu = omega^4 C_x / g^2 (section 2; Units: s)."""
+    """C_mu = omega^4 C_x / g^2 (paper section 2), the friction coefficient's spectrum.
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        A displacement spectrum (``quantity == "x"``, m^2 s).
+    g : float, optional
+        Gravitational acceleration (Units: m/s^2).
+
+    Returns
+    -------
+    Spectrum
+        C_mu (Units: s) on the same frequencies.
+    """
     if spectrum.quantity != "x":
         raise ValueError(
             f"friction_coefficient_spectrum needs a displacement spectrum (got quantity {spectrum.quantity!r})"
@@ -325,10 +389,22 @@ def _band_mask(spectrum: Spectrum, band) -> np.ndarray:
 
 
 def rms_from_spectrum(spectrum: Spectrum, band=None) -> float:
-    """sqrt(2 Int C domega) over ``band`` (default: all resolved frequencies), eq. (4).
+    """sqrt(2 Int C domega) over a band, eq. (4).
 
-    For an un-binned spectrum each ordinate stands for a frequency cell of width d_omega (rectangle
-    rule, which is what Parseval's theorem sums); a log-binned spectrum is integrated by trapezoids.
+    For an un-binned spectrum each ordinate stands for a frequency cell of width d_omega (rectangle rule, which is
+    what Parseval's theorem sums); a log-binned spectrum is integrated by trapezoids.
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        Any spectrum in the eq. (2) convention.
+    band : tuple of float, optional
+        (low, high) (Units: rad/s); default all resolved frequencies.
+
+    Returns
+    -------
+    float
+        The rms (Units: the square root of the spectrum's unit over s, e.g. m for C_x).
     """
     mask = _band_mask(spectrum, band)
     om, C = spectrum.omega[mask], spectrum.C[mask]
@@ -343,10 +419,24 @@ def rms_from_spectrum(spectrum: Spectrum, band=None) -> float:
 def log_bin(spectrum: Spectrum, bins_per_decade: int = 10, band=None) -> Spectrum:
     """Average a spectrum in logarithmic frequency bins.
 
-    Each bin's ``C`` is the arithmetic mean of its ordinates (an unbiased level); its ``omega`` is the
-    geometric mean of the members' frequencies. ``n_avg`` counts the members. ``provenance`` gains
-    ``log_mean_C``: the mean of ln C over each bin, which for a power law sits exactly on the line at the
-    bin's geometric-mean frequency (the fit in :mod:`compare.fits` uses it).
+    Each bin's ``C`` is the arithmetic mean of its ordinates (an unbiased level); its ``omega`` is the geometric
+    mean of the members' frequencies. ``n_avg`` counts the members. ``provenance`` gains ``log_mean_C``: the mean
+    of ln C over each bin, which for a power law sits exactly on the line at the bin's geometric-mean frequency
+    (the least-squares fit in :mod:`compare.fits` uses it).
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        The spectrum to bin.
+    bins_per_decade : int, optional
+        Number of bins per decade of frequency.
+    band : tuple of float, optional
+        (low, high) (Units: rad/s) to bin; default all.
+
+    Returns
+    -------
+    Spectrum
+        The binned spectrum (same units).
     """
     if bins_per_decade < 1:
         raise ValueError(f"bins_per_decade must be >= 1 (got {bins_per_decade})")
@@ -375,8 +465,22 @@ def log_bin(spectrum: Spectrum, bins_per_decade: int = 10, band=None) -> Spectru
 def band_average(spectrum: Spectrum, edges, values=None) -> np.ndarray:
     """Mean of ``values`` (default ``spectrum.C``) over the ordinates inside each band [edges[i], edges[i+1]).
 
-    Evaluate a theory on ``spectrum.omega`` and pass it as ``values`` to average it over exactly the
-    same ordinates, so per-band ratios carry no binning bias.
+    Evaluate a theory on ``spectrum.omega`` and pass it as ``values`` to average it over exactly the same
+    ordinates, so per-band ratios carry no binning bias.
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        The spectrum whose frequencies define the ordinates.
+    edges : array_like
+        Band edges (Units: rad/s), increasing.
+    values : array_like, optional
+        Values on ``spectrum.omega`` (e.g. a closed form); default ``spectrum.C``.
+
+    Returns
+    -------
+    numpy.ndarray
+        One mean per band (the unit of ``values``).
     """
     edges = np.asarray(edges, dtype=float)
     vals = spectrum.C if values is None else np.asarray(values, dtype=float)

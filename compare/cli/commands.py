@@ -12,13 +12,21 @@ __all__ = ["cmd_analyze", "cmd_compare", "cmd_render", "cmd_report", "cmd_run", 
 
 
 def cmd_scenarios(args) -> int:
+    """Each shipped scenario's name and the first whole sentence of its description, wrapped to the terminal's
+    width (``COLUMNS``, else the terminal's, else 100) under a hanging indent; words are never cut."""
+    import shutil
+    import textwrap
+
     from engine_sim import load_scenario, shipped_scenarios
     from engine_sim.scenario import scenario_summary
 
     shipped = shipped_scenarios()
     width = max(map(len, shipped), default=0)
+    columns = max(shutil.get_terminal_size((100, 24)).columns, width + 40)
     for name, path in shipped.items():
-        print(f"{name:{width}s}  {scenario_summary(load_scenario(path).description)}")
+        sentence = scenario_summary(load_scenario(path).description, width=10**6)  # the whole first sentence
+        print(textwrap.fill(sentence, width=columns - 1, initial_indent=f"{name:{width}s}  ",
+                            subsequent_indent=" " * (width + 2), break_long_words=False, break_on_hyphens=False))
     return 0
 
 
@@ -65,41 +73,45 @@ def cmd_sweep(args) -> int:
     return 0 if counts["failed"] == 0 else 1
 
 
+def _print_breaks(timeline, most: int = 10):
+    """The breaks of a record's time stamps, one line each (at most ``most``), and its uniform segments."""
+    if timeline is None or not timeline.events:
+        return
+    for e in timeline.events[:most]:
+        print(f"time stamps: {e.describe()}")
+    if len(timeline.events) > most:
+        print(f"time stamps: ... and {len(timeline.events) - most} more breaks (all in summary.json)")
+    used = timeline.usable()
+    print(f"time stamps: {len(timeline.segments)} uniform segments, {len(used)} long enough to analyse (steps "
+          f"{', '.join(f'{s.dt:.4g}' for s in used)} s)")
+
+
 def cmd_analyze(args) -> int:
     from pathlib import Path
 
     from ..report.html import write_report
     from ..io.measured import DataFileError, read_measured, units_line
 
-    import math
-
     from ..io.inputs import input_file, sniff
 
     if sniff(input_file(args.data)) != "text":  # kind, emptiness, binary; the format is read by compare.io.measured
         raise UserError(f"{args.data}: binary data, not a CSV text file")
     force = args.force_col is not None
-    if args.mass is not None and not (args.mass > 0 and math.isfinite(args.mass)):
-        raise UserError(f"--mass must be positive (got {args.mass})")
-    if not force and args.mass is None:
-        raise UserError("--mass is required for displacement data (or give --force-col for force data)")
-    if args.speed is not None and not (args.speed > 0 and math.isfinite(args.speed)):
-        raise UserError(f"--speed must be a positive number of m/s (got {args.speed})")
-    if args.cut is not None and not (args.cut >= 0 and math.isfinite(args.cut)):
-        raise UserError(f"--cut must be >= 0 s (got {args.cut})")
-    if args.band is not None and not all(math.isfinite(b) for b in args.band):
-        raise UserError(f"--band must be two finite frequencies in rad/s (got {args.band[0]} {args.band[1]})")
+    _check_analyze_numbers(args)
     if not force:
-        for flag in ("normal_col", "direction_col", "speed", "cut", "method", "force_unit"):
+        for flag in ("normal_col", "direction_col", "speed", "cut", "force_unit"):
             if getattr(args, flag) is not None:
                 raise UserError(f"--{flag.replace('_', '-')} applies to force data only (give --force-col)")
     try:
         data = read_measured(args.data, time_col=args.time_col, x_col=args.x_col, force_col=args.force_col,
                              normal_col=args.normal_col, direction_col=args.direction_col, time_unit=args.time_unit,
-                             x_unit=args.x_unit, force_unit=args.force_unit, require_x=not force)
+                             x_unit=args.x_unit, force_unit=args.force_unit, require_x=not force,
+                             resample=args.resample)
     except DataFileError as e:
         raise UserError(str(e)) from None
     if data.warning:
         print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)
+    _print_breaks(data.timeline)
     out = output_dir(args.output, f"analyze-{Path(args.data).stem}", "index.html and summary.json")
     band = tuple(args.band) if args.band else None
     try:
@@ -109,29 +121,56 @@ def cmd_analyze(args) -> int:
             an = analyze_force(data, band=band, mass=args.mass, speed=args.speed, cut=args.cut, method=args.method)
             sections, summary = build_force_report(an)
         else:
+            from ..analysis.displacement import analyze_displacement
             from ..report.measured_report import build_measured_report
 
-            sections, summary = build_measured_report(data, args.mass, band=band)
+            an = analyze_displacement(data, mass=args.mass, band=band, method=args.method)
+            sections, summary = build_measured_report(an, data)
             summary["units"] = data.units
     except ValueError as e:
         raise UserError(f"{args.data}: {e}") from None
     write_report(out, sections, summary)
     print(f"{args.data}: {units_line(data)}")
-    if force:
-        st = summary["strokes"]
-        f = summary["fit_F"]
-        print(f"strokes ({st['method']}): {st['found']} found, {st['used']} used, {len(st['dropped'])} dropped; "
-              f"{st['cut_each_end_s']:.4g} s cut at each end")
-        print(f"wrote {out / 'index.html'}: force exponent {f['gamma']:.3f} +- {f['gamma_err']:.3f} (95 %, {f['method']}) "
-              f"over {f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s" + ("" if f["power_law"] else
-                                                                    f" [not a power law: {'; '.join(f['flags'])}]"))
-    else:
-        f = summary["fit"]
-        print(f"wrote {out / 'index.html'}: gamma = {summary['gamma']:.3f} +- {summary['gamma_err']:.3f} over "
-              f"{summary['band'][0]:.3g}-{summary['band'][1]:.3g} rad/s, mean velocity "
-              f"{summary['mean_velocity']:.4g} m/s" + ("" if f["power_law"] else
-                                                       f" [not a power law: {'; '.join(f['flags'])}]"))
+    for line in (_force_lines if force else _displacement_lines)(summary, out / "index.html"):
+        print(line)
     return 0
+
+
+def _check_analyze_numbers(args) -> None:
+    import math
+
+    for flag, value, what in (("--mass", args.mass, "kg"), ("--speed", args.speed, "m/s")):
+        if value is not None and not (value > 0 and math.isfinite(value)):
+            raise UserError(f"{flag} must be positive, in {what} (got {value})")
+    if args.cut is not None and not (args.cut >= 0 and math.isfinite(args.cut)):
+        raise UserError(f"--cut must be >= 0 s (got {args.cut})")
+    if args.band is not None and not all(math.isfinite(b) for b in args.band):
+        raise UserError(f"--band must be two finite frequencies in rad/s (got {args.band[0]} {args.band[1]})")
+
+
+def _fit_text(f: dict) -> str:
+    """A fit as the terminal shows it: exponent, 95 % half-width, method, band, and its flags."""
+    return (f"{f['gamma']:.3f} +- {f['gamma_err']:.3f} (95 %, {f['method']}) over {f['band'][0]:.3g}-"
+            f"{f['band'][1]:.3g} rad/s" + ("" if f["power_law"] else f" [not a power law: {'; '.join(f['flags'])}]"))
+
+
+def _force_lines(summary: dict, index) -> list:
+    st = summary["strokes"]
+    return [f"strokes ({st['method']}): {st['found']} found, {st['used']} used, {len(st['dropped'])} dropped; "
+            f"{st['cut_each_end_s']:.4g} s cut at each end",
+            f"wrote {index}: force exponent {_fit_text(summary['fit_F'])}"]
+
+
+def _displacement_lines(summary: dict, index) -> list:
+    lines = [f"wrote {index}: C_x ~ omega^-gamma, gamma = {_fit_text(summary['fit'])}; mean velocity "
+             f"{summary['mean_velocity']:.4g} m/s; zeta_rms = {summary['zeta_rms_m']:.4g} m, mu_rms = "
+             f"{summary['mu_rms']:.4g} (C_mu = omega^4 C_x / g^2)"]
+    if "fit_F" in summary:
+        lines.append(f"  C_F = M^2 omega^4 C_x (M = {summary['mass_kg']:g} kg, eq. 3): force exponent "
+                     f"{_fit_text(summary['fit_F'])}; F_rms = {summary['F_rms_N']:.4g} N")
+    else:
+        lines += [f"  {n}" for n in summary["notes"]]
+    return lines
 
 
 def cmd_render(args) -> int:
@@ -195,6 +234,24 @@ def cmd_run(args) -> int:
         raise
 
 
+def _before_run(sc, args, resuming: bool):
+    """What the run says before it starts: what its parts did to their inputs (a measured profile resampled), and
+    its projected wall time when that exceeds a minute (engine_sim.forecast: a probe of about a second)."""
+    from engine_sim.forecast import LONG_RUN_S, forecast
+
+    from .compile_notice import compile_notice
+
+    for note in sc.substrate_part.notes():
+        print(f"frictionnoise: note: {note}", file=sys.stderr, flush=True)
+    if resuming:
+        return
+    with compile_notice():  # the probe records a sample: the recorder's kernel loads (or compiles) here
+        fc = forecast(sc, duration=args.duration, seed=args.seed)
+    if fc.wall_s > LONG_RUN_S:
+        print(f"frictionnoise: note: {fc.line()}; --duration shortens it, Ctrl-C stops it and keeps what was "
+              "recorded", file=sys.stderr, flush=True)
+
+
 def _run_into(args, sc, out, ck) -> int:
     import engine_sim
 
@@ -210,6 +267,7 @@ def _run_into(args, sc, out, ck) -> int:
             print(f"checkpoints every {every_s:g} s (whole epochs of {epoch_s:g} s)", file=sys.stderr)
     from .compile_notice import compile_notice
 
+    _before_run(sc, args, resuming=ck is not None and ck.exists())
     bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration)
     with bar, compile_notice():  # the recorder's and friction laws' kernels compile on a fresh install
         try:
@@ -273,9 +331,11 @@ def cmd_compare(args) -> int:
 
     from ..io.inputs import input_file, sniff
 
+    from reduced_models import MODELS
+
     if _registered_model(args.source):
         return _compare_model(args)
-    src = input_file(scenario_path(args.source))
+    src = input_file(scenario_path(args.source, models=tuple(MODELS)))
     check_seed(args.seed)
     kind = sniff(src)
     if kind == "binary":
@@ -304,10 +364,12 @@ def cmd_compare(args) -> int:
     try:
         with compile_notice():  # the reduced model's kernels compile on the first comparison after an install
             if trace is None:
-                # the recorded duration as the study sets it (--duration, else the scenario's); a wear scene runs
-                # twice, with and without its particles (compare.report.studies.scene_wear)
+                # the recorded duration as the study sets it (--duration, else the scenario's), times the scene
+                # runs its comparison makes (a wear scene's: with and without its particles)
+                from ..report.studies.scenes import scene_runs
+
                 bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration,
-                                           runs=2 if sc.wear.count > 0 else 1)
+                                           runs=scene_runs(sc))
                 with bar:
                     sections, summary = build_scene_report(sc, duration=args.duration, seed=args.seed,
                                                            progress=update)

@@ -2,7 +2,10 @@
 folder, seed, scenario), each refusing bad input with one line."""
 from __future__ import annotations
 
-__all__ = ["UserError", "output_dir", "check_seed", "scenario_path", "load_scenario_arg", "usable_cores"]
+import os
+
+__all__ = ["UserError", "output_dir", "check_seed", "scenario_path", "load_scenario_arg", "nearest_names", "data_table",
+           "usable_cores"]
 
 
 class UserError(Exception):
@@ -34,12 +37,14 @@ def check_seed(seed):
         raise UserError(f"--seed must be a whole number from 0 to 2^63 - 1 (got {seed})")
 
 
-def scenario_path(arg) -> str:
+def scenario_path(arg, models=()) -> str:
     """A scenario argument as a path: an existing path as given (it wins over a shipped name of the same
-    spelling), else the shipped scenario of that name, else as given (the input layer then names the problem)."""
-    import os
+    spelling), else the shipped scenario of that name. A bare name (no folder) that is neither is a UserError that
+    offers the nearest shipped names (and of ``models``, the other names the command takes) and points to
+    ``frictionnoise scenarios``; any other path is returned as given (the input layer then names the problem)."""
+    from pathlib import Path
 
-    from engine_sim import ScenarioError
+    from engine_sim import ScenarioError, shipped_scenarios
     from engine_sim.scenario import resolve_scenario
 
     if os.path.lexists(arg):
@@ -47,16 +52,69 @@ def scenario_path(arg) -> str:
     try:
         return str(resolve_scenario(arg))
     except ScenarioError:
+        pass
+    p = Path(arg)
+    if p.parent != Path(".") or p.suffix.lower() not in ("", ".toml"):
         return arg
+    raise UserError(f"{arg}: no such file, nor a shipped scenario{' or reduced model' if models else ''}"
+                    f"{nearest_names(p.stem, [*shipped_scenarios(), *models])}"
+                    " (`frictionnoise scenarios` lists the shipped scenarios"
+                    + (f"; reduced models: {', '.join(models)})" if models else ")"))
 
 
-def load_scenario_arg(path):
+def nearest_names(name: str, names) -> str:
+    """'; did you mean X?' (or 'X or Y?') for the names closest to ``name`` by difflib's ratio, else ''."""
+    import difflib
+
+    close = difflib.get_close_matches(name, list(names), n=2, cutoff=0.6)
+    if not close:
+        close = [n for n in names if n.lower() == name.lower()]
+    return f"; did you mean {' or '.join(close)}?" if close else ""
+
+
+def data_table(path) -> bool:
+    """Whether a text file reads as a table of numbers (a CSV/TXT data export) rather than TOML: from its first line
+    that splits, by one separator, into two or more numbers (decimal commas allowed with ';' or tab), at least two
+    lines do and they are most of the lines (a TOML array spread over lines is not a table)."""
+    with open(path, "rb") as fh:
+        lines = [ln for ln in fh.read(8192).decode("utf-8", "replace").splitlines()[:200] if ln.strip()]
+    for sep in (",", ";", "\t"):
+        numeric = [_numeric_row(ln, sep) for ln in lines]
+        if True in numeric:
+            rest = numeric[numeric.index(True):]
+            if sum(rest) >= 2 and 2 * sum(rest) > len(rest):
+                return True
+    return False
+
+
+def _numeric_row(line: str, sep: str) -> bool:
+    cells = [c.strip() for c in line.split(sep) if c.strip()]
+    return len(cells) >= 2 and all(_number(c if sep == "," else c.replace(",", ".")) for c in cells)
+
+
+def _number(cell: str) -> bool:
+    try:
+        float(cell)
+    except ValueError:
+        return False
+    return True
+
+
+def load_scenario_arg(path, models=()):
+    """The validated scenario named by a command's argument (a path or a shipped name; see :func:`scenario_path`).
+    A table of numbers given where a scenario belongs is one line pointing to ``frictionnoise analyze``."""
     from engine_sim import ScenarioError, scenario_from_dict
 
-    from ..io.inputs import read_toml
+    from ..io.inputs import InputError, read_toml, sniff
 
-    path = scenario_path(path)
-    data = read_toml(path, "scenario TOML file")
+    path = scenario_path(path, models)
+    try:
+        data = read_toml(path, "scenario TOML file")
+    except InputError:
+        if os.path.isfile(path) and sniff(path) == "text" and data_table(path):
+            raise UserError(f"{path}: a table of numbers (measured data), not a scenario TOML file; analyse measured "
+                            f"x(t) or F(t) with `frictionnoise analyze {path}`") from None
+        raise
     try:
         return scenario_from_dict(data, where=str(path))
     except ScenarioError as e:

@@ -102,8 +102,9 @@ def build_parser() -> argparse.ArgumentParser:
     an.add_argument("data", help="text table (CSV, ;- or tab-separated; preamble, units row and decimal commas are read): "
                                  "time and displacement or force columns")
     an.add_argument("--mass", type=float, default=None,
-                    help="block mass M (kg): required for displacement data (C_F = M^2 omega^4 C_x, eq. 3); with force "
-                         "data it adds the equivalent C_x of a free block")
+                    help="block mass M (kg), optional: with displacement data it adds C_F = M^2 omega^4 C_x (eq. 3) "
+                         "and the force exponent (gamma, C_x, C_mu and the velocity need no mass); with force data "
+                         "it adds the equivalent C_x of a free block")
     an.add_argument("--time-col", default=None, help="time column name (default: the first)")
     an.add_argument("--x-col", default=None, help="displacement column name (default: the second, unless --force-col)")
     an.add_argument("--force-col", default=None, help="friction-force column: analyse force data (C_F, force exponent)")
@@ -120,8 +121,13 @@ def build_parser() -> argparse.ArgumentParser:
     an.add_argument("--cut", type=float, default=None, metavar="S",
                     help="seconds cut at each end of a stroke (default: 10 %% of the median stroke)")
     an.add_argument("--method", default=None, choices=["whittle", "lsq"],
-                    help="exponent fit for force data (default: compare.fits.DEFAULT_METHOD)")
+                    help="exponent fit, for displacement and force data alike (default: "
+                         "compare.analysis.fits.DEFAULT_METHOD)")
     an.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"), help="fit band (rad/s)")
+    an.add_argument("--resample", type=float, default=None, metavar="DT",
+                    help="time stamps that change rate, skip, repeat or step back: put the record on one grid of DT "
+                         "seconds (faster segments low-passed first; the filter is stated) instead of analysing its "
+                         "uniform segments separately and together")
     an.add_argument("-o", "--output", default=None, help="output folder (default: analyze-<file stem>)")
     an.set_defaults(func=cmd_analyze)
     return ap

@@ -12,10 +12,11 @@ What is read (instrument exports as they come):
   says which unit was used for each column and where it came from.
 
 Only what cannot be read is refused, with a :class:`DataFileError` naming the file, the line and the reason:
-a non-numeric or missing value in a column that is used, time that does not increase, a gap (a step more than
-3x the median step: a spectrum over a gap is not defined). Smaller irregularities are resampled onto a uniform
-grid by linear interpolation, with a warning that says how much they were. Blank lines and ``#`` comments
-inside the table are skipped.
+a non-numeric or missing value in a column that is used. Time stamps are kept as written and their breaks found
+(:mod:`compare.analysis.timeline`: rate changes, gaps, repeated or backward stamps, each with its line, time and
+size): such a record is analysed segment by segment, or put on one grid on request (``resample``) behind a stated
+anti-alias filter. Jitter without breaks is resampled onto a uniform grid by linear interpolation, with a warning
+that says how much it was. Blank lines and ``#`` comments inside the table are skipped.
 """
 from __future__ import annotations
 
@@ -37,7 +38,6 @@ FORCE_UNITS = {"N": 1.0, "mN": 1e-3, "kN": 1e3}
 _KINDS = {"time": TIME_UNITS, "x": X_UNITS, "force": FORCE_UNITS}
 _ALIASES = {"µm": "um", "μm": "um", "micron": "um", "microns": "um", "µs": "us", "μs": "us", "sec": "s",
             "msec": "ms", "newton": "N"}
-_GAP = 3.0  # a step > 3 median steps is a gap
 _JITTER_OK = 1e-6  # relative step spread below which no resampling is needed
 _MIN_ROWS = 64
 _SEPARATORS = (";", "\t", ",")
@@ -49,7 +49,7 @@ class DataFileError(ValueError):
 
 @dataclass(frozen=True)
 class MeasuredData:
-    """A uniformly sampled measured record in SI units.
+    """A measured record in SI units, uniformly sampled or in uniform segments (``segmented``).
 
     ``t`` (s, starting at 0), and whichever of ``x`` (m), ``F`` (friction force, N), ``N`` (normal force, N),
     ``direction`` (the raw direction column) the file held and the caller asked for. ``units`` maps each
@@ -67,6 +67,13 @@ class MeasuredData:
     direction: np.ndarray | None = None
     units: dict = field(default_factory=dict)
     layout: dict = field(default_factory=dict)
+    timeline: object = None  # compare.analysis.timeline.Timeline of the time stamps as written
+
+    @property
+    def segmented(self) -> bool:
+        """True when ``t`` holds the stamps as written, in uniform segments between breaks (``timeline.events``):
+        analyse segment by segment (compare.analysis.segments)."""
+        return self.timeline is not None and bool(self.timeline.events) and not self.resampled
 
 
 # ----------------------------------------------------------------------------- parsing helpers
@@ -269,8 +276,8 @@ def _unit_scale(tab: _Table, k: int, kind: str, given: str | None, flag: str, ke
 
 def _rows(tab: _Table, cols: dict) -> tuple[dict, list]:
     """({key: values in the file's units}, [line index of each row]): every data row's numbers, checked finite
-    and with increasing time."""
-    src, lines, it = tab.src, tab.lines, cols["t"][0]
+    (the time stamps as written: compare.analysis.timeline reads their breaks)."""
+    src, lines = tab.src, tab.lines
     values = {k: [] for k in cols}
     line_of = []
     for i in range(tab.first, len(lines)):
@@ -290,9 +297,6 @@ def _rows(tab: _Table, cols: dict) -> tuple[dict, list]:
             if not math.isfinite(v):
                 raise DataFileError(f"{src}, line {i + 1}: NaN or infinite value in column {tab.header[k]!r}")
             row[key] = v
-        if line_of and row["t"] <= values["t"][-1]:
-            raise DataFileError(f"{src}, line {i + 1}: time {cells[it]} does not increase (previous "
-                                f"{lines[line_of[-1]].split(tab.sep)[it].strip()})")
         for key, v in row.items():
             values[key].append(v)
         line_of.append(i)
@@ -301,19 +305,37 @@ def _rows(tab: _Table, cols: dict) -> tuple[dict, list]:
     return values, line_of
 
 
-def _uniform(src: str, t: np.ndarray, arr: dict, line_of: list):
-    """(t, arr, warning, resampled): a gap is refused; a jittered grid is resampled onto a uniform one (linear
-    interpolation; a direction label takes the nearest earlier sample)."""
+def _uniform(src: str, t: np.ndarray, arr: dict, line_of: list, resample: float | None):
+    """(t, arr, warning, resampled, timeline). Breaks in the time stamps (compare.analysis.timeline: rate changes,
+    gaps, repeated or backward stamps) leave the record as written, in uniform segments, unless ``resample`` (s)
+    asks for one grid (compare.analysis.segments.resample_record, its filter stated in the warning); a jittered
+    grid without breaks is resampled onto a uniform one (linear interpolation; a direction label takes the
+    nearest earlier sample)."""
+    from ..analysis.segments import resample_record
+    from ..analysis.timeline import MIN_ROWS, find_segments
+
+    tl = find_segments(t, lines=np.asarray(line_of) + 1)
+    if resample is not None:
+        label = arr.pop("direction", None)
+        tu, arr, statement = resample_record(t, arr, tl, resample)
+        if label is not None:
+            arr["direction"] = label[np.clip(np.searchsorted(t, tu, side="right") - 1, 0, len(t) - 1)]
+        return tu, arr, f"{src}: {statement}", True, tl
+    if tl.events:
+        if not tl.usable():
+            raise DataFileError(f"{src}: no stretch of {MIN_ROWS} uniformly sampled rows between the breaks of its "
+                                f"time stamps (first: {tl.events[0].describe()}); give --resample DT")
+        kinds = {}
+        for e in tl.events:
+            kinds[e.kind] = kinds.get(e.kind, 0) + 1
+        said = ", ".join(f"{n} {k}{'s' if n > 1 else ''}" for k, n in kinds.items())
+        return t, arr, (f"{src}: non-uniform time stamps ({said}): analysed as {len(tl.usable())} uniform segments, "
+                        "each on its own and together (--resample DT puts them on one grid)"), False, tl
     steps = np.diff(t)
     med = float(np.median(steps))
-    gaps = np.flatnonzero(steps > _GAP * med)
-    if gaps.size:
-        i = int(gaps[0])
-        raise DataFileError(f"{src}, line {line_of[i + 1] + 1}: gap of {steps[i]:.4g} s after t = {t[i]:.6g} s "
-                            f"({steps[i] / med:.1f} median steps); split the record at the gap")
     spread = float(np.max(np.abs(steps - med)) / med)
     if spread <= _JITTER_OK:
-        return t, arr, None, False
+        return t, arr, None, False, tl
     n = int(round((t[-1] - t[0]) / med)) + 1
     tu = t[0] + np.arange(n) * med
     tu = tu[tu <= t[-1]]
@@ -324,24 +346,40 @@ def _uniform(src: str, t: np.ndarray, arr: dict, line_of: list):
             arr[key] = np.interp(tu, t, arr[key])
     warning = (f"{src}: non-uniform sampling (steps deviate from the median {med:.4g} s by up to "
                f"{100 * spread:.2g} %); resampled onto a uniform grid by linear interpolation")
-    return tu, arr, warning, True
+    return tu, arr, warning, True, tl
 
 
 def read_measured(path, *, time_col: str | None = None, x_col: str | None = None, force_col: str | None = None,
                   normal_col: str | None = None, direction_col: str | None = None,
                   time_unit: str | None = None, x_unit: str | None = None, force_unit: str | None = None,
-                  require_x: bool = True) -> MeasuredData:
+                  require_x: bool = True, resample: float | None = None) -> MeasuredData:
     """Read a measured record: time and displacement and/or friction force (optional normal force, direction).
 
     Parameters
     ----------
+    path : str or pathlib.Path
+        The text file (CSV, ;- or tab-separated; preamble, units row, decimal commas and latin-1 are read).
     time_col, x_col, force_col, normal_col, direction_col : str, optional
         Column names (the full header text or its name without the unit: ``"F"`` finds ``F [N]``). Defaults:
         time is the first column; with ``require_x`` and no ``force_col``, displacement is the second.
     time_unit, x_unit, force_unit : str, optional
         Units, required when neither the header nor a units row names them (see :data:`TIME_UNITS`,
         :data:`X_UNITS`, :data:`FORCE_UNITS`). ``normal_col`` uses the force unit rules.
+    resample : float, optional
+        A uniform step (s) to put the whole record on, behind a stated anti-alias filter, when its time stamps
+        break (rate changes, gaps, repeated or backward stamps); without it such a record is returned as written,
+        ``segmented``, with its ``timeline``.
+    require_x : bool, optional
+        Whether a displacement column is required (False for force data).
+
+    Returns
+    -------
+    MeasuredData
+        The record in SI units (s, m, N), with the units read and where from: on a uniform time grid, or as
+        written with its ``timeline`` of breaks when the stamps break and ``resample`` is None.
     """
+    if resample is not None and not (resample > 0 and math.isfinite(resample)):
+        raise DataFileError(f"the resampling step must be a positive number of seconds (got {resample!r})")
     path = Path(path)
     src = str(path)
     for kind, u in (("time", time_unit), ("x", x_unit), ("force", force_unit)):
@@ -364,14 +402,14 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
         cols["direction"] = (iD, 1.0)
     values, line_of = _rows(tab, cols)
     arr = {key: np.asarray(values[key]) * cols[key][1] for key in cols}
-    t, arr, warning, resampled = _uniform(src, arr.pop("t"), arr, line_of)
+    t, arr, warning, resampled, timeline = _uniform(src, arr.pop("t"), arr, line_of, resample)
     layout = {"separator": {";": "semicolon", "\t": "tab", ",": "comma"}[tab.sep], "decimal_comma": tab.dc,
               "preamble_lines": sum(1 for i in range(tab.header_i) if tab.lines[i].strip()),
               "header_line": tab.header_i + 1, "units_row_line": None if tab.units_i is None else tab.units_i + 1,
               "first_data_line": tab.first + 1}
     return MeasuredData(t=t - t[0], x=arr.get("x"), source=src, resampled=resampled, warning=warning,
                         n_rows=len(line_of), F=arr.get("F"), N=arr.get("N"), direction=arr.get("direction"),
-                        units=tab.units, layout=layout)
+                        units=tab.units, layout=layout, timeline=timeline)
 
 
 def read_displacement_csv(path, time_col: str | None = None, x_col: str | None = None,

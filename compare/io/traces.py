@@ -19,7 +19,20 @@ class TraceFileError(ValueError):
 
 
 def save_trace(trace, path) -> Path:
-    """Write an EngineTrace to ``path`` (.npz) and its metadata to the same name with .json."""
+    """Write an EngineTrace to ``path`` (.npz) and its metadata to the same name with .json, atomically.
+
+    Parameters
+    ----------
+    trace : engine_sim.EngineTrace
+        The trace (arrays in SI units).
+    path : str or pathlib.Path
+        The file; its suffix is set to .npz.
+
+    Returns
+    -------
+    pathlib.Path
+        The .npz file written.
+    """
     path = Path(path).with_suffix(".npz")
     arrays = {f.name: getattr(trace, f.name) for f in fields(trace) if f.name != "metadata"}
     arrays["format"] = np.array(FORMAT)
@@ -35,7 +48,18 @@ def save_trace(trace, path) -> Path:
 
 
 def load_trace(path):
-    """Read a trace written by :func:`save_trace`; returns an EngineTrace."""
+    """Read a trace written by :func:`save_trace`.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The .npz file (its .json metadata beside it).
+
+    Returns
+    -------
+    engine_sim.EngineTrace
+        The arrays (SI units) and the metadata; :class:`TraceFileError` names the file and the problem otherwise.
+    """
     from engine_sim.record import EngineTrace
 
     path = Path(path)

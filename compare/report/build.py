@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import time
 
-from reduced_models._version import package_version
+from frictionnoise import package_version
 
 from .html import paragraphs, summary_of, table
 from .study import StudyResult
@@ -112,15 +112,12 @@ def build_scene_report(sc, trace=None, duration=None, seed=None, progress=None):
 
     header = {"version": package_version(), "quick": False, "seed": seed if seed is not None else sc.run.seed,
               "conventions": CONVENTIONS, "scenarios": {}}
-    from engine_sim.scene import describe
-
     extra = []
-    if "micro" in describe(sc):  # micro-pads: model Ib beside model I, on the same trace (as the report does)
-        from .studies.scene_multiscale import scene_against_model_Ib
-        from .studies._common import run_scene
+    if sc.arrangement_part.also_fits:  # e.g. micro-pads: model Ib beside model I, on the same trace (as the report)
+        from .studies.scenes import beside_results, run_scene
 
         trace = run_scene(sc, False, header["seed"], trace, duration, progress)[0]
-        extra = [scene_against_model_Ib(sc.name, sc, False, header["seed"], trace=trace)]
+        extra = beside_results(sc, header["seed"], trace)
     res = scene_result(sc.name, sc, False, header["seed"], trace=trace, duration=duration, progress=progress)
     speed = StudyResult("timings", "Speed", list(res.timings), html=table(
         "Run", ["what", "run", "wall (s)", "mean |ln ratio| vs model I"],

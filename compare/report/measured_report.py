@@ -18,12 +18,15 @@ from pathlib import Path
 
 import numpy as np
 
+from ..analysis.displacement import C_F_NEEDS_MASS, DisplacementAnalysis
 from ..analysis.fits import PowerLawFit, fit_power_law, flag_mark
-from .html import esc, span, paragraphs, table
+from .html import esc, paragraphs, span, table
 from .verdict import fit_text
 from ..io.measured import MeasuredData, units_line
-from ..analysis.spectra import G_STANDARD, Spectrum, rescaled, average_spectra, rms_from_spectrum, series_spectrum
+from ..analysis.spectra import Spectrum, rescaled, average_spectra, rms_from_spectrum, series_spectrum
 from .study import Figure, StudyResult
+from .timeline_section import timeline_html
+from ..analysis.segments import with_line_flag
 
 __all__ = ["Strokes", "ForceAnalysis", "find_strokes", "analyze_force", "build_force_report", "build_measured_report"]
 
@@ -173,6 +176,14 @@ class ForceAnalysis:
     notes: list = field(default_factory=list)
 
     def summary(self) -> dict:
+        """The analysis as JSON-able numbers (the report's summary.json).
+
+        Returns
+        -------
+        dict
+            Source, units, strokes, the force exponent with its 95 % interval and band (rad/s), F_rms (N), and
+            the C_mu, equivalent-C_x and distance-domain entries when present.
+        """
         st = self.strokes
         s = {
             "source": self.data.source, "units": self.data.units, "layout": self.data.layout,
@@ -212,11 +223,36 @@ def analyze_force(data: MeasuredData, *, band=None, mass: float | None = None, s
 
     ``mass`` (kg) adds the equivalent C_x = C_F / (M^2 omega^4) of a free block (eq. 3); ``speed`` (m/s)
     adds the distance-domain spectrum C_F(q) = v C_F(omega = q v) (q in rad/m) and the stroke length; a
-    normal-force column adds C_mu of mu(t) = F(t) / N(t). ``method`` is the fit method (see
-    :func:`compare.fits.fit_power_law`); ``cut`` the seconds removed at each end of a stroke.
+    normal-force column adds C_mu of mu(t) = F(t) / N(t).
+
+    Parameters
+    ----------
+    data : MeasuredData
+        A record with a friction-force column (and optionally normal force, position or direction).
+    band : tuple of float, optional
+        Fit band (Units: rad/s); default automatic.
+    mass : float, optional
+        Block mass M (Units: kg).
+    speed : float, optional
+        Imposed sliding speed (Units: m/s).
+    cut : float, optional
+        Seconds removed at each end of a stroke (Units: s); default 10 % of the median stroke.
+    method : {"whittle", "lsq"}, optional
+        Fit method (see :func:`compare.fits.fit_power_law`).
+    prewhiten, nperseg
+        As in :func:`compare.spectra.series_spectrum`.
+
+    Returns
+    -------
+    ForceAnalysis
+        The strokes, C_F (N^2 s) and its fit, and C_mu (s), the equivalent C_x (m^2 s) and C_F(q) (N^2 m) when
+        their inputs were given.
     """
     if data.F is None:
         raise ValueError("the record holds no friction-force column")
+    if data.segmented:
+        raise ValueError(f"force data whose time stamps break ({data.timeline.events[0].describe()}; "
+                         f"{len(data.timeline.events)} breaks in all): give --resample DT to put it on one grid")
     if mass is not None and not mass > 0:
         raise ValueError(f"mass must be positive (got {mass!r})")
     if speed is not None and not speed > 0:
@@ -224,7 +260,7 @@ def analyze_force(data: MeasuredData, *, band=None, mass: float | None = None, s
     strokes = find_strokes(data, cut=cut)
     t, F = np.asarray(data.t), np.asarray(data.F)
     C_F = _stroke_spectrum(t, F, strokes, "F", "N^2 s", prewhiten, nperseg)
-    fit_F = fit_power_law(C_F, band=band, method=method)
+    fit_F = with_line_flag(fit_power_law(C_F, band=band, method=method), C_F)
     notes = []
     C_mu = fit_mu = None
     if data.N is not None:
@@ -252,7 +288,7 @@ def analyze_force(data: MeasuredData, *, band=None, mass: float | None = None, s
 
 def build_force_report(an: ForceAnalysis):
     """Results (StudyResult list) and the JSON summary of a force analysis."""
-    from reduced_models._version import package_version
+    from frictionnoise import package_version
 
     from . import plots
 
@@ -268,7 +304,7 @@ def build_force_report(an: ForceAnalysis):
           f"after the cut, detrended by its own line; spectra averaged over the strokes.",
         f"Force exponent: C_F ~ omega^-({fit_text(f, 3)}) (95 %, {f.method}) over "
         f"{span(f.band[0], f.band[1])} rad/s{' (automatic band)' if f.band_auto else ''}"
-        + (f" <b>({esc('; '.join(f.flags))})</b>" if f.flags else "")
+        + (f" <b>not a power law: {esc('; '.join(f.flags))}</b>" if f.flags else "")
         + f"; F_rms = {summary['F_rms_N']:.4g} N over the resolved band (eq. 4), mean |F| = {summary['mean_abs_F_N']:.4g} N.",
     ]
     if an.fit_mu is not None:
@@ -287,7 +323,7 @@ def build_force_report(an: ForceAnalysis):
         [(an.C_F, "C_F (measured)")], fits=[(f, "")], band=f.band, ylabel=r"$C_F$ (N$^2$ s)",
         title="Friction-force spectrum")),
         f"C_F of the measured friction force (N^2 s), averaged over {len(st.segments)} strokes, with the power-law fit: "
-        f"C_F slope -{f.gamma:.2f} ± {f.gamma_err:.2f} over {span(f.band[0], f.band[1])} rad/s"
+        f"C_F slope -{f.gamma:.2f} ± {f.gamma_err:.2f}{flag_mark(f)} over {span(f.band[0], f.band[1])} rad/s"
         + (" (not a power law: " + "; ".join(f.flags) + ")." if f.flags else "."))]
     dt = float(d.t[1] - d.t[0])
     rows = [[str(i + 1), f"{a * dt:.4g}", f"{b * dt:.4g}", "used"] for i, (a, b) in enumerate(st.segments)]
@@ -303,7 +339,7 @@ def build_force_report(an: ForceAnalysis):
     if an.C_mu is not None:
         figures.append(Figure("measured_force_Cmu", plots.figure_png_bytes(plots.spectrum_figure(
             [(an.C_mu, "C_mu of F/N")], ylabel=r"$C_\mu$ (s)", title="Friction coefficient spectrum")),
-            f"C_mu of mu(t) = F(t)/N(t): exponent {an.fit_mu.gamma:.2f} ± {an.fit_mu.gamma_err:.2f}."
+            f"C_mu of mu(t) = F(t)/N(t): exponent {an.fit_mu.gamma:.2f} ± {an.fit_mu.gamma_err:.2f}{flag_mark(an.fit_mu)}."
             if an.fit_mu is not None else "C_mu of mu(t) = F(t)/N(t)."))
     if an.C_x_equiv is not None:
         figures.append(Figure("measured_force_Cx_equivalent", plots.figure_png_bytes(plots.spectrum_figure(
@@ -314,43 +350,51 @@ def build_force_report(an: ForceAnalysis):
     return [result], summary
 
 
-def build_measured_report(data, mass: float, band=None, g: float = G_STANDARD):
-    """Results (StudyResult list) and summary of measured x(t), with block mass ``mass`` (kg)."""
-    from reduced_models._version import package_version
+def build_measured_report(an: DisplacementAnalysis, data):
+    """Results (StudyResult list) and the JSON summary of a displacement analysis of the record ``data``.
+
+    C_F and its figure appear only when the analysis was given a mass; otherwise the page says that C_F needs it.
+    """
+    from frictionnoise import package_version
 
     from . import plots
-    from ..analysis.spectra import displacement_spectrum, force_spectrum, friction_coefficient_spectrum, rms_from_spectrum
 
-    spec = displacement_spectrum(data.t, data.x)
-    fit = fit_power_law(spec, band=band)
-    cf = force_spectrum(spec, mass)
-    cmu = friction_coefficient_spectrum(spec, g)
-    zeta_rms = rms_from_spectrum(spec)
-    mu_rms = rms_from_spectrum(cmu)
-    summary = {"version": package_version(), "source": data.source, "mass_kg": mass, "n_samples": len(data.t),
-               "dt_s": float(data.t[1] - data.t[0]), "resampled": data.resampled, "warning": data.warning,
-               "gamma": fit.gamma, "gamma_err": fit.gamma_err, "band": list(fit.band), "fit": fit.to_dict(),
-               "mean_velocity": spec.provenance["mean_velocity"], "zeta_rms_m": zeta_rms, "mu_rms": mu_rms,
-               "spectrum_steps": spec.provenance["steps"]}
+    fit, spec, segs = an.fit, an.C_x, an.segments
+    summary = {"version": package_version(), "source": data.source, "n_samples": len(data.t),
+               "dt_s": float(spec.provenance["dt"]), "resampled": data.resampled, "warning": data.warning,
+               **an.summary()}
+    if data.timeline is not None:
+        summary["timeline"] = data.timeline.summary()
+    relation = (f"C_F = M^2 omega^4 C_x assumes the block is free (inertial relation, eq. 3), with M = {an.mass:g} kg: "
+                f"C_F ~ omega^-({fit_text(an.fit_F, 3)}), F_rms = {an.F_rms:.4g} N."
+                if an.mass is not None else esc(C_F_NEEDS_MASS) + ".")
+    every = "in uniform segments (below)" if segs is not None else f"every {spec.provenance['dt']:.4g} s"
     text = paragraphs([
-        f"{len(data.t)} samples every {data.t[1] - data.t[0]:.4g} s; mean velocity {1e3 * summary['mean_velocity']:.4g} mm/s"
+        f"{len(data.t)} samples {every}; mean velocity {1e3 * an.mean_velocity:.4g} mm/s"
         + (f". {esc(data.warning)}" if data.warning else "."),
-        f"gamma = {fit_text(fit, 3)} (95 %) over {span(fit.band[0], fit.band[1])} rad/s"
-        f"{' (automatic band)' if fit.band_auto else ''}; zeta_rms = {zeta_rms:.4g} m and mu_rms = {mu_rms:.4g} "
-        "(dimensionless) over the resolved band (eq. 4). C_F = M^2 omega^4 C_x assumes the block is free (inertial "
-        f"relation, eq. 3), with M = {mass:g} kg.",
+        f"gamma = {fit_text(fit, 3)} (95 %, {fit.method}) over "
+        f"{span(fit.band[0], fit.band[1])} rad/s{' (automatic band)' if fit.band_auto else ''}"
+        + (f" <b>not a power law: {esc('; '.join(fit.flags))}</b>" if fit.flags else "")
+        + f"; zeta_rms = {an.zeta_rms:.4g} m and mu_rms = {an.mu_rms:.4g} (dimensionless, C_mu = omega^4 C_x / g^2 "
+        "of a free block, whatever its mass) over the resolved band (eq. 4).",
+        relation,
         "Processing: " + esc("; ".join(spec.provenance["steps"])) + ".",
-    ])
-    figures = (
+    ]) + (timeline_html(data.timeline, an.segment_fits, segs.notes) if segs is not None else "")
+    figures = [
         Figure("measured_Cx", plots.figure_png_bytes(plots.spectrum_figure([(spec, "C_x")], fits=[(fit, "")], band=fit.band,
                                                                           title="Displacement spectrum")),
                f"C_x of the measured displacement (m^2 s) with the power-law fit: gamma = {fit.gamma:.2f} ± "
                f"{fit.gamma_err:.2f}{flag_mark(fit)} over {span(fit.band[0], fit.band[1])} rad/s (shaded)."),
-        Figure("measured_CF", plots.figure_png_bytes(plots.spectrum_figure([(cf, "C_F = M^2 omega^4 C_x")], ylabel=r"$C_F$ (N$^2$ s)",
-                                                                          title="Force spectrum (eq. 3)")),
-               f"C_F (N^2 s) of a free block of M = {mass:g} kg, from C_x by eq. (3): slope {4 - fit.gamma:+.2f} in the fit band."),
-        Figure("measured_Cmu", plots.figure_png_bytes(plots.spectrum_figure([(cmu, "C_mu = omega^4 C_x / g^2")], ylabel=r"$C_\mu$ (s)",
+        Figure("measured_Cmu", plots.figure_png_bytes(plots.spectrum_figure([(an.C_mu, "C_mu = omega^4 C_x / g^2")],
+                                                                           ylabel=r"$C_\mu$ (s)",
                                                                            title="Friction coefficient spectrum")),
-               f"C_mu (s) = omega^4 C_x / g^2; mu_rms = {mu_rms:.3g} over the resolved band (eq. 4)."),
-    )
-    return [StudyResult("measured", f"Measured displacement: {Path(data.source).name}", {}, figures, text)], summary
+               f"C_mu (s) = omega^4 C_x / g^2; mu_rms = {an.mu_rms:.3g} over the resolved band (eq. 4)."),
+    ]
+    if an.C_F is not None:
+        figures.insert(1, Figure(
+            "measured_CF", plots.figure_png_bytes(plots.spectrum_figure([(an.C_F, "C_F = M^2 omega^4 C_x")],
+                                                                        ylabel=r"$C_F$ (N$^2$ s)",
+                                                                        title="Force spectrum (eq. 3)")),
+            f"C_F (N^2 s) of a free block of M = {an.mass:g} kg, from C_x by eq. (3): slope {4 - fit.gamma:+.2f} in the "
+            "fit band."))
+    return [StudyResult("measured", f"Measured displacement: {Path(data.source).name}", {}, tuple(figures), text)], summary

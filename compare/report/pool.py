@@ -51,8 +51,12 @@ def _watch(flag, on_compile, poll: float = 0.1):
             on_compile()
 
 
-def _end(pool, grace: float = 1.0):
-    procs = list((getattr(pool, "_processes", None) or {}).values())  # ProcessPoolExecutor keeps them by pid
+def _end(pool, others: set, grace: float = 1.0):
+    """Cancel the queued tasks and end the pool's workers: this process's multiprocessing children that are not in
+    ``others`` (those it had before the pool)."""
+    import multiprocessing
+
+    procs = [p for p in multiprocessing.active_children() if p not in others]
     pool.shutdown(wait=False, cancel_futures=True)
     for p in procs:
         if p.is_alive():
@@ -81,6 +85,7 @@ def process_pool(workers: int, on_compile=None):
     # process's -W options) stays quiet (as the sweep's LocalCluster does)
     if "ignore:resource_tracker:UserWarning" not in sys.warnoptions:
         sys.warnoptions.append("ignore:resource_tracker:UserWarning")
+    others = set(multiprocessing.active_children())  # children that are not the pool's, left alone by _end
     ctx = multiprocessing.get_context("spawn")
     flag = ctx.Event() if on_compile is not None else None
     pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_start_worker, initargs=(flag,))
@@ -88,6 +93,6 @@ def process_pool(workers: int, on_compile=None):
         try:
             yield pool
         except BaseException:
-            _end(pool)
+            _end(pool, others)
             raise
         pool.shutdown()

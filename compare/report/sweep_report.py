@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from reduced_models._version import package_version
+from frictionnoise import package_version
 
 from ..analysis.fits import flag_mark
 from .html import esc, span, json_text, page, paragraphs, table

@@ -78,6 +78,7 @@ class Arrangement:
     choices: ClassVar[dict] = {}
     guided: ClassVar[bool] = True  # the block runs in a horizontal groove (else it rests on its feet, free in y)
     hosts_wear: ClassVar[bool] = False  # pads on flat tracks of their own, where wear particles can sit
+    also_fits: ClassVar[tuple] = ()  # keys of reduced_models.MODELS compared beside the fitting model, same trace
 
     def __init__(self, spec, scenario):
         self.spec, self.sc = spec, scenario

@@ -61,6 +61,7 @@ class MicroSpec(PadSpec):
 @ARRANGEMENTS.register
 class Micro(Tracks):
     name = "micro"
+    also_fits = ("model_Ib",)  # micro-pads: the multiscale model beside model I
     Spec = MicroSpec
     hosts_wear = False
     positive = Tracks.positive | {"n_micro", "micro_mass", "micro_radius", "micro_k", "micro_k_normal", "micro_a",

@@ -65,6 +65,11 @@ class Substrate:
         """The renewal length a (m) that sets the fit band (3-30 v/a) and the correlation window of extract."""
         return self.spec.a
 
+    def notes(self) -> list:
+        """One-line statements of what the part did to its input (e.g. a measured profile resampled), for the run
+        to print before it starts."""
+        return []
+
     def top(self) -> float:
         """The highest point of the substrate above its datum (mm): feet on a sole start above it."""
         return 0.0

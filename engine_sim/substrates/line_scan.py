@@ -1,5 +1,7 @@
-"""A measured line scan as the pads' tracks: heights against position from a CSV or NPY file, units declared,
-resampled to a uniform grid, detrended on request, and mirrored or tiled to any sliding distance.
+"""A measured line scan as the pads' tracks: heights against position as an instrument exports them (read by
+:mod:`engine_sim.profile_file`, with the units the file states), on a uniform grid, detrended on request, reduced to
+what a pad can feel of it (:func:`read_profile`: closed by the pad's disc and resampled at the coarsest spacing
+that leaves the pad's path within the contact's resolution), and mirrored or tiled to any sliding distance.
 
 This module is the whole of the kind (spec, checks, build, streamed track): with its import line in
 ``substrates/__init__.py`` and a scenario file (``scenarios/line_scan_example.toml``) it is the extension point
@@ -15,77 +17,214 @@ from pathlib import Path
 import numpy as np
 
 from .. import units as U
-from ..substrate import _StreamedTrack
+from ..profile_file import ProfileError, read_line_scan
+from ..substrate import StreamedTrack
 from . import SUBSTRATES, Substrate, SubstrateSpec
 from .self_affine import sliding_limit
 
-__all__ = ["LineScanSpec", "LineScan", "read_profile", "ProfileTrack"]
+__all__ = ["LineScanSpec", "LineScan", "read_profile", "TrackProfile", "ProfileTrack", "pad_path", "pad_closing"]
 
-_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "nm": 1e-9}  # metres per unit
+_UNITS = ("", "m", "mm", "um", "µm", "nm", "A", "Å")  # "": the unit the file states
+
+# the contact solver's slop (Scene.slop, 1e-4 mm): pymunk leaves overlaps below it uncorrected, so heights the
+# pad's path changes by less than this are below what the scene resolves
+CONTACT_SLOP = 1e-7  # m
+_EVAL_POINTS = 1 << 17  # the spacing rule is judged on at most this many points of the profile (cost bound)
+_CLOSING_WORK = 4e8  # points x disc width above which a profile is first pooled to its bins' maxima (cost bound)
 
 
 @dataclass(frozen=True)
 class LineScanSpec(SubstrateSpec):
-    """file: the profile, two columns x and h (a CSV with an optional header row, or an NPY array of shape (n, 2));
-    a relative name is looked up beside the scenario file, then in the shipped ``scenarios/profiles/``.
-    x_unit, height_unit: "m", "mm", "um" or "nm". dx: resampling step (m; 0: the file's mean spacing), by linear
-    interpolation. detrend: "linear" (least-squares line removed), "mean" or "none". extend: "mirror" (the profile,
-    then its reflection, repeated: no step at the joins) or "tile" (repeated as is). Every pad's track is the same
-    profile entered at its own random place (its own random stream), so the pads' forces are not in step.
-    ``a`` is the renewal length used for the fit band."""
+    """file: the profile (an instrument's text export with its preamble and units, an NPY array of shape (n, 2),
+    or any line scan SurfaceTopography reads; see :mod:`engine_sim.profile_file`); a relative name is looked up
+    beside the scenario file, then in the current folder, then in the shipped ``scenarios/profiles/``.
+    x_unit, height_unit: the columns' units ("m", "mm", "um", "nm", "A"), or "" for the units the file states
+    (a unit the file states and a different one declared here is an error). dx: the track's grid spacing (m);
+    0: the coarsest spacing the pads cannot tell from the file's (see :func:`pad_profile`). path_tolerance (m):
+    how far (rms) the pad's path over the resampled track may stray from its path over the file's profile (default:
+    the contact solver's slop, 0.1 um). detrend: "linear" (least-squares line removed), "mean" or "none".
+    extend: "mirror" (the profile, then its reflection, repeated: no step at the joins) or "tile" (repeated as is).
+    Every pad's track is the same profile entered at its own random place (its own random stream), so the pads'
+    forces are not in step. ``a`` is the renewal length used for the fit band."""
 
     kind: str = "line_scan"
     file: str = ""
-    x_unit: str = "m"
-    height_unit: str = "m"
+    x_unit: str = ""
+    height_unit: str = ""
     dx: float = 0.0
+    path_tolerance: float = CONTACT_SLOP
     detrend: str = "linear"
     extend: str = "mirror"
 
 
-def _read_xy(path: Path) -> np.ndarray:
-    if path.suffix.lower() == ".npy":
-        arr = np.load(path, allow_pickle=False)
-        arr = arr.T if arr.ndim == 2 and arr.shape[0] == 2 and arr.shape[1] != 2 else arr
-    else:
-        rows = []
-        for n, line in enumerate(path.read_text().splitlines(), 1):
-            cells = [c for c in line.replace(";", ",").replace("\t", ",").split(",") if c.strip()]
-            if not cells or line.lstrip().startswith("#"):
-                continue
-            try:
-                rows.append([float(c) for c in cells[:2]])
-            except ValueError:
-                if rows:
-                    raise ValueError(f"{path}: line {n} is not two numbers: {line.strip()[:60]!r}") from None
-                continue  # a header row
-        arr = np.array(rows, dtype=float)
-    if arr.ndim != 2 or arr.shape[1] != 2:
-        raise ValueError(f"{path}: expected two columns x, h (got shape {arr.shape})")
-    return arr
+# ------------------------------------------------------------------------------------ what a pad can feel of a profile
+def _disc(radius: float, dx: float, reach: float) -> np.ndarray:
+    """The lower half of a disc of ``radius`` as a structuring element on a grid of spacing dx, out to ``reach``
+    either side: s(y) = sqrt(R^2 - y^2) - R (m; 0 at its centre)."""
+    m = int(min(radius, reach) / dx)
+    y = np.arange(-m, m + 1) * dx
+    return np.sqrt(radius**2 - y**2) - radius
+
+
+def _reach(radius: float, h: np.ndarray) -> float:
+    """How far either side of a point a disc of ``radius`` resting on the profile can touch it: beyond
+    y* = sqrt(2 R p - p^2), p the profile's peak-to-valley height, the disc's edge is higher above its lowest point
+    than any height difference on the profile, so no point there can hold it up."""
+    p = float(np.ptp(h)) if h.size else 0.0
+    return radius if p >= radius else float(np.sqrt(2 * radius * p - p * p))
+
+
+_MODES = {"mirror": "mirror", "tile": "wrap"}  # how the profile continues past its ends, as the track continues it
+
+
+def pad_path(h: np.ndarray, dx: float, radius: float, extend: str = "mirror") -> np.ndarray:
+    """Height of the lowest point of a rigid disc of ``radius`` resting on the profile h (grid spacing dx), above
+    each grid point: the morphological dilation max_y [h(x - y) + sqrt(R^2 - y^2) - R] over |y| <= R (m), the
+    profile continued past its ends as the track continues it (``extend``: "mirror" or "tile")."""
+    from scipy import ndimage
+
+    return ndimage.grey_dilation(h, structure=_disc(radius, dx, _reach(radius, h)), mode=_MODES[extend])
+
+
+def pad_closing(h: np.ndarray, dx: float, radius: float, extend: str = "mirror") -> np.ndarray:
+    """The profile as a rigid disc of ``radius`` touches it: the morphological closing of h by the disc (dilation,
+    then erosion by the same disc). Valleys narrower than the disc are filled with arcs of its radius; where the
+    disc touches, the profile is unchanged. A disc's path over the closing is its path over h (the closing is the
+    largest profile with that path), which is why a stylus tip's and a pad's tracing are the same operation."""
+    from scipy import ndimage
+
+    s, mode = _disc(radius, dx, _reach(radius, h)), _MODES[extend]
+    return ndimage.grey_erosion(ndimage.grey_dilation(h, structure=s, mode=mode), structure=s, mode=mode)
+
+
+def _path_error(closed: np.ndarray, path: np.ndarray, k: int, dx: float, radius: float, margin: int,
+                extend: str) -> float:
+    """rms (m) of the disc's path over every k-th point of the closing (linear between them) less its path over
+    the profile, away from the ends (margin points) where the disc leaves the profile."""
+    idx = np.arange(closed.size)
+    back = np.interp(idx, idx[::k], closed[::k])
+    last = (closed.size - 1) // k * k  # beyond the last kept point the interpolation is flat
+    hi = min(last, closed.size - margin)
+    if hi - margin < 2 * k:
+        return float("inf")
+    d = pad_path(back, dx, radius, extend)[margin:hi] - path[margin:hi]
+    return float(np.sqrt(np.mean(d * d)))
+
+
+@dataclass(frozen=True)
+class TrackProfile:
+    """A profile as the track uses it: grid spacing ``dx`` (m), heights ``h`` (m, read-only), the file's spacing
+    ``native_dx``, the rms change of a pad's path ``path_error`` (m) and ``note``, one line saying what was done."""
+
+    dx: float
+    h: np.ndarray
+    native_dx: float
+    path_error: float
+    note: str
+
+
+def _spacing_from_pad(closed, path, dx, radius, tol, cap, extend):
+    """The largest k (grid spacing k dx <= cap) whose path error is at most tol, by bisection (the error grows
+    with k, up to the profile's own irregularity), and that error."""
+    margin = int(_reach(radius, closed) / dx) + 1
+    k_hi = max(1, int(cap / dx))
+    err = {1: 0.0}
+    if _path_error(closed, path, k_hi, dx, radius, margin, extend) <= tol:
+        return k_hi, _path_error(closed, path, k_hi, dx, radius, margin, extend)
+    lo, hi = 1, k_hi  # err(lo) <= tol < err(hi)
+    while hi - lo > 1:
+        mid = int(round(np.sqrt(lo * hi))) if hi > 2 * lo else (lo + hi) // 2
+        mid = min(max(mid, lo + 1), hi - 1)
+        e = _path_error(closed, path, mid, dx, radius, margin, extend)
+        if e <= tol:
+            lo, err[mid] = mid, e
+        else:
+            hi = mid
+    return lo, err.get(lo, 0.0)
+
+
+def _um(v: float) -> str:
+    return f"{v * 1e6:.3g} um"
 
 
 @functools.lru_cache(maxsize=8)
-def _profile(path: str, mtime: float, x_unit: str, height_unit: str, dx: float, detrend: str):
-    xy = _read_xy(Path(path))
-    x, h = xy[:, 0] * _UNITS[x_unit], xy[:, 1] * _UNITS[height_unit]
-    if x.size < 8 or not np.all(np.isfinite(xy)) or not np.all(np.diff(x) > 0):
-        raise ValueError(f"{path}: needs at least 8 finite rows with x strictly increasing")
-    step = dx if dx > 0 else (x[-1] - x[0]) / (x.size - 1)
-    grid = x[0] + step * np.arange(int(np.floor((x[-1] - x[0]) / step + 1e-9)) + 1)
-    hr = np.interp(grid, x, h)
+def _profile(path: str, stamp: tuple, x_unit: str, height_unit: str, dx: float, detrend: str, extend: str,
+             radius: float, tol: float, cap: float) -> TrackProfile:
+    f = read_line_scan(path, x_unit, height_unit)
+    x, h = f.x, f.h
+    steps = np.diff(x)
+    native = float(np.median(steps))
+    uniform = np.max(np.abs(steps - native)) <= 1e-6 * native
+    grid = x[0] + native * np.arange(int(np.floor((x[-1] - x[0]) / native + 1e-9)) + 1)
+    hg = h.copy() if uniform and grid.size == x.size else np.interp(grid, x, h)
     if detrend == "linear":
-        hr = hr - np.polyval(np.polyfit(grid - grid[0], hr, 1), grid - grid[0])
+        hg = hg - np.polyval(np.polyfit(grid - grid[0], hg, 1), grid - grid[0])
     elif detrend == "mean":
-        hr = hr - hr.mean()
-    hr.setflags(write=False)
-    return float(step), hr
+        hg = hg - hg.mean()
+    name = Path(path).name
+    how = "" if uniform else f" (non-uniform positions interpolated to their median spacing {_um(native)})"
+    if radius <= 0:  # a point probe: the file's heights on the grid
+        step = dx if dx > 0 else native
+        out = np.interp(x[0] + step * np.arange(int(np.floor((x[-1] - x[0]) / step + 1e-9)) + 1), grid, hg)
+        note = f"{name}: profile on a {_um(step)} grid{how}"
+        out.setflags(write=False)
+        return TrackProfile(float(step), out, native, 0.0, note)
+    file_dx = native
+    width = 2 * _reach(radius, hg) / native  # points under the disc: the closing costs n x width
+    if hg.size * width > _CLOSING_WORK:  # a pad touches only peaks: keep each bin's highest point
+        b = int(np.ceil(hg.size * width / _CLOSING_WORK))
+        hg = np.maximum.reduceat(hg, np.arange(0, hg.size, b))
+        grid = grid[::b]
+        native *= b
+        how += f" (first pooled to the highest point of every {b} points, {_um(native)}: the pad touches only peaks)"
+    closed = pad_closing(hg, native, radius, extend)
+    filled = float(np.mean(closed - hg > 1e-3 * tol))
+    n_eval = min(closed.size, _EVAL_POINTS)
+    path_ref = pad_path(hg[:n_eval], native, radius, extend)
+    margin = int(_reach(radius, closed) / native) + 1
+    if dx > 0:
+        k = dx / native
+        if abs(k - round(k)) < 1e-6 and round(k) >= 1:
+            k = int(round(k))
+            step, out = k * native, closed[::k].copy()
+            err = _path_error(closed[:n_eval], path_ref, k, native, radius, margin, extend)
+        else:
+            step, k, err = dx, None, float("nan")
+            out = np.interp(grid[0] + dx * np.arange(int(np.floor((grid[-1] - grid[0]) / dx + 1e-9)) + 1), grid,
+                            closed)
+        moved = f"; the pad's path moves {_um(err)} rms" if k is not None else ""
+        what = f"resampled from {_um(file_dx)} to {_um(step)} as substrate.dx asks{moved}"
+    else:
+        k, err = _spacing_from_pad(closed[:n_eval], path_ref, native, radius, tol, cap, extend)
+        step, out = k * native, closed[::k].copy()
+        if k > 1:
+            what = (f"resampled from {_um(file_dx)} to {_um(step)}: the pad cannot resolve shorter wavelengths (its "
+                    f"path moves {_um(err)} rms; substrate.path_tolerance {_um(tol)})")
+        else:
+            e2 = _path_error(closed[:n_eval], path_ref, 2, native, radius, margin, extend)
+            what = (f"kept at its spacing {_um(native)}: the pad feels shorter wavelengths (at {_um(2 * native)} its "
+                    f"path would move {_um(e2)} rms; substrate.path_tolerance {_um(tol)})")
+    note = (f"{name}: profile {what}{how}; the pad (radius {_um(radius)} with the track's thickness) bridges the "
+            f"valleys under {100 * filled:.0f} % of the points")
+    out.setflags(write=False)
+    return TrackProfile(float(step), out, file_dx, err, note)
 
 
-def read_profile(spec: LineScanSpec):
-    """(dx, heights) in metres: the spec's file resampled to a uniform grid and detrended (cached per file)."""
+def read_profile(spec: LineScanSpec, pad_radius: float = 0.0) -> TrackProfile:
+    """The spec's profile as a track uses it (cached per file): read with its units (:func:`read_line_scan`),
+    on a uniform grid, detrended, then, for a pad of radius ``pad_radius`` (m; with the track's segment radius
+    added), closed by the pad's disc (:func:`pad_closing`) and resampled at the coarsest spacing k dx (a whole
+    number k of the file's spacing, at most the pad's radius) at which the pad's path stays within
+    ``spec.path_tolerance`` (rms) of its path over the file's profile, unless ``spec.dx`` sets the spacing.
+    ``pad_radius = 0``: a point probe (no closing; the file's spacing or ``spec.dx``)."""
     p = Path(spec.file)
-    return _profile(str(p), p.stat().st_mtime, spec.x_unit, spec.height_unit, spec.dx, spec.detrend)
+    try:
+        st = p.stat()
+    except OSError as e:
+        raise ProfileError(f"{p}: cannot be read ({e.strerror or e})") from None
+    radius = pad_radius + spec.segment_radius if pad_radius > 0 else 0.0
+    return _profile(str(p), (st.st_mtime_ns, st.st_size), spec.x_unit, spec.height_unit, spec.dx, spec.detrend,
+                    spec.extend, radius, spec.path_tolerance, pad_radius)
 
 
 def _find(name: str, where: str) -> Path:
@@ -104,6 +243,7 @@ def _find(name: str, where: str) -> Path:
 class LineScan(Substrate):
     name = "line_scan"
     Spec = LineScanSpec
+    positive = Substrate.positive | {"path_tolerance"}
     non_negative = frozenset({"dx"})
     quick_duration = 8.0  # streaming its short segments costs about 1 wall s per simulated s
     choices = {"x_unit": tuple(_UNITS), "height_unit": tuple(_UNITS), "detrend": ("linear", "mean", "none"),
@@ -117,29 +257,30 @@ class LineScan(Substrate):
 
     @classmethod
     def validate(cls, s, sc, where=""):
-        try:
-            dx, h = read_profile(s)
-        except OSError as e:
-            raise ValueError(f"substrate.file = {s.file!r}: cannot be read ({e.strerror or e})") from None
+        if s.dx > 2 * sc.pads.radius:
+            raise ValueError(f"substrate.dx = {s.dx:.3g} m is coarser than a pad (diameter {2 * sc.pads.radius:.3g} m)")
+        prof = read_profile(s, sc.pads.radius)  # a ProfileError (a ValueError) names the file and the line
+        dx, h = prof.dx, prof.h
         slope = float(np.sqrt(np.mean(np.diff(h) ** 2)) / dx)
         limit = sliding_limit(sc.friction.mu0)
         if slope > limit:
             raise ValueError(f"substrate.file {s.file!r}: rms slope {slope:.3g} (at dx = {dx:.3g} m) exceeds the sliding "
                              f"limit {limit:.3g} = 1/(6 mu0); resample coarser (substrate.dx) or lower friction.mu0")
-        if dx > 2 * sc.pads.radius:
-            raise ValueError(f"substrate.dx = {dx:.3g} m is coarser than a pad (diameter {2 * sc.pads.radius:.3g} m)")
 
     def __init__(self, spec, scenario):
         super().__init__(spec, scenario)
-        dx, h = read_profile(spec)
-        self.dx, self.h = dx * U.LENGTH, h * U.LENGTH
+        self.profile = read_profile(spec, scenario.pads.radius)
+        self.dx, self.h = self.profile.dx * U.LENGTH, self.profile.h * U.LENGTH
+
+    def notes(self) -> list:
+        return [self.profile.note]
 
     def build(self, space, y, shape_filter, rng, mu, x_start):
         return ProfileTrack(space, y, self.h, self.dx, self.spec.extend, mu, self.spec.segment_radius * U.LENGTH,
                             shape_filter, rng, x_start)
 
 
-class ProfileTrack(_StreamedTrack):
+class ProfileTrack(StreamedTrack):
     """A fixed profile streamed as straight segments between its grid points (scene units), continued without end
     by mirroring or tiling, entered at a random index; consecutive segments linked with set_neighbors."""
 

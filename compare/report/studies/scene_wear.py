@@ -23,7 +23,7 @@ def _paired(name, sc, quick, seed, trace, duration, progress) -> SimpleNamespace
 
     from ...analysis.episodes import duration_summary, episodes, model_II_from_episodes
 
-    T = duration or (sc.wear.quick_duration if quick else sc.run.duration)
+    T = duration or (sc.wear_part.quick_duration if quick else sc.run.duration)
     if trace is not None:
         tw, wall_w = trace, float(trace.metadata.get("wall_s", float("nan")))
         T = float(tw.t[-1])

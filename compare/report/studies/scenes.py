@@ -31,7 +31,7 @@ def fitting_part(sc):
     """The scene's part that names the reduced model fitting it (``reduced_model``, a key of
     ``reduced_models.MODELS``) and the recorded seconds of a quick comparison (``quick_duration``): its wear
     particles when it has any, else its substrate."""
-    return next(part for part in (sc.wear, sc.substrate_part) if part.reduced_model)
+    return next(part for part in (sc.wear_part, sc.substrate_part) if part.reduced_model)
 
 
 # Recorded seconds of a scene in the full report (the quick one takes each part's ``quick_duration``, 8-16 s;
@@ -43,6 +43,26 @@ FULL_DURATION = 20.0
 # each reduced model's comparison with a scene: (module of this package, function), looked up when called
 COMPARISONS = {"model_I": ("scenes", "_model_I_result"), "model_II": ("scene_wear", "wear_result"),
                "model_III": ("scene_asperity", "asperity_result")}
+# models compared beside the fitting one on the same trace, when a part names them (``also_fits``)
+BESIDE = {"model_Ib": ("scene_multiscale", "scene_against_model_Ib")}
+SCENE_RUNS = {"model_II": 2}  # scene runs a comparison makes when not 1: model II's pairs the scene with and without
+
+
+def scene_runs(sc) -> int:
+    """How many times the comparison that fits ``sc`` runs the scene (for a progress bar's total)."""
+    return SCENE_RUNS.get(fitting_part(sc).reduced_model, 1)
+
+
+def beside_results(sc, seed, trace) -> list:
+    """The comparisons of the models the scene's arrangement names beside the fitting one (``also_fits``), on
+    ``trace``."""
+    from importlib import import_module
+
+    out = []
+    for key in sc.arrangement_part.also_fits:
+        module, function = BESIDE[key]
+        out.append(getattr(import_module(f".{module}", __package__), function)(sc.name, sc, False, seed, trace=trace))
+    return out
 
 
 def scene_result(name, sc, quick, seed, trace=None, duration=None, progress=None) -> StudyResult:

@@ -1,0 +1,154 @@
+"""A measured displacement record x(t): its noise spectrum C_x, exponent gamma, sliding velocity and C_mu, and
+C_F when the block's mass is known.
+
+x(t) = v t + zeta(t): v is fitted, C_x is the spectrum of zeta in the eq. (2) convention. gamma, C_x, v and
+C_mu = omega^4 C_x / g^2 (section 2: the friction coefficient of a free block, C_F / (M g)^2) do not depend on
+the block's mass; only C_F = M^2 omega^4 C_x (eq. 3) does, so C_F is computed only when a mass is given. Both
+fit methods of :func:`compare.analysis.fits.fit_power_law` apply to every spectrum here.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .fits import PowerLawFit, fit_power_law
+from .segments import SegmentSpectra, segment_fits, segment_spectra, with_line_flag
+from .spectra import (G_STANDARD, Spectrum, displacement_spectrum, force_spectrum, friction_coefficient_spectrum,
+                      rms_from_spectrum)
+
+__all__ = ["DisplacementAnalysis", "analyze_displacement", "C_F_NEEDS_MASS"]
+
+C_F_NEEDS_MASS = ("C_F not computed: C_F = M^2 omega^4 C_x (eq. 3) needs the block mass M (--mass, kg); gamma, C_x "
+                  "and C_mu do not depend on it")
+
+
+@dataclass(frozen=True)
+class DisplacementAnalysis:
+    """What a displacement record x(t) gives. Spectra in the eq. (2) convention.
+
+    Attributes
+    ----------
+    C_x : Spectrum
+        Displacement spectrum of zeta = x - (x0 + v t) (m^2 s).
+    fit : PowerLawFit
+        C_x ~ omega^-gamma: ``fit.gamma``, its 95 % half-width ``fit.gamma_err``, the band (rad/s), the flags.
+    mean_velocity : float
+        The fitted sliding velocity v (m/s).
+    zeta_rms : float
+        rms of zeta over the resolved band, eq. (4) (m).
+    C_mu : Spectrum
+        Friction-coefficient spectrum omega^4 C_x / g^2 of a free block (s).
+    fit_mu : PowerLawFit
+        C_mu ~ omega^-(gamma - 4), fitted over the band of ``fit``.
+    mu_rms : float
+        rms of mu over the resolved band (dimensionless).
+    g : float
+        Gravitational acceleration used for C_mu (m/s^2).
+    mass : float or None
+        The block mass M (kg), when given.
+    C_F : Spectrum or None
+        Force spectrum M^2 omega^4 C_x (N^2 s, eq. 3), when a mass was given.
+    fit_F : PowerLawFit or None
+        C_F ~ omega^-(gamma - 4), fitted over the band of ``fit``, when a mass was given.
+    F_rms : float or None
+        rms of the force over the resolved band (N), when a mass was given.
+    segments : SegmentSpectra or None
+        The per-segment spectra of a record whose time stamps break (C_x is their combination), else None.
+    segment_fits : list or None
+        One dict per segment with its own fit (:func:`compare.analysis.segments.segment_fits`), else None.
+    """
+
+    C_x: Spectrum
+    fit: PowerLawFit
+    mean_velocity: float
+    zeta_rms: float
+    C_mu: Spectrum
+    fit_mu: PowerLawFit
+    mu_rms: float
+    g: float
+    mass: float | None = None
+    C_F: Spectrum | None = None
+    fit_F: PowerLawFit | None = None
+    F_rms: float | None = None
+    segments: SegmentSpectra | None = None
+    segment_fits: list | None = None
+
+    @property
+    def notes(self) -> list:
+        """What was not computed, and why."""
+        return [] if self.mass is not None else [C_F_NEEDS_MASS]
+
+    def summary(self) -> dict:
+        """JSON-ready numbers: ``gamma``, ``gamma_err``, ``band``, ``fit`` (C_x), ``fit_mu``, the velocity and
+        rms values in SI units; ``fit_F`` and ``F_rms_N`` only when a mass was given."""
+        s = {"kind": "displacement", "mass_kg": self.mass, "gamma": self.fit.gamma, "gamma_err": self.fit.gamma_err,
+             "band": list(self.fit.band), "fit": self.fit.to_dict(), "mean_velocity": self.mean_velocity,
+             "zeta_rms_m": self.zeta_rms, "fit_mu": self.fit_mu.to_dict(), "mu_rms": self.mu_rms, "g_m_per_s2": self.g,
+             "spectrum_steps": list(self.C_x.provenance["steps"]), "notes": self.notes}
+        if self.fit_F is not None:
+            s["fit_F"] = self.fit_F.to_dict()
+            s["F_rms_N"] = self.F_rms
+        if self.segment_fits is not None:
+            s["segment_fits"] = self.segment_fits
+        return s
+
+
+def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, method: str | None = None,
+                         g: float = G_STANDARD, timeline=None) -> DisplacementAnalysis:
+    """C_x, its exponent gamma, the velocity and C_mu of a displacement record; C_F when the mass is known.
+
+    Parameters
+    ----------
+    t : array_like or record
+        Times (s), uniformly sampled or in uniform segments (then give ``timeline``); or a record with attributes
+        ``t`` (s) and ``x`` (m), such as :class:`compare.io.measured.MeasuredData` (then ``x`` is not given, and a
+        segmented record brings its own timeline).
+    x : array_like, optional
+        Positions (m) at ``t``.
+    mass : float, optional
+        Block mass M (kg): adds C_F = M^2 omega^4 C_x (eq. 3) and its exponent gamma - 4.
+    band : tuple of float, optional
+        Fit band (rad/s); default: the widest straight stretch (see :func:`compare.analysis.fits.fit_power_law`).
+        C_mu and C_F are fitted over the band of the C_x fit.
+    method : {"whittle", "lsq"}, optional
+        Fit method; default :data:`compare.analysis.fits.DEFAULT_METHOD`.
+    g : float, optional
+        Gravitational acceleration for C_mu (m/s^2).
+    timeline : compare.analysis.timeline.Timeline, optional
+        The breaks of ``t``: each uniform segment is estimated on its own and their spectra combined
+        (:func:`compare.analysis.segments.segment_spectra`).
+
+    Returns
+    -------
+    DisplacementAnalysis
+        The spectra, the fits, the velocity and the rms values.
+    """
+    if x is None:
+        if not hasattr(t, "t"):
+            raise ValueError("give x(t): the positions (m) at the times t (s)")
+        if getattr(t, "x", None) is None:
+            raise ValueError(f"{getattr(t, 'source', 'the record')}: the record holds no displacement column")
+        if getattr(t, "segmented", False):
+            timeline = t.timeline
+        t, x = t.t, t.x
+    if mass is not None and not (mass > 0 and np.isfinite(mass)):
+        raise ValueError(f"mass must be positive, in kg (got {mass!r})")
+    segs = None
+    if timeline is not None:  # time stamps in uniform segments: each on its own, and their spectra averaged
+        segs = segment_spectra(t, x, timeline, quantity="x", unit="m^2 s", detrend="linear", name="x")
+        C_x = segs.combined
+    else:
+        C_x = displacement_spectrum(t, x)
+    fit = with_line_flag(fit_power_law(C_x, band=band, method=method), C_x)
+    C_mu = friction_coefficient_spectrum(C_x, g)
+    fit_mu = with_line_flag(fit_power_law(C_mu, band=fit.band, method=fit.method), C_mu)
+    C_F = fit_F = F_rms = None
+    if mass is not None:
+        C_F = force_spectrum(C_x, mass)
+        fit_F = with_line_flag(fit_power_law(C_F, band=fit.band, method=fit.method), C_F)
+        F_rms = rms_from_spectrum(C_F)
+    return DisplacementAnalysis(C_x=C_x, fit=fit, mean_velocity=float(C_x.provenance["mean_velocity"]),
+                                zeta_rms=rms_from_spectrum(C_x), C_mu=C_mu, fit_mu=fit_mu, mu_rms=rms_from_spectrum(C_mu),
+                                g=g, mass=mass, C_F=C_F, fit_F=fit_F, F_rms=F_rms, segments=segs,
+                                segment_fits=None if segs is None else segment_fits(segs, band=band, method=method))

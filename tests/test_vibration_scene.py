@@ -1,0 +1,170 @@
+"""The [vibration] part of the scene (engine_sim.vibration): validation, the unshaken twin, the arcsin law on a
+flat track, normal vibration and lift-off, the energy balance, the recorded displacement and the drawing."""
+import math
+import tomllib
+
+import numpy as np
+import pytest
+
+import engine_sim
+from compare.cli import main
+from engine_sim import Scene, ScenarioError, scenario_from_dict, shipped_scenarios
+from engine_sim.render import SceneRenderer
+from reduced_models.vibration import arcsin_ratio
+
+PATCHES = tomllib.loads(shipped_scenarios()["pads_friction_patches"].read_text())
+
+
+def _patches(vibration=None, **run):
+    d = {**PATCHES, "run": {**PATCHES["run"], **run}}
+    if vibration is not None:
+        d["vibration"] = vibration
+    return scenario_from_dict(d)
+
+
+def _flat(A, f, direction="parallel", v=1e-2, dt_out=1e-4, duration=0.5):
+    """A flat track of uniform friction (patches with alpha = 0) under a stiff velocity drive (k_drive 5e5 N/m:
+    the block's own resonance 1960 rad/s); stiff pads (k0 = 2e4 N/m: deflection mu N / k0 = 1.3 um, resonance
+    4470 rad/s = 712 Hz), viscous part c = 0.01 N s/m per pad (its mean is c v whatever the vibration)."""
+    d = {"name": "flat", "block": {"M": 0.1},
+         "pads": {"N": 30, "mass": 1e-3, "radius": 0.3e-3, "k0": 2e4, "k_normal": 833.0, "track_spacing": 5e-3},
+         "friction": {"law": "linear", "mu0": 0.6, "c": 0.01}, "substrate": {"kind": "patches", "a": 1e-3, "alpha": 0.0},
+         "drive": {"kind": "velocity", "v": v, "k_drive": 5e5},
+         "run": {"dt": 5e-5, "dt_out": dt_out, "duration": duration, "warmup": 0.2, "iterations": 10, "seed": 0}}
+    if A > 0:
+        d["vibration"] = {"target": "substrate", "direction": direction, "amplitude": A, "frequency": f}
+    return scenario_from_dict(d)
+
+
+def _coulomb(tr, c=0.01, N=30):
+    """Mean Coulomb friction over the trace's whole periods (all samples but the last): the drive's force (a
+    smooth signal, unlike the contact forces' point samples) less the viscous part's mean c N v."""
+    v = tr.metadata["scenario"]["drive"]["v"]
+    return float(np.mean(tr.F_drive[:-1]) - c * N * v)
+
+
+# ----------------------------------------------------------------------------- validation
+@pytest.mark.parametrize("vib,needle", [
+    ({"amplitude": -1e-6}, "vibration.amplitude"),
+    ({"frequency": 0.0}, "vibration.frequency"),
+    ({"frequency": float("nan")}, "vibration.frequency"),
+    ({"frequency": 600.0}, "vibration.frequency"),  # dt = 1e-4 s: 16.7 steps per period < 20
+    ({"direction": "sideways"}, "vibration.direction"),
+    ({"target": "table"}, "vibration.target"),
+    ({"speed": 1.0}, "vibration.speed"),
+])
+def test_bad_vibration_is_one_line_naming_the_field(vib, needle):
+    with pytest.raises(ScenarioError, match=needle.replace(".", r"\.")) as e:
+        _patches({"amplitude": 1e-5, "frequency": 10.0, **vib})
+    assert "\n" not in str(e.value)
+
+
+def test_frequency_limit_is_20_steps_per_period():
+    _patches({"amplitude": 1e-5, "frequency": 500.0})  # exactly 20 steps of 1e-4 s
+    with pytest.raises(ScenarioError, match="at least 20"):
+        _patches({"amplitude": 1e-5, "frequency": 501.0})
+
+
+def test_block_normal_needs_a_free_block_and_the_shaker_a_law_without_forces():
+    with pytest.raises(ScenarioError, match="vibration.direction"):
+        _patches({"target": "block", "direction": "normal", "amplitude": 1e-5, "frequency": 10.0})
+    d = {**PATCHES, "friction": {"law": "log"}, "vibration": {"target": "block", "amplitude": 1e-5, "frequency": 10.0}}
+    with pytest.raises(ScenarioError, match="vibration.target"):
+        scenario_from_dict(d)
+    d["vibration"]["target"] = "substrate"  # the substrate's inertial acceleration is gravity: any law
+    scenario_from_dict(d)
+
+
+@pytest.mark.parametrize("section,needle", [
+    ('amplitude = -1e-3\nfrequency = 10.0', "vibration.amplitude"),
+    ('amplitude = 1e-3\nfrequency = 0.0', "vibration.frequency"),
+    ('amplitude = 1e-3\nfrequency = nan', "vibration.frequency"),
+    ('amplitude = 1e-3\nfrequency = 10.0\ndirection = "diagonal"', "vibration.direction"),
+    ('amplitude = 1e-3\nfrequency = 10.0\ntarget = "floor"', "vibration.target"),
+])
+def test_cli_exits_2_and_writes_nothing(tmp_path, capsys, section, needle):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "keep.txt").write_text("old report")
+    p = tmp_path / "s.toml"
+    p.write_text(shipped_scenarios()["pads_friction_patches"].read_text() + f"\n[vibration]\n{section}\n")
+    assert main(["run", str(p), "-o", str(out), "--duration", "0.1"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err and needle in err, err
+    assert sorted(q.name for q in out.iterdir()) == ["keep.txt"]
+
+
+# ----------------------------------------------------------------------------- the scene
+def test_zero_amplitude_is_the_unshaken_twin_bit_for_bit():
+    a = engine_sim.run(_patches(duration=0.2, warmup=0.1))
+    b = engine_sim.run(_patches({"amplitude": 0.0, "frequency": 10.0}, duration=0.2, warmup=0.1))
+    for name in ("x", "v", "F_t", "F_n", "F_drive", "pad_force", "dissipated", "mech_energy"):
+        np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+    assert np.all(b.vibration == 0) and np.all(b.work_vibration == 0)
+
+
+@pytest.mark.parametrize("target,direction,A,f", [
+    ("substrate", "parallel", 2e-4, 10.0), ("block", "parallel", 2e-4, 10.0), ("substrate", "normal", 2e-5, 50.0)])
+def test_energy_balance_and_recorded_displacement(target, direction, A, f):
+    # pads_friction_patches shaken (A omega = 12.6 and 6.3 mm/s): drive + vibration work = dissipation +
+    # mechanical energy within 1e-3 of the drive's work (measured 2.7e-5, 1.4e-5, 1.3e-7 in 2 s runs); the
+    # recorded s(t) is A sin(omega t) at the samples' absolute times (the warm-up's included). Epochs of 0.25 s:
+    # the scene passes through 3 pickle round trips (the phase is the step count; the gravity written back after
+    # every advance)
+    sc = _patches({"target": target, "direction": direction, "amplitude": A, "frequency": f}, duration=1.0,
+                  warmup=0.5)
+    tr = engine_sim.run(sc, epoch=0.25)
+    W = tr.work_drive[-1]
+    resid = W + tr.work_vibration[-1] + tr.work_recycle[-1] - tr.dissipated[-1] - tr.mech_energy[-1]
+    assert abs(resid / W) < 1e-3
+    if direction == "parallel":
+        assert tr.work_vibration[-1] != 0
+    t_abs = tr.t + sc.run.warmup
+    np.testing.assert_allclose(tr.vibration, A * np.sin(2 * np.pi * f * t_abs), atol=1e-9 * A)
+    assert tr.metadata["scene"]["vibration"]["velocity_amplitude"] == pytest.approx(A * 2 * np.pi * f)
+
+
+@pytest.mark.parametrize("xi", [0.1, 0.3, 0.5, 0.7, 0.9])
+def test_arcsin_law_on_a_flat_track(xi):
+    # Rigid-contact Coulomb friction at a steady speed v over a substrate oscillating along x: mean friction /
+    # unshaken = (2/pi) arcsin(xi), xi = v / (A omega). Conditions: 10 Hz, far below the pads' resonance (712 Hz)
+    # and the block-drive resonance (312 Hz); v = 10 mm/s so that even at xi = 0.9 the backward slip in each
+    # cycle, 2 A (sqrt(1 - xi^2) - xi arccos xi) = 10.6 um, is 8x the pads' stick travel 2 mu N / k0 = 1.3 um
+    # (at v = 5 mm/s and shipped pads the pads' compliance added +6.7 % at xi = 0.9). 5 whole periods. Measured
+    # errors -0.4 %, +2.7 %, +2.7 %, 0.0 %, +1.7 % at 1 s: the ringing of the pads (c0 = 0) and of the block on its
+    # drive after each reversal of the friction; the tolerance is the issue's 5 %.
+    f, v = 10.0, 1e-2
+    A = v / (xi * 2 * np.pi * f)
+    c0 = _coulomb(engine_sim.run(_flat(0.0, f, v=v)))
+    c1 = _coulomb(engine_sim.run(_flat(A, f, v=v)))
+    assert c1 / c0 == pytest.approx(float(arcsin_ratio(xi)), rel=0.05)
+
+
+def test_normal_vibration_below_and_past_lift_off():
+    # the guided block rides with the substrate; each pad, pressed by its spring's preload and its weight
+    # (N_pad = 0.0425 N, mass 1e-3 kg), feels the inertial force m A omega^2 sin: it leaves its track once
+    # A omega^2 exceeds its effective gravity N_pad / m = 42.5 m/s^2 (rigid contact). Below, the load's
+    # modulation averages out and the mean friction is unchanged (measured 0.06 %; tolerance 1 %).
+    f = 50.0
+    sc0 = _flat(0.0, f, duration=0.4)
+    g_eff = sc0.normal_load_per_pad / sc0.pads.mass
+    A_lift = g_eff / (2 * np.pi * f) ** 2
+    c0 = _coulomb(engine_sim.run(sc0))
+    below = engine_sim.run(_flat(0.9 * A_lift, f, "normal", duration=0.4))
+    assert np.all(below.n_contact == 30)
+    assert _coulomb(below) / c0 == pytest.approx(1.0, abs=0.01)
+    above = engine_sim.run(_flat(1.1 * A_lift, f, "normal", duration=0.4))
+    assert np.mean(above.n_contact < 30) > 0.05  # pads off their tracks in part of the samples
+
+
+def test_renderer_draws_the_vibration():
+    sc = _patches({"amplitude": 2e-4, "frequency": 10.0})
+    scene = Scene(sc, 0)
+    scene.advance(37)
+    r = SceneRenderer(scene)
+    img = r.frame()
+    assert img.shape[2] == 4
+    labels = [a.get_label() for a in r.panels[0]["artists"].values()]
+    assert "substrate vibration phase" in labels
+    assert "substrate parallel 200 um at 10 Hz" in r.text.get_text()
+    r.close()
