@@ -131,7 +131,8 @@ def test_html_embeds_non_blank_figures(quick_report):
         assert arr.std() > 0.05  # a blank figure has (almost) no variance
     # numbered captions, one per figure, in order
     assert re.findall(r"<b>Figure (\d+)\.</b>", page) == [str(k) for k in range(1, len(imgs) + 1)]
-    assert "Models II and III do not apply to this scene" in page  # said, not left out silently
+    # the models that do not apply to the pad scenes: said once, in the scenes' method section, not left out
+    assert page.count("The other models do not apply to a scene") == 1
     assert "Models I and II do not apply to this scene" in page
 
 
