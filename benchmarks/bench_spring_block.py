@@ -21,7 +21,7 @@ import numba
 import numpy as np
 
 from compare.analysis.spectra import band_average, displacement_spectrum
-from reduced_models.spring_block import SpringBlockParams, _renewal_block, simulate, theory_spectrum
+from reduced_models.spring_block import SpringBlockParams, renewal_block, simulate, theory_spectrum
 
 
 @numba.njit(cache=True)
@@ -65,7 +65,7 @@ def explicit_simulate(p: SpringBlockParams, duration: float, dt_out: float, dt: 
     """The baseline: same random numbers as reduced_models.spring_block.simulate (first distance block)."""
     rng = np.random.default_rng(seed)
     forces = p.alpha * p.f_kin * (rng.random(p.N) - 0.5)
-    pos, idx, val, boundary = _renewal_block(p, rng, 0)
+    pos, idx, val, boundary = renewal_block(p, rng, 0)
     if p.v * duration * 1.2 > boundary:
         raise ValueError("baseline run longer than one pre-generated distance block")
     n_out = int(round(duration / dt_out))

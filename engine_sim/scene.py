@@ -25,7 +25,7 @@ _FAR = 1e9  # mm: the block's groove reaches this far either way
 
 def describe(sc: Scenario) -> dict:
     """What an analysis needs to know of a scenario's scene, in SI units, so it never reads the scenario's layout
-    (``compare.extract`` takes it from a trace's ``metadata["scene"]``):
+    (``compare.analysis.extract`` takes it from a trace's ``metadata["scene"]``):
 
     effective_mass: the mass the drive accelerates (kg; Leonardo's slider adds the hanging mass, rope taut);
     friction_law: the law's parameters per pad, for its slope dF/dv at any speed (law, c [N s/m], b, v_c [m/s],

@@ -1,4 +1,5 @@
-"""The autocorrelation of force series in sliding distance and its integral, the correlation length.
+"""The autocorrelation of force series in sliding distance and its integral, the correlation length; the spectrum
+of one such renewing force (eq. A8).
 
 For forces that renew once per window a of sliding, at a uniform point of each window (eq. 5 of Xu, Zhou & Persson
 2025), the renewal distances are a (1 + r - r') and the integral correlation length is <tau^2> / (2 <tau>) = 7 a / 12:
@@ -11,7 +12,7 @@ import math
 
 import numpy as np
 
-__all__ = ["autocorrelation", "correlation_integral", "correlation_length"]
+__all__ = ["autocorrelation", "correlation_integral", "correlation_length", "contact_force_spectrum"]
 
 
 def autocorrelation(x: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, float]:
@@ -52,3 +53,17 @@ def correlation_length(x: np.ndarray, f: np.ndarray, max_lag_distance: float, wi
     given ``window``, up to exactly that distance."""
     rho, dx = autocorrelation(x, f)
     return correlation_integral(rho, dx, max_lag_distance, window)
+
+
+def contact_force_spectrum(v, a, amp, omega, closure):
+    """C_f of one contact's renewing force, eq. (A8) (Units: N^2 s); closure as in
+    :func:`reduced_models.multiscale.theory_spectrum`."""
+    w = np.asarray(omega, dtype=float)
+    tau0 = a / v
+    if closure == "cumulant":
+        mean_cos = np.exp(-(tau0**2 / 6.0) * w**2 / 2.0) * np.cos(w * tau0)
+    elif closure == "exact":
+        mean_cos = np.cos(w * tau0) * np.sinc(w * tau0 / (2 * np.pi)) ** 2
+    else:
+        raise ValueError(f"closure must be 'cumulant' or 'exact' (got {closure!r})")
+    return v / (12.0 * np.pi * a) * amp**2 / w**2 * (1.0 - mean_cos)

@@ -50,9 +50,8 @@ import numpy as np
 from frictionnoise.checks import check_fields
 
 from . import spring_block as _m1
-from ._exact import Modes, first_order, modal_decomposition
-from ._two_level import run_two_level, sort_windows
-from ._version import package_version
+from .correlation import contact_force_spectrum
+from .multiscale_kernel import CROSSING_TOL, simulate_two_level
 from .trace import ModelTrace, check_run
 
 __all__ = ["MultiscaleParams", "simulate", "theory_spectrum", "theory_components", "transfer_functions",
@@ -60,8 +59,6 @@ __all__ = ["MultiscaleParams", "simulate", "theory_spectrum", "theory_components
            "fit_band"]
 
 RESPONSE = "viscous"  # below omega_c the block follows Z~ = -1/(i omega (m eta1 + n m2 eta3))
-_WINDOWS = 256  # renewal windows generated at a time per level (memory independent of the run's length)
-_TOL = 1e-6  # renewal crossings located to 1e-6 a2 (a different uniform draw at the 20th bit; the motion between them stays exact)
 
 
 @dataclass(frozen=True)
@@ -185,43 +182,9 @@ class MultiscaleParams(_m1.SpringBlockParams):
         return d
 
 
-# ----------------------------------------------------------------------------- linear system
-def _second_order(p: MultiscaleParams):
-    """Mass, damping and stiffness of the closed (zeta, S, U) system (module docstring)."""
-    n = p.n_micro
-    Md = np.array([p.M, p.m, p.m2])
-    K = np.array([[p.N * p.k0, -p.k0, 0.0],
-                  [-p.N * p.k0, p.k0 + n * p.k2, -p.k2],
-                  [0.0, -n * p.k2, p.k2]])
-    D = np.array([[p.N * p.m * p.eta0, -p.m * p.eta0, 0.0],
-                  [-p.N * p.m * p.eta0, p.m * (p.eta0 + p.eta1) + n * p.m2 * p.eta2, -p.m2 * p.eta2],
-                  [0.0, -n * p.m2 * p.eta2, p.m2 * (p.eta2 + p.eta3)]])
-    return Md, D, K
-
-
-def _modal(p: MultiscaleParams) -> Modes:
-    """Modes of the 3-DOF system; column 0 of B is F1 (on S), column 1 is F2 (on U)."""
-    Md, D, K = _second_order(p)
-    B = np.zeros((6, 2))
-    B[4, 0] = -1.0 / p.m
-    B[5, 1] = -1.0 / p.m2
-    return modal_decomposition(first_order(Md, D, K), B)
-
-
-def _micro_windows(p: MultiscaleParams, rng: np.random.Generator, b: int):
-    """Micro renewal events for windows b*W .. (b+1)*W - 1 of length a2: each of the N n microblocks renews once
-    per window at a uniform position, to alpha2 f_kin2 (r - 0.5). Sorted by position."""
-    nm = p.N * p.n_micro
-    r_pos = rng.random((_WINDOWS, nm))
-    r_val = rng.random((_WINDOWS, nm))
-    pos, val, idx = np.empty(_WINDOWS * nm), np.empty(_WINDOWS * nm), np.empty(_WINDOWS * nm, dtype=np.int64)
-    sort_windows(r_pos, r_val, float(b * _WINDOWS), p.a2, p.alpha2 * p.f_kin2, pos, idx, val,
-                 np.empty(nm + 1, dtype=np.int64), np.empty(nm, dtype=np.int64))
-    return pos, idx, val, (b + 1) * _WINDOWS * p.a2
-
-
+# ----------------------------------------------------------------------------- simulator
 def simulate(params: MultiscaleParams, duration: float, dt_out: float = 1e-3, seed=None, *,
-             micro_events: bool = False, crossing_tol: float = _TOL) -> ModelTrace:
+             micro_events: bool = False, crossing_tol: float = CROSSING_TOL) -> ModelTrace:
     """Simulate model Ib exactly between renewals and sample the block position every ``dt_out`` seconds.
 
     The macro renewals use the same random numbers as :func:`reduced_models.spring_block.simulate` with the
@@ -258,83 +221,7 @@ def simulate(params: MultiscaleParams, duration: float, dt_out: float = 1e-3, se
         meta = {**tr.metadata, "model": "Ib (multiscale), n = 0: model I", "params": params.to_dict()}
         return ModelTrace(t=tr.t, x=tr.x, force=tr.force, events={**tr.events, "force_micro": np.zeros(len(tr.t)),
                           "n_micro_renewals": 0}, metadata=meta)
-    return _simulate_two_level(params, duration, dt_out, seed, micro_events, crossing_tol)
-
-
-def _simulate_two_level(p: MultiscaleParams, duration, dt_out, seed, micro_events, crossing_tol=_TOL):
-    n = int(round(duration / dt_out))
-    md = _modal(p)
-    rng = np.random.default_rng(seed)
-    rng2 = rng.spawn(1)[0]  # does not consume rng: the macro stream stays model I's
-    f1 = p.alpha * p.f_kin * (rng.random(p.N) - 0.5)
-    f2 = p.alpha2 * p.f_kin2 * (rng2.random(p.N * p.n_micro) - 0.5)
-    sums = np.array([f1.sum(), f2.sum()])
-    qr = np.zeros(len(md.lam_r))
-    qc = np.zeros(len(md.lam_c), dtype=np.complex128)
-    gr = md.B_r @ sums
-    gc = md.B_c @ sums.astype(np.complex128)
-    B1r, B2r = np.ascontiguousarray(md.B_r[:, 0]), np.ascontiguousarray(md.B_r[:, 1])
-    B1c, B2c = np.ascontiguousarray(md.B_c[:, 0]), np.ascontiguousarray(md.B_c[:, 1])
-    ilr = np.divide(1.0, md.lam_r, out=np.zeros_like(md.lam_r), where=md.lam_r != 0.0)
-    lcr, lci, ilc = md.lam_c.real.copy(), md.lam_c.imag.copy(), 1.0 / md.lam_c
-    x, F, F2 = np.empty(n), np.empty(n), np.empty(n)
-    n1_est = int(p.N * (p.v * duration * 1.5 / p.a + 2 * _m1.BLOCK_INTERVALS)) + 16
-    ev_time = np.empty(n1_est)
-    ev_index = np.empty(n1_est, dtype=np.int64)
-    n2_est = int(p.N * p.n_micro * (p.v * duration * 1.5 / p.a2 + 2 * _WINDOWS)) + 16 if micro_events else 1
-    ev2_time = np.empty(n2_est)
-    tol = crossing_tol * p.a2  # position tolerance of a renewal crossing (Units: m)
-    pos1 = pos2 = val1 = val2 = np.empty(0)
-    idx1 = idx2 = np.empty(0, dtype=np.int64)
-    ptr1 = ptr2 = 0
-    b1 = b2 = 0
-    bound1 = bound2 = -np.inf
-    k, ev_count, ev2_count = 0, 0, 0
-    stats = np.zeros(1, dtype=np.int64)
-    scratch = (np.empty(len(md.lam_r)), np.empty(len(md.lam_r)), np.empty(len(md.lam_c), dtype=np.complex128),
-               np.empty(len(md.lam_c), dtype=np.complex128))
-    reach = -np.inf  # the kernel stops 4 output steps before the nearer loaded boundary
-    while k < n:
-        while bound1 <= reach or bound1 == -np.inf:
-            new = _m1.renewal_block(p.macro, rng, b1)
-            b1 += 1
-            pos1, idx1, val1 = (np.concatenate([pos1[ptr1:], new[0]]), np.concatenate([idx1[ptr1:], new[1]]),
-                                np.concatenate([val1[ptr1:], new[2]]))
-            bound1, ptr1 = new[3], 0
-            if ev_count + len(pos1) > len(ev_time):
-                ev_time = np.concatenate([ev_time, np.empty(len(pos1) + len(ev_time))])
-                ev_index = np.concatenate([ev_index, np.empty(len(pos1) + len(ev_index), dtype=np.int64)])
-        while bound2 <= reach or bound2 == -np.inf:
-            new = _micro_windows(p, rng2, b2)
-            b2 += 1
-            pos2, idx2, val2 = (np.concatenate([pos2[ptr2:], new[0]]), np.concatenate([idx2[ptr2:], new[1]]),
-                                np.concatenate([val2[ptr2:], new[2]]))
-            bound2, ptr2 = new[3], 0
-            if micro_events and ev2_count + len(pos2) > len(ev2_time):
-                ev2_time = np.concatenate([ev2_time, np.empty(len(pos2) + len(ev2_time))])
-        start1 = ptr1
-        k, ptr1, ptr2, new_count, ev2_count = run_two_level(
-            md.lam_r, ilr, md.c0_r, B1r, B2r, lcr, lci, ilc, md.c0_c, B1c, B2c, qr, gr, qc, gc, f1, f2, sums, p.v, dt_out,
-            k, n, pos1, idx1, val1, ptr1, pos2, idx2, val2, ptr2, min(bound1, bound2), tol, x, F, F2,
-            ev_time, ev_count, micro_events, ev2_time, ev2_count, stats, *scratch)
-        ev_index[ev_count:new_count] = idx1[start1:ptr1]
-        ev_count = new_count
-        if k < n:
-            reach = x[k] + 4.0 * p.v * dt_out
-    if not np.all(np.isfinite(x)):
-        raise FloatingPointError("model Ib produced non-finite positions; please report the parameters")
-    meta = {
-        "model": "Ib (multiscale)", "params": p.to_dict(), "seed": seed if isinstance(seed, (int, type(None))) else "Generator",
-        "duration": n * dt_out, "dt_out": dt_out, "version": package_version(), "n_renewals": ev_count,
-        "n_micro_renewals": ev2_count, "n_evaluations": int(stats[0]),
-        "method": "exact modal propagation of the 3-DOF system block + sum of miniblocks + sum of microblocks "
-                  "between renewals; renewal times by Newton on the exact solution; force sums updated per renewal",
-    }
-    events = {"times": ev_time[:ev_count].copy(), "index": ev_index[:ev_count].copy(), "force_micro": F2,
-              "n_micro_renewals": ev2_count}
-    if micro_events:
-        events["micro_times"] = ev2_time[:ev2_count].copy()
-    return ModelTrace(t=np.arange(n) * dt_out, x=x, force=F, events=events, metadata=meta)
+    return simulate_two_level(params, duration, dt_out, seed, micro_events, crossing_tol)
 
 
 # ----------------------------------------------------------------------------- theory
@@ -366,19 +253,6 @@ def transfer_functions(params: MultiscaleParams, omega):
     P2 = p.k2 + iw * p.m2 * p.eta2
     Q1t = Q1 + p.n_micro * P2 * (Q2 - P2) / Q2
     return -P0 / (Q0 * Q1t - P0 * P1), P2 / Q2
-
-
-def contact_force_spectrum(v, a, amp, omega, closure):
-    """C_f of one contact's renewing force, eq. (A8) (Units: N^2 s); closure as in :func:`theory_spectrum`."""
-    w = np.asarray(omega, dtype=float)
-    tau0 = a / v
-    if closure == "cumulant":
-        mean_cos = np.exp(-(tau0**2 / 6.0) * w**2 / 2.0) * np.cos(w * tau0)
-    elif closure == "exact":
-        mean_cos = np.cos(w * tau0) * np.sinc(w * tau0 / (2 * np.pi)) ** 2
-    else:
-        raise ValueError(f"closure must be 'cumulant' or 'exact' (got {closure!r})")
-    return v / (12.0 * np.pi * a) * amp**2 / w**2 * (1.0 - mean_cos)
 
 
 def theory_components(params: MultiscaleParams, omega, closure: str = "cumulant"):

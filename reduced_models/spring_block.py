@@ -27,8 +27,9 @@ import numpy as np
 from frictionnoise.checks import check_fields, check_number
 
 from ._checkpoint import load_checkpoint as _load_checkpoint, save_checkpoint as _save_checkpoint
-from ._exact import Modes, first_order, modal_decomposition, run_renewals
 from ._version import package_version
+from .spring_block_kernel import BLOCK_INTERVALS, renewal_block  # noqa: F401  (model I's renewal draws, public here)
+from .spring_block_kernel import contact_indices, initial_state, modal, run, second_order
 from .trace import ModelTrace, check_run
 
 __all__ = [
@@ -38,8 +39,6 @@ __all__ = [
 ]
 
 RESPONSE = "viscous"  # below omega_c the block follows Z = -1/(i omega m eta1), eq. (A6)
-
-BLOCK_INTERVALS = 256  # renewal intervals generated per miniblock at a time (memory independent of length)
 
 
 @dataclass(frozen=True)
@@ -156,98 +155,15 @@ class SpringBlockParams:
         return d
 
 
-# ----------------------------------------------------------------------------- linear system
-def _second_order(p: SpringBlockParams):
-    """Mass, damping and stiffness matrices of (A1)-(A2) with lateral coupling; coordinate 0 is the block."""
-    n = p.N + 1
-    Mm = np.diag([p.M] + [p.m] * p.N)
-    K = np.zeros((n, n))
-    D = np.zeros((n, n))
-    K[0, 0], D[0, 0] = p.N * p.k0, p.N * p.m * p.eta0
-    K[0, 1:] = K[1:, 0] = -p.k0
-    D[0, 1:] = D[1:, 0] = -p.m * p.eta0
-    idx = np.arange(1, n)
-    K[idx, idx] += p.k0
-    D[idx, idx] += p.m * (p.eta0 + p.eta1)
-    for i in range(1, p.N):
-        j = i + 1
-        for mat, c in ((K, p.k1), (D, p.m * p.eta_lat)):
-            mat[i, i] += c
-            mat[j, j] += c
-            mat[i, j] -= c
-            mat[j, i] -= c
-    return Mm, D, K
-
-
-def _reduced_second_order(p: SpringBlockParams):
-    """(A1)-(A2) for (zeta, S = sum_i zeta_i): summed over identical miniblocks the lateral forces cancel
-    (each spring k1 pushes its two ends equally and oppositely), so the block sees this 2-DOF system driven by
-    the force sum F = sum_i f_i alone, whatever k1 and eta_lat:
-
-        M zeta'' = -k0 (N zeta - S) - m eta0 (N zeta' - S')
-        m S''    = -k0 (S - N zeta) - m eta0 (S' - N zeta') - m eta1 S' - F
-    """
-    Md = np.array([p.M, p.m])
-    K = np.array([[p.N * p.k0, -p.k0], [-p.N * p.k0, p.k0]])
-    D = np.array([[p.N * p.m * p.eta0, -p.m * p.eta0], [-p.N * p.m * p.eta0, p.m * (p.eta0 + p.eta1)]])
-    return Md, D, K
-
-
-def _contact_indices(p: SpringBlockParams, contacts) -> np.ndarray:
-    """Miniblock indices whose displacement is recorded: none (False), all (True) or the ones listed."""
-    if contacts is False or contacts is None:
-        return np.empty(0, dtype=np.int64)
-    if contacts is True:
-        return np.arange(p.N)
-    idx = np.asarray(contacts, dtype=np.int64).ravel()
-    if idx.size == 0 or idx.min() < 0 or idx.max() >= p.N:
-        raise ValueError(f"contacts must be True or miniblock indices in 0..{p.N - 1} (got {contacts!r})")
-    return idx
-
-
-def _modal(p: SpringBlockParams, contacts=False) -> Modes:
-    """Modal form of model I. Default: the reduced 2-DOF system (block + sum of miniblocks), with each
-    miniblock's force entering through the same column. ``contacts`` (True or indices): the full (N+1)-body
-    system with the lateral springs, and those miniblocks' displacements zeta_i as extra output rows."""
-    sel = _contact_indices(p, contacts)
-    if not len(sel):
-        Md, D, K = _reduced_second_order(p)
-        A = first_order(Md, D, K)
-        B = np.zeros((4, p.N))
-        B[3, :] = -1.0 / p.m  # every miniblock's force -f_i enters the summed equation
-        return modal_decomposition(A, B)
-    Mm, D, K = _second_order(p)
-    n = p.N + 1
-    A = first_order(np.diag(Mm), D, K)
-    B = np.zeros((2 * n, p.N))
-    B[n + 1 + np.arange(p.N), np.arange(p.N)] = -1.0 / p.m  # the force -f_i on miniblock i
-    rows = np.zeros((len(sel), 2 * n))
-    rows[np.arange(len(sel)), 1 + sel] = 1.0
-    return modal_decomposition(A, B, rows)
-
-
 # ----------------------------------------------------------------------------- simulator
-def renewal_block(p: SpringBlockParams, rng: np.random.Generator, b: int):
-    """Renewal events for distance block b: one per miniblock in each interval [j a, (j+1) a)."""
-    nb = BLOCK_INTERVALS
-    j = np.arange(b * nb, (b + 1) * nb, dtype=float)
-    r_pos = rng.random((p.N, nb))
-    r_val = rng.random((p.N, nb))
-    pos = ((j[None, :] + r_pos) * p.a).ravel()
-    idx = np.repeat(np.arange(p.N), nb)
-    val = (p.alpha * p.f_kin * (r_val - 0.5)).ravel()
-    order = np.argsort(pos, kind="stable")
-    return pos[order], idx[order].astype(np.int64), val[order], (b + 1) * nb * p.a
-
-
 def simulate(params: SpringBlockParams, duration: float, dt_out: float = 1e-3, seed=None, *, contacts: bool = False,
              checkpoint: str | None = None, checkpoint_every: float | None = None) -> ModelTrace:
     """Simulate model I exactly and sample the block position every ``dt_out`` seconds.
 
     The block's motion depends only on the 2-DOF system of the block and the sum of the miniblocks, driven by
-    the summed random force (the lateral forces cancel in the sum; see ``_reduced_second_order``), and so do
-    the renewal times, which are keyed to the block's displacement. That system is what is propagated unless
-    ``contacts`` asks for the miniblocks themselves.
+    the summed random force (the lateral forces cancel in the sum; see :func:`.spring_block_kernel.reduced_second_order`),
+    and so do the renewal times, which are keyed to the block's displacement. That system is what is propagated
+    unless ``contacts`` asks for the miniblocks themselves.
 
     Parameters
     ----------
@@ -276,21 +192,14 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float = 1e-3, s
     """
     check_run(duration, dt_out)
     n = int(round(duration / dt_out))
-    md = _modal(params, contacts)
+    md = modal(params, contacts)
     n_rows = md.C_r.shape[0]
-    every = n if not checkpoint_every else max(1, int(round(checkpoint_every / dt_out)))
-    key_seed = seed if not n_rows else ("contacts", tuple(_contact_indices(params, contacts).tolist()), seed)
-    st = (_load_checkpoint(checkpoint, params, n, dt_out, key_seed) if checkpoint else None) or _initial_state(
+    key_seed = seed if not n_rows else ("contacts", tuple(contact_indices(params, contacts).tolist()), seed)
+    st = (_load_checkpoint(checkpoint, params, n, dt_out, key_seed) if checkpoint else None) or initial_state(
         params, md, n, duration, seed)
-    st.setdefault("xc", np.empty((0, n_rows)))
-    st.setdefault("need_block", True)
-    for k_stop in [*range((st["k"] // every + 1) * every, n, every), n]:  # the checkpoints, then the end
-        _advance(params, md, st, k_stop, dt_out)
-        if checkpoint and k_stop < n:
-            _save_checkpoint(checkpoint, params, n, dt_out, key_seed, st)
+    save = (lambda state: _save_checkpoint(checkpoint, params, n, dt_out, key_seed, state)) if checkpoint else None
+    run(params, md, st, n, dt_out, checkpoint_every, save)
     x, ev_count = st["x"], st["ev_count"]
-    if not np.all(np.isfinite(x)):
-        raise FloatingPointError("model I produced non-finite positions; please report the parameters")
     meta = {"model": "I (spring-block)", "params": params.to_dict(), "duration": n * dt_out, "dt_out": dt_out,
             "seed": seed if isinstance(seed, (int, type(None))) else "Generator", "version": package_version(),
             "method": ("exact modal propagation between renewals of the " + ("full (N+1)-body system" if contacts else
@@ -299,65 +208,8 @@ def simulate(params: SpringBlockParams, duration: float, dt_out: float = 1e-3, s
     events = {"times": st["ev_time"][:ev_count].copy(), "index": st["ev_index"][:ev_count].copy()}
     if n_rows:
         events["contacts"] = st["xc"]
-        events["contact_index"] = _contact_indices(params, contacts)
+        events["contact_index"] = contact_indices(params, contacts)
     return ModelTrace(t=np.arange(n) * dt_out, x=x, force=st["f"], events=events, metadata=meta)
-
-
-def _initial_state(p: SpringBlockParams, md: Modes, n: int, duration: float, seed) -> dict:
-    """The state of a run at t = 0: the generator, every miniblock's first force, modal coordinates at rest, output
-    buffers of n samples and room for the expected renewals."""
-    rng = np.random.default_rng(seed)
-    forces = p.alpha * p.f_kin * (rng.random(p.N) - 0.5)
-    n_rows = md.C_r.shape[0]
-    ev_time = np.empty(int(p.N * (p.v * duration * 1.5 / p.a + 2 * BLOCK_INTERVALS)) + 16)
-    return {"rng": rng, "forces": forces, "qr": np.zeros(len(md.lam_r)), "qc": np.zeros(len(md.lam_c), dtype=complex),
-            "gr": md.B_r @ forces, "gc": md.B_c @ forces.astype(np.complex128), "x": np.empty(n), "f": np.empty(n),
-            "xc": np.empty((n if n_rows else 0, n_rows)), "ev_time": ev_time,
-            "ev_index": np.empty(len(ev_time), dtype=np.int64), "ev_count": 0, "k": 0, "b": 0, "pos": np.empty(0),
-            "idx": np.empty(0, dtype=np.int64), "val": np.empty(0), "ptr": 0, "boundary": -np.inf, "need_block": True}
-
-
-def _next_block(p: SpringBlockParams, st: dict):
-    """Append the next distance block of renewals to the loaded ones (dropping those passed) and make room for
-    their events."""
-    new_pos, new_idx, new_val, st["boundary"] = renewal_block(p, st["rng"], st["b"])
-    st["b"] += 1
-    ptr = st["ptr"]
-    st["pos"] = np.concatenate([st["pos"][ptr:], new_pos])
-    st["idx"] = np.concatenate([st["idx"][ptr:], new_idx])
-    st["val"] = np.concatenate([st["val"][ptr:], new_val])
-    st["ptr"] = 0
-    if st["ev_count"] + len(st["pos"]) > len(st["ev_time"]):
-        grow = max(len(st["ev_time"]), len(st["pos"]))
-        st["ev_time"] = np.concatenate([st["ev_time"], np.empty(grow)])
-        st["ev_index"] = np.concatenate([st["ev_index"], np.empty(grow, dtype=np.int64)])
-
-
-def _advance(p: SpringBlockParams, md: Modes, st: dict, k_stop: int, dt_out: float):
-    """Propagate the run's state ``st`` (:func:`_initial_state`) to output step ``k_stop``: the exact kernel between
-    renewals, renewal blocks drawn as the kernel reaches the end of the loaded ones. Computation only."""
-    nr, nc, n_rows = len(md.lam_r), len(md.lam_c), md.C_r.shape[0]
-    scratch = (np.empty(nr), np.empty(nr), np.empty(nc, dtype=np.complex128), np.empty(nc, dtype=np.complex128),
-               np.empty(nr), np.empty(nc, dtype=np.complex128))
-    while st["k"] < k_stop:
-        if st["need_block"]:  # the kernel stopped near the end of the loaded renewals
-            _next_block(p, st)
-        x, f, xc, ev_time, pos, ptr = st["x"], st["f"], st["xc"], st["ev_time"], st["pos"], st["ptr"]
-        qr, qc, gr, gc = st["qr"], st["qc"], st["gr"], st["gc"]
-        # the kernel writes x, f (and xc when per-contact rows are asked) rows k..k_stop-1 and one event per renewal
-        # passed, unchecked (numba): refuse buffers too small for that
-        if not (x.shape[0] >= k_stop and f.shape[0] >= k_stop and (n_rows == 0 or xc.shape[0] >= k_stop)
-                and ev_time.shape[0] >= st["ev_count"] + len(pos) - ptr
-                and qr.shape == gr.shape == md.lam_r.shape and qc.shape == gc.shape == md.lam_c.shape):
-            raise RuntimeError(f"spring_block.simulate: buffers too small (x {x.shape[0]}, f {f.shape[0]} rows for "
-                               f"{k_stop}; events {ev_time.shape[0]} for {st['ev_count'] + len(pos) - ptr})")
-        k_new, new_ptr, new_count = run_renewals(md.lam_r, md.c0_r, md.B_r, md.lam_c, md.c0_c, md.B_c, md.C_r, md.C_c,
-                                                 qr, gr, qc, gc, st["forces"], p.v, dt_out, st["k"], k_stop, pos,
-                                                 st["idx"], st["val"], ptr, st["boundary"], x, f, xc, ev_time,
-                                                 st["ev_count"], *scratch)
-        st["ev_index"][st["ev_count"]:new_count] = st["idx"][ptr:new_ptr]
-        st["ev_count"], st["ptr"], st["k"] = new_count, new_ptr, k_new
-        st["need_block"] = k_new < k_stop
 
 
 # ----------------------------------------------------------------------------- theory
@@ -448,7 +300,7 @@ def theory_spectrum_coupled(params: SpringBlockParams, omega) -> np.ndarray:
     numpy.ndarray
         C_x at ``omega`` (Units: m^2 s).
     """
-    Mm, D, K = _second_order(params)
+    Mm, D, K = second_order(params)
     w = np.atleast_1d(np.asarray(omega, dtype=float))
     out = np.empty(len(w))
     rhs = np.zeros((params.N + 1, params.N))

@@ -28,13 +28,14 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, field
 
-import numba
 import numpy as np
 from scipy import integrate
 
 from frictionnoise.checks import check_fields
 
 from ._version import package_version
+from .wear_particle_kernel import run
+from .wear_particle_quadrature import mean_time_pairs
 from .trace import ModelTrace
 
 __all__ = ["DurationLaw", "WearParticleParams", "simulate", "theory_force_spectrum", "theory_spectrum",
@@ -243,82 +244,6 @@ class WearParticleParams:
 
 
 # ----------------------------------------------------------------------------- simulator
-@numba.njit(cache=True)
-def _draw(kind, mean, shape):
-    if kind == 0:
-        return np.random.exponential(mean)
-    if kind == 1:
-        return mean
-    scale = mean * (shape - 1.0) / shape
-    return scale * (1.0 - np.random.random()) ** (-1.0 / shape)
-
-
-@numba.njit(cache=True)
-def _add_rect(t1, t2, c, dt, n, part_i, part_m, diff_i, diff_m):
-    """Add the rectangle c on [t1, t2) to per-bin integrals I_k = Int_bin F and first moments
-    J_k = Int_bin (t_{k+1} - s) F(s) ds, O(1) per rectangle with difference arrays for whole bins."""
-    if t2 <= 0.0 or t1 >= n * dt:
-        return
-    t1 = max(t1, 0.0)
-    t2 = min(t2, n * dt)
-    k1 = int(t1 / dt)
-    k2 = int(t2 / dt)
-    if k1 >= n:
-        k1 = n - 1
-    if k2 >= n:
-        k2 = n - 1
-    if k1 == k2:
-        e = (k1 + 1) * dt
-        part_i[k1] += c * (t2 - t1)
-        part_m[k1] += c * 0.5 * ((e - t1) ** 2 - (e - t2) ** 2)
-        return
-    e1 = (k1 + 1) * dt
-    part_i[k1] += c * (e1 - t1)
-    part_m[k1] += c * 0.5 * (e1 - t1) ** 2
-    s2 = k2 * dt
-    part_i[k2] += c * (t2 - s2)
-    part_m[k2] += c * 0.5 * (dt**2 - (dt - (t2 - s2)) ** 2)
-    if k2 > k1 + 1:
-        diff_i[k1 + 1] += c * dt
-        diff_i[k2] -= c * dt
-        diff_m[k1 + 1] += c * 0.5 * dt**2
-        diff_m[k2] -= c * 0.5 * dt**2
-
-
-@numba.njit(cache=True)
-def _run(seed, n, dt, kinds, shapes, tauA, tauB, cA, cB, telegraph, out_i, out_m, counts):
-    np.random.seed(seed)
-    diff_i = np.zeros(n + 1)
-    diff_m = np.zeros(n + 1)
-    T = n * dt
-    for p in range(tauA.shape[0]):
-        # stationary start: state A with probability tauA / (tauA + tauB); for the exponential law the
-        # residual duration is again exponential, for the others a uniform fraction of one draw
-        state = 0 if np.random.random() < tauA[p] / (tauA[p] + tauB[p]) else 1
-        t = 0.0
-        first = True
-        while t < T:
-            mean = tauA[p] if state == 0 else tauB[p]
-            d = _draw(kinds[state], mean, shapes[state])
-            if first and kinds[state] != 0:
-                d *= np.random.random()
-            first = False
-            c = cA[p] if state == 0 else cB[p]
-            if not telegraph and np.random.random() < 0.5:
-                c = -c
-            _add_rect(t, t + d, c, dt, n, out_i, out_m, diff_i, diff_m)
-            counts[state] += 1
-            t += d
-            state = 1 - state
-    acc_i = 0.0
-    acc_m = 0.0
-    for k in range(n):
-        acc_i += diff_i[k]
-        acc_m += diff_m[k]
-        out_i[k] += acc_i
-        out_m[k] += acc_m
-
-
 def simulate(params: WearParticleParams, duration: float, dt_out: float = 1e-3, seed=None) -> ModelTrace:
     """Event-driven simulation; the force is an exact sum of rectangles, returned as interval averages.
 
@@ -365,8 +290,8 @@ def simulate(params: WearParticleParams, duration: float, dt_out: float = 1e-3, 
     # the kernel writes I, J, counts unchecked (numba): sizes checked here
     if not (I.shape == J.shape == (n,) and counts.shape == (2,) and kinds.shape == shapes.shape == (2,)
             and tauA.shape == tauB.shape == cA.shape == cB.shape == (P.n_particles,)):
-        raise RuntimeError("wear_particle._run: buffer sizes do not match n and n_particles")
-    _run(kernel_seed, n, dt_out, kinds, shapes, tauA, tauB, cA, cB, P.mode == "telegraph", I, J, counts)
+        raise RuntimeError("wear_particle_kernel.run: buffer sizes do not match n and n_particles")
+    run(kernel_seed, n, dt_out, kinds, shapes, tauA, tauB, cA, cB, P.mode == "telegraph", I, J, counts)
     mean_F = float(np.sum((cA * tauA + cB * tauB) / (tauA + tauB))) if P.mode == "telegraph" else 0.0
     # M zeta'' = -(F - mean_F): over [t_k, t_k+1], zeta' gains -(I_k - mean_F dt)/M and zeta gains
     # zeta'_k dt - (J_k - mean_F dt^2 / 2)/M exactly.
@@ -387,28 +312,6 @@ def simulate(params: WearParticleParams, duration: float, dt_out: float = 1e-3, 
 
 
 # ----------------------------------------------------------------------------- theory
-def _quantile_grid(n: int, decades: float):
-    """Gauss-Legendre nodes and weights for Int_0^1 du, in panels of about half a decade of tau."""
-    u, wts = np.polynomial.legendre.leggauss(n)
-    panels = max(1, int(math.ceil(decades / 0.5)))
-    edges = np.linspace(0.0, 1.0, panels + 1)
-    nodes = np.concatenate([0.5 * (hi - lo) * u + 0.5 * (hi + lo) for lo, hi in zip(edges[:-1], edges[1:])])
-    weights = np.concatenate([0.5 * (hi - lo) * wts for lo, hi in zip(edges[:-1], edges[1:])])
-    return nodes, weights
-
-
-def _pairs(P: "WearParticleParams", order: int):
-    """(tau_A, tau_B, weight) over the joint law of a particle's two mean times."""
-    dec = lambda law: math.log10(law.tau_max / law.tau_min)
-    if P.tau_link == "same_rank":
-        u, w = _quantile_grid(order, max(dec(P.trapped), dec(P.sliding), 0.1))
-        return P.trapped.means_at(u), P.sliding.means_at(u), w
-    uA, wA = _quantile_grid(order, dec(P.trapped)) if P.trapped.tau_min < P.trapped.tau_max else (np.array([0.0]), np.array([1.0]))
-    uB, wB = _quantile_grid(order, dec(P.sliding)) if P.sliding.tau_min < P.sliding.tau_max else (np.array([0.0]), np.array([1.0]))
-    UA, UB = np.meshgrid(uA, uB, indexing="ij")
-    return P.trapped.means_at(UA.ravel()), P.sliding.means_at(UB.ravel()), np.outer(wA, wB).ravel()
-
-
 def theory_force_spectrum(params: WearParticleParams, omega, *, closure: str = "exact", order: int = 12,
                           dt_avg: float | None = None) -> np.ndarray:
     """C_F(omega) of the particles' summed force.
@@ -441,7 +344,7 @@ def theory_force_spectrum(params: WearParticleParams, omega, *, closure: str = "
     """
     P = params
     w = np.atleast_1d(np.asarray(omega, dtype=float))
-    TA, TB, W = _pairs(P, order)
+    TA, TB, W = mean_time_pairs(P, order)
     cA = P.c_A * (TA / P.trapped.tau_min) ** P.kappa_A
     cB = P.c_B * (TB / P.sliding.tau_min) ** P.kappa_B
     cA2, cB2 = cA**2, cB**2

@@ -12,6 +12,8 @@ from engine_sim import load_scenario, shipped_scenarios
 @pytest.mark.parametrize("name", sorted(shipped_scenarios()))
 def test_shipped_scenario_slides_steadily(name):
     sc = load_scenario(shipped_scenarios()[name]).with_run(duration=6.0, warmup=1.0)
+    if sc.law_part.reduced_model == "spring_slider":
+        pytest.skip("sticks and slips by design (k < k_c): tests/test_rate_state_law.py")
     tr = engine_sim.run(sc)
     assert np.all(np.isfinite(tr.x)) and np.all(np.isfinite(tr.F_t))
     v_all = (tr.x[-1] - tr.x[0]) / tr.t[-1]

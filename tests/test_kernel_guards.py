@@ -25,7 +25,7 @@ def test_wear_particle_refuses_short_buffers(monkeypatch):
     from reduced_models import wear_particle as m
 
     monkeypatch.setattr(m, "np", _short_np(np, "zeros"))
-    with pytest.raises(RuntimeError, match="wear_particle._run: buffer sizes"):
+    with pytest.raises(RuntimeError, match="wear_particle_kernel.run: buffer sizes"):
         m.simulate(m.WearParticleParams(n_particles=10), 0.1, 1e-3, seed=0)
 
 

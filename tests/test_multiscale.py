@@ -8,6 +8,7 @@ from compare.analysis.fits import fit_power_law
 from compare.analysis.spectra import band_average, displacement_spectrum
 from compare.analysis.assertions import assert_spectrum_matches
 from reduced_models import multiscale as ms
+from reduced_models import multiscale_kernel as ms_kernel
 from reduced_models import spring_block as m1
 
 REF = ms.MultiscaleParams.reference()
@@ -42,7 +43,7 @@ def test_n0_is_model_I_exactly():
     assert np.array_equal(a.x, b.x) and np.array_equal(a.force, b.force)
     # The two-level kernel itself, run at n = 0, against model I's solver, same seed: the renewals are located
     # to 1e-6 a2 (2e-8 s) instead of to rounding, which moves x by < 1e-12 m (measured 4e-13 m over 20 s).
-    c = ms._simulate_two_level(N0, 20.0, 1e-3, 4, False)
+    c = ms_kernel.simulate_two_level(N0, 20.0, 1e-3, 4, False)
     assert np.max(np.abs(c.x - b.x)) < 1e-12
     np.testing.assert_allclose(c.events["times"], b.events["times"], rtol=0, atol=1e-7)
 
@@ -52,7 +53,7 @@ def test_closed_form_equals_direct_solve_of_the_3dof_system():
     # zeta = H1 F1 + H2 F2, so C_x = N |H1|^2 C_f1 + N n |H2|^2 C_f2. Agreement to 1e-9 (rounding of the
     # 3x3 solve across 12 decades of stiffness).
     w = np.logspace(-1, 7, 60)
-    Md, D, K = ms._second_order(REF)
+    Md, D, K = ms_kernel.second_order(REF)
     H = np.array([np.linalg.solve(-wi**2 * np.diag(Md) + 1j * wi * D + K, -np.eye(3)[:, 1:])[0] for wi in w])
     Z, T2 = ms.transfer_functions(REF, w)
     np.testing.assert_allclose(H[:, 0], Z / REF.N, rtol=1e-9)

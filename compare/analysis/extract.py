@@ -40,8 +40,9 @@ def scene_info(trace, scenario=None) -> dict:
 
 
 def friction_slope(law: dict, v: float) -> float:
-    """dF/dv of the friction law per pad at speed v (N s/m): c, plus b N_pad / (v_c + v) for the log law."""
-    extra = law["b"] * law["load_per_pad"] / (law["v_c"] + v) if law["law"] == "log" else 0.0
+    """dF/dv of the friction law per pad at speed v (N s/m): c, plus b N_pad / (v_c + v) for the log law (and for
+    the rate_state law's steady state, b = A - B)."""
+    extra = law["b"] * law["load_per_pad"] / (law["v_c"] + v) if law["law"] in ("log", "rate_state") and law["b"] else 0.0
     return law["c"] + extra
 
 

@@ -37,16 +37,9 @@ __all__ = [
 ]
 
 from frictionnoise import G as G_STANDARD  # noqa: E402  (m/s^2, the paper's g, defined once)
-from .estimators import (  # noqa: E402
-    as_series as _as_series,
-    auto_order as _auto_order,
-    default_nperseg as _default_nperseg,
-    difference_gain as _difference_gain,
-    line_fit as _line_fit,
-    periodogram as _periodogram,
-    pilot_gamma as _pilot_gamma,
-    welch as _welch,
-    welch_dof as _welch_dof,
+from .estimators import as_series as _as_series, default_nperseg as _default_nperseg, welch_dof as _welch_dof  # noqa: E402
+from .prewhitening import (  # noqa: E402
+    checked_order, detrended, periodogram_recoloured, prewhitening_order, welch_recoloured,
 )
 
 
@@ -112,59 +105,6 @@ class Spectrum:
         return len(self.omega)
 
 
-# ----------------------------------------------------------------------------- validation
-def _detrended(t, y, detrend: str, quantity: str, name: str, steps: list):
-    """(z, v): ``y`` less its fitted line y0 + v t ("linear"), its mean ("constant", v = 0) or as is ("none");
-    what was removed goes to ``steps``."""
-    if detrend == "linear":
-        v, y0 = _line_fit(t - t[0], y)
-        z = y - (y0 + v * (t - t[0]))
-        rate_unit = {"x": "m/s", "F": "N/s", "mu": "1/s"}.get(quantity, "per s")
-        steps.append(f"removed fitted line {name}0 + v t, v = {v:.6g} {rate_unit}")
-    elif detrend == "constant":
-        v = 0.0
-        z = y - y.mean()
-        steps.append(f"removed mean {y.mean():.6g}")
-    elif detrend == "none":
-        v = 0.0
-        z = y
-    else:
-        raise ValueError(f"detrend must be 'linear', 'constant' or 'none' (got {detrend!r})")
-    return z, v
-
-
-def _prewhitening_order(prewhiten, z, dt: float, steps: list):
-    """(k, pilot gamma or None, automatic): the number of differences taken before the Welch estimate, given
-    (0-6) or chosen from a pilot slope of ``z`` ("auto")."""
-    auto = prewhiten == "auto"
-    pilot = None
-    if auto:
-        pilot = _pilot_gamma(z, dt)
-        k = _auto_order(pilot)
-        steps.append(f"pilot slope gamma ~ {pilot:.2f} -> pre-whitening order {k}")
-    else:
-        try:
-            k = int(prewhiten)
-        except (TypeError, ValueError):
-            raise ValueError(f"prewhiten must be a non-negative integer or 'auto' (got {prewhiten!r})") from None
-        if not 0 <= k <= 6:
-            raise ValueError(f"prewhiten must be between 0 and 6 (got {k})")
-    return k, pilot, auto
-
-
-def _welch_recoloured(z, dt: float, nperseg: int, k: int):
-    """(z differenced k times, segment length, segments, omega, C): the Welch estimate of the differenced series
-    in the eq. (2) convention, divided by the difference filter's gain."""
-    zk = np.diff(z, n=k) / dt**k if k else z
-    nps = min(nperseg, len(zk))
-    f, S, n_segments = _welch(zk, dt, nps)
-    omega = 2.0 * np.pi * f
-    C = S / (4.0 * np.pi)
-    if k:
-        C = C / _difference_gain(omega, dt, k)
-    return zk, nps, n_segments, omega, C
-
-
 def series_spectrum(
     t,
     y,
@@ -213,36 +153,20 @@ def series_spectrum(
         raise ValueError(f"only {n} samples, fewer than one segment (nperseg = {nperseg})")
 
     steps = []
-    z, v = _detrended(t, y, detrend, quantity, name, steps)
-    k, pilot, auto = _prewhitening_order(prewhiten, z, dt, steps)
+    z, v = detrended(t, y, detrend, quantity, name, steps)
+    k, pilot, auto = prewhitening_order(prewhiten, z, dt, steps)
     nperseg0 = nperseg
-    zk, nperseg, n_segments, omega, C = _welch_recoloured(z, dt, nperseg0, k)
+    zk, nperseg, n_segments, omega, C = welch_recoloured(z, dt, nperseg0, k)
     if auto:
-        # The pilot (a short Hann estimate of the velocity) can miss by one order near the k boundaries
-        # (gamma 6 read as 7.1-7.4 in 10 % of 2^16-sample series), and an over-differenced series (a rising
-        # spectrum) leaks through the rectangular window of the raw periodogram. Check the order once on the
-        # pre-whitened estimate itself, whose slope is unbiased, and redo it if the order changes.
-        keep = (omega >= 4 * omega[0]) & (omega <= omega[-1] / 16)
-        if keep.sum() >= 4 and np.all(C[keep] > 0):
-            refined = -float(np.polyfit(np.log(omega[keep]), np.log(C[keep]), 1)[0])
-            k2 = _auto_order(refined)
-            if k2 != k:
-                steps.append(f"slope of the order-{k} estimate gamma ~ {refined:.2f} -> pre-whitening order {k2}")
-                k = k2
-                zk, nperseg, n_segments, omega, C = _welch_recoloured(z, dt, nperseg0, k)
+        k, (zk, nperseg, n_segments, omega, C) = checked_order(z, dt, nperseg0, k, (zk, nperseg, n_segments, omega, C),
+                                                               steps)
     if k:
         steps.append(f"differenced {k}x (divided by dt^{k})")
     steps.append(f"Welch: Hann window, nperseg = {nperseg}, 50 % overlap, {n_segments} segments")
     steps.append("C(omega) = S(f) / (4 pi)  [eq. (2) convention]")
     if k:
         steps.append(f"re-coloured by |2 sin(omega dt/2)/dt|^-{2 * k}")
-    d_omega, P = _periodogram(zk, dt)
-    if k:
-        P = P / _difference_gain(d_omega * np.arange(1, len(P) + 1), dt, k)
-    n_raw = int(round(2.0 * np.pi / (d_omega * dt)))
-    steps.append(f"raw periodogram (rectangular window) of the {'differenced ' if k else ''}series over "
-                 f"{n_raw} samples{f' (the last {len(zk) - n_raw} dropped for a fast FFT length)' if n_raw < len(zk) else ''}"
-                 f", re-coloured alike: for the Whittle fit")
+    d_omega, P = periodogram_recoloured(zk, dt, k, steps)
 
     provenance = {
         "quantity": quantity,

@@ -38,6 +38,8 @@ class Law:
     positive: ClassVar[frozenset] = frozenset()
     non_negative: ClassVar[frozenset] = frozenset({"mu0", "c"})
     choices: ClassVar[dict] = {}
+    reduced_model = None  # a key of reduced_models.MODELS fitting a scene with this law (None: the substrate's)
+    quick_duration = None  # recorded seconds of a quick comparison with that model (s)
 
     def __init__(self, spec, scenario):
         self.spec, self.sc = spec, scenario
@@ -77,4 +79,4 @@ def law_kind(name: str):
     return LAWS[name]
 
 
-from . import linear, log  # noqa: E402,F401
+from . import linear, log, rate_state  # noqa: E402,F401

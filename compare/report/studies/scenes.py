@@ -30,8 +30,8 @@ _COST_HINT = {"pads_with_wear": 18.0, "pads_multiscale": 12.0, "pads_rough_profi
 def fitting_part(sc):
     """The scene's part that names the reduced model fitting it (``reduced_model``, a key of
     ``reduced_models.MODELS``) and the recorded seconds of a quick comparison (``quick_duration``): its wear
-    particles when it has any, else its substrate."""
-    return next(part for part in (sc.wear_part, sc.substrate_part) if part.reduced_model)
+    particles when it has any, else its friction law if that names one, else its substrate."""
+    return next(part for part in (sc.wear_part, sc.law_part, sc.substrate_part) if part.reduced_model)
 
 
 # Recorded seconds of a scene in the full report (the quick one takes each part's ``quick_duration``, 8-16 s;
@@ -42,7 +42,8 @@ FULL_DURATION = 20.0
 
 # each reduced model's comparison with a scene: (module of this package, function), looked up when called
 COMPARISONS = {"model_I": ("scenes", "_model_I_result"), "model_II": ("scene_wear", "wear_result"),
-               "model_III": ("scene_asperity", "asperity_result")}
+               "model_III": ("scene_asperity", "asperity_result"),
+               "model_ageing": ("scene_rate_state", "ageing_result"), "spring_slider": ("scene_rate_state", "slider_result")}
 # models compared beside the fitting one on the same trace, when a part names them (``also_fits``)
 BESIDE = {"model_Ib": ("scene_multiscale", "scene_against_model_Ib")}
 SCENE_RUNS = {"model_II": 2}  # scene runs a comparison makes when not 1: model II's pairs the scene with and without
