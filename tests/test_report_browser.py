@@ -16,6 +16,8 @@ from compare.report.build import build_report
 
 pytestmark = pytest.mark.slow  # a report built (about 7 s) and a browser started (about 4 s)
 
+FIRST_SCREEN_PX = 900  # a 1280 x 900 browser window: the summary table ends above its bottom edge
+
 
 def _missing(reason: str):
     """Skip saying what is missing; under CI (CI=true), which installs the browser, fail instead."""
@@ -48,13 +50,11 @@ def small_report(tmp_path_factory):
     return write_report(tmp_path_factory.mktemp("browser") / "report", results, summary), results
 
 
-def test_report_reads_in_a_browser(small_report, tmp_path):
+def _driver(tmp_path):
     chrome, driver_path = _browser()
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service
-    from selenium.webdriver.common.by import By
 
-    out, results = small_report
     opts = webdriver.ChromeOptions()
     opts.binary_location = chrome
     for flag in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
@@ -62,8 +62,15 @@ def test_report_reads_in_a_browser(small_report, tmp_path):
                  f"--user-data-dir={tmp_path / 'profile'}"):
         opts.add_argument(flag)
     opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    return webdriver.Chrome(service=Service(driver_path), options=opts)
+
+
+def test_report_reads_in_a_browser(small_report, tmp_path):
+    from selenium.webdriver.common.by import By
+
+    out, results = small_report
     t0 = time.perf_counter()
-    drv = webdriver.Chrome(service=Service(driver_path), options=opts)
+    drv = _driver(tmp_path)
     try:
         drv.get((out / "index.html").as_uri())
         # every image decodes (a broken data URI leaves naturalWidth at 0)
@@ -91,10 +98,47 @@ def test_report_reads_in_a_browser(small_report, tmp_path):
         # no console errors
         errors = [e for e in drv.get_log("browser") if e["level"] == "SEVERE"]
         assert not errors, errors
-        # the first screen, for a person to look at
+        # the first screen holds the summary table
         drv.execute_script("window.scrollTo(0, 0);")
+        bottom = drv.execute_script("return document.getElementById('summary').getBoundingClientRect().bottom;")
+        assert bottom <= FIRST_SCREEN_PX, bottom
+        # the first screen, for a person to look at
         shot = tmp_path / "report_first_screen.png"
         assert drv.save_screenshot(str(shot)) and shot.stat().st_size > 10_000
         print(f"\nscreenshot of the report's first screen: {shot} (browser part {time.perf_counter() - t0:.1f} s)")
+    finally:
+        drv.quit()
+
+
+def test_first_screen_holds_the_summary_of_a_full_report(tmp_path):
+    """The full report's contents and summary table (every registered study, each with the verdict rows the full
+    report gives it; the longest texts they print) fit the first screen of a 1280 x 900 window."""
+    from compare.report import studies
+    from compare.report.study import StudyResult
+    from compare.report.verdict import gamma_verdict, ratio_verdict
+
+    flagged = {"gamma": 5.98, "gamma_err": 0.02, "band": [1.5, 11.8], "flags": ["band spans 0.90 decades (< 1)",
+                                                                                 "log-log residuals curve (2.8 sigma)"]}
+    rows = {"model_I": 2, "model_Ib": 2, "model_III": 3, "model_II": 2}  # the scenes: one row each
+    results = [StudyResult("model_I_variations", "Model I variations (paper Fig. 2)", {},
+                           verdicts=(ratio_verdict("model_I_variations", "C_x level / eq. (6), 5 cases", [0.97, 1.03],
+                                                   1.25, "1 (eq. 6)"),))]
+    for st in studies.selected(False):
+        n = rows.get(st.key, 0 if st.key in ("scenes_method", "engine_work_precision") else 1)
+        verdicts = tuple(gamma_verdict(st.key, "gamma, N = 300", flagged, 5.9, "5.90 (exact, over the band)")
+                         if k % 2 else ratio_verdict(st.key, "C_F / model III, 2 bands", [0.00135, 0.0187], 1.5,
+                                                     "1 (no load sharing)") for k in range(n))
+        results.append(StudyResult(st.key, st.label, {}, verdicts=verdicts))
+    results.append(StudyResult("scenarios/pads_multiscale_model_Ib", "Scene pads_multiscale against model Ib", {},
+                               verdicts=(ratio_verdict("x", "C_x / model Ib", [0.95, 1.06], 1.5, "1 (model Ib)"),)))
+    assert sum(len(r.verdicts) for r in results) >= 21
+    out = write_report(tmp_path / "report", results, {"version": "0.1.0", "seed": 0, "quick": False})
+    drv = _driver(tmp_path)
+    try:
+        drv.get((out / "index.html").as_uri())
+        bottom, width, inner = drv.execute_script(
+            "return [document.getElementById('summary').getBoundingClientRect().bottom,"
+            " document.documentElement.scrollWidth, window.innerWidth];")
+        assert bottom <= FIRST_SCREEN_PX and width <= inner, (bottom, width, inner)  # no sideways scrolling either
     finally:
         drv.quit()

@@ -131,7 +131,8 @@ def test_html_embeds_non_blank_figures(quick_report):
         assert arr.std() > 0.05  # a blank figure has (almost) no variance
     # numbered captions, one per figure, in order
     assert re.findall(r"<b>Figure (\d+)\.</b>", page) == [str(k) for k in range(1, len(imgs) + 1)]
-    assert "Models II and III do not apply to this scene" in page  # said, not left out silently
+    # the models that do not apply to the pad scenes: said once, in the scenes' method section, not left out
+    assert page.count("The other models do not apply to a scene") == 1
     assert "Models I and II do not apply to this scene" in page
 
 
@@ -147,3 +148,29 @@ def test_output_path_that_is_a_file_is_a_user_error(tmp_path, capsys):
 def test_no_command_prints_help(capsys):
     assert main([]) == 0
     assert "report" in capsys.readouterr().out
+
+
+@pytest.mark.slow  # the quick report (about 2 min on 2 idle cores, its own worker processes on both)
+@pytest.mark.timing  # the session's quick report measures the particles' cost ratio (a speed): run alone
+def test_page_leads_with_verdicts_and_its_prose_keeps_to_the_flags(quick_report):
+    from compare.report.study import StudyResult
+    from compare.report.verdict import NOT_A_POWER_LAW, prose_flag_problems
+
+    page = (quick_report / "index.html").read_text()
+    s = json.loads((quick_report / "summary.json").read_text())
+    assert page.index("id='contents'") < page.index("id='summary'") < page.index("<section")
+    assert len(s["verdicts"]) >= 15 and all(v["agree"] is None for v in s["verdicts"] if v["flags"])
+    assert all(NOT_A_POWER_LAW in v["measured"] for v in s["verdicts"] if v["flags"])
+    # each section's prose against the flags of the fits in its summary.json entry
+    problems = []
+    for m in re.finditer(r"<section id='s-([^']+)'><h2>[^<]*</h2>(.*?)</section>", page, re.S):
+        key = m.group(1)
+        numbers = s.get(key) or s.get("scenarios", {}).get(key.removeprefix("scenarios-")) or {}
+        problems += prose_flag_problems(StudyResult(key, key, numbers, html=m.group(2)))
+    assert problems == [], problems
+    # clean output: markup rendered, one number format, no empty values
+    text = re.sub(r"<img[^>]*>", "", page)
+    for bad in ("``", ":func:", ":mod:", "(substrate: nan)", "seed -", "DESIGN.md", "3x above"):
+        assert bad not in text, bad
+    assert not re.search(r"-0\.0+(?![0-9])", text), re.search(r".{40}-0\.0+(?![0-9])", text)  # a negative zero
+    assert not re.search(r"\d-\d(\.\d+)?e[+-]\d\d rad/s", text), re.search(r".{40}\d-\d(\.\d+)?e[+-]\d\d rad/s", text)

@@ -64,3 +64,35 @@ def test_work_precision_draws_every_setting_and_the_reference():
         bb = txt.get_window_extent()
         assert bb.x0 >= 0 and bb.x1 <= W and bb.y0 >= 0 and bb.y1 <= H, (txt.get_text(), bb, W, H)
 
+
+
+def test_fit_line_is_drawn_on_the_data_at_its_level(walk):
+    # the line is the fitted power law itself (prefactor * omega^-gamma), not an offset copy, and the legend says
+    # what it is without naming an offset
+    t, x, _ = walk
+    s = displacement_spectrum(t, x)
+    fit = fit_power_law(s, band=(10.0, 300.0))
+    fig = plots.spectrum_figure([(s, "walk")], fits=[(fit, "")], band=fit.band)
+    ax = fig.axes[0]
+    line = next(ln for ln in ax.get_lines() if r"$\gamma$" in ln.get_label())
+    w, c = line.get_data()
+    np.testing.assert_allclose(c, fit.level(w), rtol=1e-12)
+    titles = [a.get_title().get_text() for a in ax.artists] + [ax.get_legend().get_title().get_text()]
+    assert not any("3x" in s or "above its level" in s for s in titles), titles
+
+
+def test_an_axis_over_many_decades_keeps_its_labels_apart():
+    # a closed form from 1e-8 down to 1e-58 (the wide-band sensor figure): at most 8 labelled decades, the range
+    # the data's, and no two tick labels overlapping
+    fig = plots.new_figure(5.0, 4.6)
+    ax = fig.add_subplot()
+    w = np.geomspace(0.1, 3e7, 400)
+    C = 1e-8 * (1 + (w / 10.0) ** 2) ** -3.5
+    ax.loglog(w, C)
+    plots.follow_data(ax, C)
+    lo, hi = ax.get_ylim()
+    assert C.min() / 10 <= lo <= C.min() and C.max() <= hi <= C.max() * 10
+    fig.canvas.draw()
+    boxes = [t.get_window_extent() for t in ax.get_yticklabels() if t.get_visible() and t.get_text()
+             and lo <= t.get_position()[1] <= hi]
+    assert 2 <= len(boxes) <= 8 and not any(a.overlaps(b) for i, a in enumerate(boxes) for b in boxes[i + 1:]), len(boxes)

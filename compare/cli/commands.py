@@ -409,9 +409,8 @@ def cmd_report(args) -> int:
                                         studies=chosen, on_compile=announce)
     path = write_report(out, results, summary)
     print(f"wrote {path / 'index.html'} ({summary['total_wall_s']:.1f} s)")
-    from reduced_models import MODELS
+    from ..report.verdict import summary_lines
 
-    for key in (k for k in MODELS if "gamma" in summary.get(k, {})):  # the registered models the report fits
-        f = summary[key]
-        print(f"  {key:10s} gamma = {f['gamma']:.3f} +- {f['gamma_err']:.3f} over {f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s")
+    for line in summary_lines(summary):  # the page's summary table, flags included
+        print(line)
     return 0

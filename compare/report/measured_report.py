@@ -19,8 +19,9 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.displacement import C_F_NEEDS_MASS, DisplacementAnalysis
-from ..analysis.fits import PowerLawFit, fit_power_law
-from .html import esc, paragraphs, table
+from ..analysis.fits import PowerLawFit, fit_power_law, flag_mark
+from .html import esc, paragraphs, span, table
+from .verdict import fit_text
 from ..io.measured import MeasuredData, units_line
 from ..analysis.spectra import Spectrum, rescaled, average_spectra, rms_from_spectrum, series_spectrum
 from .study import Figure, StudyResult
@@ -301,29 +302,28 @@ def build_force_report(an: ForceAnalysis):
                                         if st.dropped else "")
         + f"; {st.cut_s:.4g} s cut at each end of a stroke (reversal transients); every stroke {st.used_s:.4g} s long "
           f"after the cut, detrended by its own line; spectra averaged over the strokes.",
-        f"Force exponent: C_F ~ omega^-{f.gamma:.3f} &plusmn; {f.gamma_err:.3f} (95 %, {f.method}) over "
-        f"{f.band[0]:.3g}-{f.band[1]:.3g} rad/s{' (automatic band)' if f.band_auto else ''}"
+        f"Force exponent: C_F ~ omega^-({fit_text(f, 3)}) (95 %, {f.method}) over "
+        f"{span(f.band[0], f.band[1])} rad/s{' (automatic band)' if f.band_auto else ''}"
         + (f" <b>not a power law: {esc('; '.join(f.flags))}</b>" if f.flags else "")
         + f"; F_rms = {summary['F_rms_N']:.4g} N over the resolved band (eq. 4), mean |F| = {summary['mean_abs_F_N']:.4g} N.",
     ]
     if an.fit_mu is not None:
-        paras.append(f"C_mu of mu(t) = F(t)/N(t): exponent {an.fit_mu.gamma:.3f} &plusmn; {an.fit_mu.gamma_err:.3f}; "
+        paras.append(f"C_mu of mu(t) = F(t)/N(t): exponent {fit_text(an.fit_mu, 3)}; "
                      f"mu_rms = {summary['mu_rms']:.4g}, mean |mu| = {summary['mean_abs_mu']:.4g}.")
     if an.fit_x_equiv is not None:
         paras.append(f"Equivalent C_x of a free block of M = {an.mass:g} kg (C_F / (M^2 omega^4), eq. (3); inferred, "
-                     f"not a measured displacement): gamma = {an.fit_x_equiv.gamma:.3f} &plusmn; "
-                     f"{an.fit_x_equiv.gamma_err:.3f}.")
+                     f"not a measured displacement): gamma = {fit_text(an.fit_x_equiv, 3)}.")
     if an.speed is not None:
         paras.append(f"Sliding speed {an.speed:g} m/s: stroke length {summary['stroke_length_m']:.4g} m "
                      f"({summary['used_stroke_length_m']:.4g} m used); distance-domain spectrum over "
-                     f"q = {an.C_F_distance.omega_min:.3g}-{an.C_F_distance.omega_max:.3g} rad/m.")
+                     f"q = {span(an.C_F_distance.omega_min, an.C_F_distance.omega_max)} rad/m.")
     paras += [esc(n) for n in an.notes]
     paras.append("Processing: " + esc("; ".join(an.C_F.provenance["steps"])) + ".")
     figures = [Figure("measured_force_CF", plots.figure_png_bytes(plots.spectrum_figure(
         [(an.C_F, "C_F (measured)")], fits=[(f, "")], band=f.band, ylabel=r"$C_F$ (N$^2$ s)",
         title="Friction-force spectrum")),
         f"C_F of the measured friction force (N^2 s), averaged over {len(st.segments)} strokes, with the power-law fit: "
-        f"C_F slope -{f.gamma:.2f} ± {f.gamma_err:.2f} over {f.band[0]:.3g}-{f.band[1]:.3g} rad/s"
+        f"C_F slope -{f.gamma:.2f} ± {f.gamma_err:.2f}{flag_mark(f)} over {span(f.band[0], f.band[1])} rad/s"
         + (" (not a power law: " + "; ".join(f.flags) + ")." if f.flags else "."))]
     dt = float(d.t[1] - d.t[0])
     rows = [[str(i + 1), f"{a * dt:.4g}", f"{b * dt:.4g}", "used"] for i, (a, b) in enumerate(st.segments)]
@@ -339,7 +339,7 @@ def build_force_report(an: ForceAnalysis):
     if an.C_mu is not None:
         figures.append(Figure("measured_force_Cmu", plots.figure_png_bytes(plots.spectrum_figure(
             [(an.C_mu, "C_mu of F/N")], ylabel=r"$C_\mu$ (s)", title="Friction coefficient spectrum")),
-            f"C_mu of mu(t) = F(t)/N(t): exponent {an.fit_mu.gamma:.2f} ± {an.fit_mu.gamma_err:.2f}."
+            f"C_mu of mu(t) = F(t)/N(t): exponent {an.fit_mu.gamma:.2f} ± {an.fit_mu.gamma_err:.2f}{flag_mark(an.fit_mu)}."
             if an.fit_mu is not None else "C_mu of mu(t) = F(t)/N(t)."))
     if an.C_x_equiv is not None:
         figures.append(Figure("measured_force_Cx_equivalent", plots.figure_png_bytes(plots.spectrum_figure(
@@ -366,14 +366,14 @@ def build_measured_report(an: DisplacementAnalysis, data):
     if data.timeline is not None:
         summary["timeline"] = data.timeline.summary()
     relation = (f"C_F = M^2 omega^4 C_x assumes the block is free (inertial relation, eq. 3), with M = {an.mass:g} kg: "
-                f"C_F ~ omega^-{an.fit_F.gamma:.3f} &plusmn; {an.fit_F.gamma_err:.3f}, F_rms = {an.F_rms:.4g} N."
+                f"C_F ~ omega^-({fit_text(an.fit_F, 3)}), F_rms = {an.F_rms:.4g} N."
                 if an.mass is not None else esc(C_F_NEEDS_MASS) + ".")
     every = "in uniform segments (below)" if segs is not None else f"every {spec.provenance['dt']:.4g} s"
     text = paragraphs([
         f"{len(data.t)} samples {every}; mean velocity {1e3 * an.mean_velocity:.4g} mm/s"
         + (f". {esc(data.warning)}" if data.warning else "."),
-        f"gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} (95 %, {fit.method}) over "
-        f"{fit.band[0]:.3g}-{fit.band[1]:.3g} rad/s{' (automatic band)' if fit.band_auto else ''}"
+        f"gamma = {fit_text(fit, 3)} (95 %, {fit.method}) over "
+        f"{span(fit.band[0], fit.band[1])} rad/s{' (automatic band)' if fit.band_auto else ''}"
         + (f" <b>not a power law: {esc('; '.join(fit.flags))}</b>" if fit.flags else "")
         + f"; zeta_rms = {an.zeta_rms:.4g} m and mu_rms = {an.mu_rms:.4g} (dimensionless, C_mu = omega^4 C_x / g^2 "
         "of a free block, whatever its mass) over the resolved band (eq. 4).",
@@ -384,7 +384,7 @@ def build_measured_report(an: DisplacementAnalysis, data):
         Figure("measured_Cx", plots.figure_png_bytes(plots.spectrum_figure([(spec, "C_x")], fits=[(fit, "")], band=fit.band,
                                                                           title="Displacement spectrum")),
                f"C_x of the measured displacement (m^2 s) with the power-law fit: gamma = {fit.gamma:.2f} ± "
-               f"{fit.gamma_err:.2f} over {fit.band[0]:.3g}-{fit.band[1]:.3g} rad/s (shaded)."),
+               f"{fit.gamma_err:.2f}{flag_mark(fit)} over {span(fit.band[0], fit.band[1])} rad/s (shaded)."),
         Figure("measured_Cmu", plots.figure_png_bytes(plots.spectrum_figure([(an.C_mu, "C_mu = omega^4 C_x / g^2")],
                                                                            ylabel=r"$C_\mu$ (s)",
                                                                            title="Friction coefficient spectrum")),

@@ -15,7 +15,7 @@ from matplotlib.lines import Line2D
 from ..analysis.fits import flag_mark
 from ..analysis.spectra import Spectrum, log_bin
 
-__all__ = ["new_figure", "spectrum_figure", "save_figure", "figure_png_bytes", "episode_histogram_figure", "level_figure",
+__all__ = ["new_figure", "follow_data", "spectrum_figure", "save_figure", "figure_png_bytes", "episode_histogram_figure", "level_figure",
            "work_precision_figure"]
 
 _SLOPE_NAMES = {"x": r"$\gamma$", "F": r"$C_F$ slope", "mu": r"$C_\mu$ slope"}
@@ -28,15 +28,30 @@ def new_figure(w, h):
     return fig
 
 
+def follow_data(ax, *curves, margin: float = 3.0, max_ticks: int = 8):
+    """A log y axis that spans the positive values of ``curves`` with a factor ``margin`` either side, with at most
+    ``max_ticks`` labelled decades (a curve over tens of decades otherwise gets a label on every one, overlapping)."""
+    from matplotlib.ticker import LogLocator, NullFormatter
+
+    pos = np.concatenate([np.asarray(c, float)[np.asarray(c, float) > 0] for c in curves] or [np.array([])])
+    if pos.size:
+        ax.set_ylim(pos.min() / margin, pos.max() * margin)
+    ax.yaxis.set_major_locator(LogLocator(base=10, numticks=max_ticks))
+    ax.yaxis.set_minor_formatter(NullFormatter())
+
+
 def _fit_line(ax, fit, label, ls):
-    """Draw a fit 3x above its level over its band; return its legend handle. The exponent goes into a legend
-    of its own (upper right, where descending spectra leave room) rather than beside the line, where a line
-    or a neighbouring curve would cross it."""
+    """Draw a fit at its level over its band, on the data (a thin white edge keeps it visible there); return its
+    legend handle. The exponent goes into a legend of its own (upper right, where descending spectra leave room)
+    rather than beside the line, where a line or a neighbouring curve would cross it."""
+    from matplotlib import patheffects
+
     w = np.logspace(np.log10(fit.band[0]), np.log10(fit.band[1]), 20)
     q = getattr(fit, "quantity", "x") or "x"
     name = _SLOPE_NAMES.get(q, "slope")
     value = f"{fit.gamma:.2f}" if q == "x" else f"{-fit.gamma:.2f}"  # C_F ~ omega^(-gamma): its slope is -gamma
-    (line,) = ax.loglog(w, fit.level(w) * 3.0, color="k", ls=ls, lw=0.9, zorder=4,
+    (line,) = ax.loglog(w, fit.level(w), color="k", ls=ls, lw=1.3, zorder=4,
+                        path_effects=[patheffects.withStroke(linewidth=2.6, foreground="w")],
                         label=f"{label}{name} = {value} ± {fit.gamma_err:.2f}{flag_mark(fit)}")
     return line
 
@@ -83,13 +98,14 @@ def spectrum_figure(measured: list, theory: list = (), *, title: str = "", ylabe
         if tv.size:  # theory may widen the axis, but by two decades at most
             lo, hi = max(min(lo, tv.min()), lo / 100), min(max(hi, tv.max()), hi * 100)
         ax.set_ylim(lo / 3, hi * 3)
+        follow_data(ax, [lo, hi], margin=3.0)
     ax.set_xlabel(r"$\omega$ (rad/s)")
     ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=10)
     ax.grid(True, which="major", alpha=0.3)
     h = [x for x in ax.get_legend_handles_labels()[0] if x not in fit_lines]
     if fit_lines:
-        ax.add_artist(ax.legend(handles=fit_lines, fontsize=8, loc="upper right", title="fit (black line drawn 3x above its level, 95 %)",
+        ax.add_artist(ax.legend(handles=fit_lines, fontsize=8, loc="upper right", title="power-law fit over the shaded band (95 %)",
                                 title_fontsize=7))
     ax.legend(handles=h + handles, fontsize=7, loc="lower left")
     fig.tight_layout()

@@ -42,6 +42,8 @@ class StudyResult:
     html : prose and tables, an HTML fragment (no <html>/<body>); ``compare.report.html`` has helpers.
     timings : rows for the report's speed table, dicts with "model", "run", "wall_s" (a string, as shown)
         and "mean_abs_log_ratio" (a string: the band-averaged |ln simulation / reference|, or why none).
+    verdicts : tuple of :class:`compare.report.verdict.Verdict`, the rows this study puts in the report's summary
+        table (what is compared, the key number with its interval, agrees or not and by how much).
     """
     key: str
     title: str
@@ -49,6 +51,7 @@ class StudyResult:
     figures: tuple = ()
     html: str = ""
     timings: tuple = ()
+    verdicts: tuple = ()
 
 
 @dataclass(frozen=True)

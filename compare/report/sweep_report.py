@@ -10,7 +10,7 @@ import numpy as np
 from frictionnoise import package_version
 
 from ..analysis.fits import flag_mark
-from .html import esc, json_text, page, paragraphs, table
+from .html import esc, span, json_text, page, paragraphs, table
 from .study import Figure, StudyResult
 
 __all__ = ["build_sweep_report", "write_sweep_outputs"]
@@ -34,7 +34,7 @@ def build_sweep_report(spec, results: list, failures: list):
     text = paragraphs([esc(spec.description)]) if spec.description else ""
     rows = [[*(f"{r['params'].get(k):.4g}" if isinstance(r["params"].get(k), float) else str(r["params"].get(k)) for k in keys),
              str(r["seed"]), (f"{r['fit']['gamma']:.3f} &plusmn; {r['fit']['gamma_err']:.3f}{flag_mark(r['fit'])}" if "gamma" in r["fit"] else "-"),
-             (f"{r['fit']['band'][0]:.3g}-{r['fit']['band'][1]:.3g}" if "band" in r["fit"] else esc(r["fit"].get("error", ""))),
+             (f"{span(r['fit']['band'][0], r['fit']['band'][1])}" if "band" in r["fit"] else esc(r["fit"].get("error", ""))),
              f"{r['wall_s']:.2f}"] for r in results]
     text += table("Runs", [*keys, "seed", "gamma (95 %)", "band (rad/s)", "wall (s)"], rows)
     if failures:

@@ -2,14 +2,13 @@
 the scenes contribute one study per shipped scenario."""
 from __future__ import annotations
 
-from . import (model_I, model_II, model_III, model_ageing, multiscale, scene_multiscale, scene_rough_multiscale,
-               work_precision)
-from .scenes import scene_studies
+from . import model_I, model_II, model_III, model_ageing, multiscale, scene_rough_multiscale, work_precision
+from .scenes import METHOD_STUDY, scene_studies
 
 __all__ = ["STUDIES", "selected"]
 
-STUDIES = [model_I.STUDY, multiscale.STUDY, model_III.STUDY, model_II.STUDY, model_ageing.STUDY, *scene_studies(), scene_rough_multiscale.STUDY,
-           scene_multiscale.STUDY, work_precision.STUDY]
+STUDIES = [model_I.STUDY, multiscale.STUDY, model_III.STUDY, model_II.STUDY, model_ageing.STUDY, METHOD_STUDY,
+           *scene_studies(), scene_rough_multiscale.STUDY, work_precision.STUDY]
 
 
 def selected(quick: bool) -> list:

@@ -6,7 +6,7 @@ import time
 
 import numpy as np
 
-from ..html import esc
+from ..html import esc, span
 from ...analysis.balances import balances  # noqa: F401  (re-exported for the studies)
 from ...analysis.spectra import band_average
 
@@ -37,7 +37,7 @@ def band_ratios(spec, theory_values, edges) -> list:
 
 
 def ratio_rows(ratios) -> list:
-    return [[f"{b['band'][0]:.3g} - {b['band'][1]:.3g}", f"{b['ratio']:.3f}"] for b in ratios]
+    return [[f"{span(b['band'][0], b['band'][1])}", f"{b['ratio']:.3f}"] for b in ratios]
 
 
 def ratio_range(ratios, fmt=".2f") -> str:

@@ -8,10 +8,11 @@ import numpy as np
 
 from reduced_models import wear_particle
 
-from ...analysis.fits import fit_power_law
-from ..html import paragraphs, table
+from ...analysis.fits import fit_power_law, flag_mark
+from ..html import paragraphs, span, table
 from ...analysis.spectra import displacement_spectrum, force_series_spectrum
 from ..study import Figure, Study, StudyResult
+from ..verdict import fit_text, gamma_verdict, ratio_verdict
 from ._common import band_ratios, log_err, ratio_range, ratio_rows, timed, timing
 
 
@@ -52,9 +53,9 @@ def run(quick: bool, seed: int) -> StudyResult:
         f"1000 particles; each has one relaxation time drawn log-uniform over 10 ms-100 s, shared by its trapped "
         f"and sliding states, exponential durations, and an independent random-sign force of 0.01 N per episode "
         f"(the assumption under which eq. (B2) is exact). {T:g} s at 1 kHz in {wall:.2f} s.",
-        f"Force spectrum slope over {band[0]:.3g}-{band[1]:.3g} rad/s: {-fitF.gamma:.3f} &plusmn; {fitF.gamma_err:.3f} "
-        f"(1/f predicted by beta + beta' = 2); displacement gamma = {fitx.gamma:.3f} &plusmn; {fitx.gamma_err:.3f}. Above "
-        f"1/tau_min the force spectrum falls as omega^-{fit_hi.gamma:.2f} &plusmn; {fit_hi.gamma_err:.2f} (Appendix B: omega^-2, gamma = 6).",
+        f"Force spectrum slope over {span(band[0], band[1])} rad/s: {fit_text(fitF, 3, slope=True)} "
+        f"(1/f predicted by beta + beta' = 2); displacement gamma = {fit_text(fitx, 3)}. Above "
+        f"1/tau_min the force spectrum falls as omega^-({fit_text(fit_hi)}) (Appendix B: omega^-2, gamma = 6).",
         f"Two findings. (1) If a particle's trapped and sliding times are drawn independently (P_A(tau) P_B(tau') as "
         f"written in eq. B2), the weight 1/(tau + tau') diverges logarithmically at small tau' and (B2) itself gives "
         f"a slope of {slope_ind:.2f} over 0.1-10 rad/s, not -1: the beta + beta' = 2 rule holds only up to that "
@@ -67,16 +68,19 @@ def run(quick: bool, seed: int) -> StudyResult:
     figures = (
         Figure("model_II_force", plots.figure_png_bytes(fig),
                f"Model II force spectrum (1000 particles, {T:g} s) against eq. (B2) with the exact and the paper's cumulant "
-               f"closure. C_F ~ omega^-{fitF.gamma:.2f} ± {fitF.gamma_err:.2f} over {band[0]:.3g}-{band[1]:.3g} rad/s "
+               f"closure. C_F ~ omega^-{fitF.gamma:.2f} ± {fitF.gamma_err:.2f}{flag_mark(fitF)} over {span(band[0], band[1])} rad/s "
                f"(1/f predicted); simulation / exact (B2) {ratio_range(ratios)} per band; the cumulant closure reads "
                f"{100 * (cum.min() - 1):.0f}-{100 * (cum.max() - 1):.0f} % high."),
         Figure("model_II_displacement", plots.figure_png_bytes(figx),
                f"Model II displacement spectrum against C_F(B2) / (M^2 omega^4): gamma = {fitx.gamma:.2f} ± "
-               f"{fitx.gamma_err:.2f} over the shaded band (predicted 5)."),
+               f"{fitx.gamma_err:.2f}{flag_mark(fitx)} over the shaded band (predicted 5)."),
     )
     return StudyResult("model_II", "Model II: wear particles, trap and release (paper section 5, Appendix B)", numbers,
                        figures, text,
-                       (timing("model II (1000 particles)", f"{T:g} s at 1 kHz", f"{wall:.3f}", f"{log_err(ratios):.3f}"),))
+                       (timing("model II (1000 particles)", f"{T:g} s at 1 kHz", f"{wall:.3f}", f"{log_err(ratios):.3f}"),),
+                       (gamma_verdict("model_II", "slope of C_F, 1/f band", fitF, -1.0,
+                                      "-1 (beta + beta' = 2)", slope=True),
+                        ratio_verdict("model_II", "C_F / (B2), exact closure", ratios, 1.25, "1 (eq. B2)")))
 
 
 STUDY = Study("model_II", "model II", run, cost=1.5)

@@ -13,7 +13,9 @@ import numpy as np
 
 from ...analysis.fits import fit_power_law
 from ...analysis.spectra import displacement_spectrum
-from ..html import esc, paragraphs, table
+from ..html import esc, paragraphs, span, table
+from ..verdict import fit_text, ratio_verdict
+from ...analysis.fits import flag_mark
 from ..study import Figure, StudyResult
 from ._common import band_ratios, log_err, ratio_range, ratio_rows, timed, timing
 
@@ -61,17 +63,18 @@ def model_result(name: str, seed: int = 0, duration: float | None = None, params
                                                                           f"{name} closed form")],
                                 fits=[(fit, "")], band=band, title=f"{name} against its closed form")
     caption = (f"{name} simulated for {T:g} s (seed {seed}) against its closed form; per-band ratio "
-               f"{ratio_range(ratios)} over {edges[0]:.3g}-{edges[-1]:.3g} rad/s; gamma = {fit.gamma:.2f} ± "
-               f"{fit.gamma_err:.2f} over the shaded band.")
-    where = f"{band[0]:.3g}-{band[1]:.3g} rad/s (the model's band)" if band else (
-        f"{fit.band[0]:.3g}-{fit.band[1]:.3g} rad/s (the automatic band: the model names none)")
+               f"{ratio_range(ratios)} over {span(edges[0], edges[-1])} rad/s; gamma = {fit.gamma:.2f} ± "
+               f"{fit.gamma_err:.2f}{flag_mark(fit)} over the shaded band.")
+    where = f"{span(band[0], band[1])} rad/s (the model's band)" if band else (
+        f"{span(fit.band[0], fit.band[1])} rad/s (the automatic band: the model names none)")
     text = paragraphs([
         f"Model {esc(name)} ({esc(model.__name__)}), its default parameters, {T:g} s simulated at dt_out = "
         f"{dt_out:.3g} s in {wall:.2f} s; response {esc(model.RESPONSE)}.",
-        f"gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} over {where}. Simulated C_x over the closed form, "
+        f"gamma = {fit_text(fit, 3)} over {where}. Simulated C_x over the closed form, "
         f"per log band: {ratio_range(ratios)} (worst |ln ratio| {worst:.3f}).",
     ]) + table(f"C_x({name} simulated) / C_x(closed form), per log band", ["band (rad/s)", "ratio"],
                ratio_rows(ratios))
     return StudyResult(f"models/{name}", f"Model {name} against its closed form", numbers,
                        (Figure(f"model_{name}", plots.figure_png_bytes(fig), caption),), text,
-                       (timing(name, f"{T:g} s, dt_out = {dt_out:.3g} s", f"{wall:.3f}", f"{log_err(ratios):.3f}"),))
+                       (timing(name, f"{T:g} s, dt_out = {dt_out:.3g} s", f"{wall:.3f}", f"{log_err(ratios):.3f}"),),
+                       (ratio_verdict(f"models/{name}", "C_x / its closed form", ratios, 1.25, "1 (closed form)"),))

@@ -24,7 +24,10 @@ from reduced_models import spring_block as m1
 
 from ...analysis.fits import fit_power_law
 from ...analysis.spectra import band_average, displacement_spectrum, log_bin
+from ..html import span
 from ..study import Figure, Study, StudyResult
+from ..verdict import fit_text, gamma_verdict, ratio_verdict
+from ...analysis.fits import flag_mark
 
 __all__ = ["STUDY", "run", "measured_crossover", "strong_cases"]
 
@@ -129,7 +132,7 @@ def _reference(quick, seed, out):
     fig.tight_layout()
     cap = (f"Model Ib reference case (n = 10 micro contacts of 10 um per miniblock, micro deflection 0.1 a2), "
            f"{T:g} s at 1 kHz, seed {seed}: simulated C_x against the closed form (A10 one level down); grey: the "
-           f"omega^-4 fit band, gamma = {fit.gamma:.2f} +- {fit.gamma_err:.2f}. Per-band "
+           f"omega^-4 fit band, gamma = {fit.gamma:.2f} ± {fit.gamma_err:.2f}{flag_mark(fit)}. Per-band "
            f"ratio {ratios.min():.3f}-{ratios.max():.3f} over 1-{edges[-1]:.0f} rad/s; the micro part is at most "
            f"{share.max():.1e} of C_x (at {w[np.argmax(share)]:.0f} rad/s). Against the paper's model I with the same "
            f"seed the run reads {vs_I.min():.4f}-{vs_I.max():.4f} per band (closed forms: {vs_I_theory.min():.4f}-"
@@ -202,6 +205,8 @@ def _strong(quick, seed, out):
 
 
 def _sensor(out):
+    from .. import plots
+
     p = ms.MultiscaleParams.reference()
     w = np.geomspace(0.1, 3e7, 1200)
     c1, c2 = ms.theory_components(p, w)
@@ -225,7 +230,7 @@ def _sensor(out):
     ax.plot(w, c1, "--", color="C0", lw=1.0, label="macro part")
     ax.plot(w, c2, ":", color="C3", lw=1.5, label="micro part")
     reg = ms.regime_frequencies(p)
-    for k, ls, y, name in (("v_over_a2", "-.", 0.05, "v/a2"), ("omega3", ":", 0.05, "omega3"),
+    for k, ls, y, name in (("v_over_a2", "-.", 0.05, "v/a2"), ("omega3", ":", 0.55, "omega3"),
                            ("omega_c", "--", 0.3, "omega_c"), ("omega2", "-", 0.05, "micro resonance")):
         ax.axvline(reg[k], color="0.5", lw=0.7, ls=ls)
         ax.text(reg[k] * (0.75 if k == "omega3" else 1.15), y, name, rotation=90, fontsize=6, color="0.4",
@@ -234,13 +239,14 @@ def _sensor(out):
     ax.text(math.pi / DT * 1.15, 0.55, "Nyquist at 1 kHz", rotation=90, fontsize=6, color="C2",
             transform=ax.get_xaxis_transform())
     _loglog(ax)
-    ax.set_ylim(max(C.min(), 1e-70) * 0.1, C.max() * 10)
+    plots.follow_data(ax, C)
     ax.legend(fontsize=7, loc="upper right")
     ax.set_title("Predicted C_x up to the micro resonance", fontsize=9)
     ax2 = axs[1]
     ax2.plot(w, CF, "k-", lw=1.4, label="C_F = M^2 w^4 C_x (eq. 3)")
     ax2.plot(w, p.M**2 * w**4 * c2, ":", color="C3", lw=1.5, label="micro part")
     _loglog(ax2, ylabel=r"$C_F$ (N$^2$ s)")
+    plots.follow_data(ax2, CF)
     ax2.legend(fontsize=7, loc="lower left")
     ax2.set_title("Force on the block", fontsize=9)
     fig.tight_layout()
@@ -266,8 +272,8 @@ def run(quick: bool, seed: int) -> StudyResult:
         "T2 = P2/Q2 (reduced_models/multiscale.py).</p>",
         f"<p><b>Reference case</b> (fair: micro deflection {r['micro_deflection_over_a2']:.2f} a2): per-band ratio to "
         f"the closed form {min(r['band_ratios_vs_theory']):.3f}-{max(r['band_ratios_vs_theory']):.3f}; gamma = "
-        f"{g['gamma']:.3f} &plusmn; {g['gamma_err']:.3f} (95 %) over {g['band'][0]:.3g}-{g['band'][1]:.3g} rad/s, model I "
-        f"with the same seed {g1['gamma']:.3f} &plusmn; {g1['gamma_err']:.3f}. R = {r['R']:.1e}: the micro part is at most "
+        f"{fit_text(g, 3)} (95 %) over {span(g['band'][0], g['band'][1])} rad/s, model I "
+        f"with the same seed {fit_text(g1, 3)}. R = {r['R']:.1e}: the micro part is at most "
         f"{r['micro_share_max']:.1e} of C_x and of C_F (at {r['micro_share_max_at_rad_s']:.0f} rad/s). Simulated "
         f"{r['duration_s']:g} s ({r['n_micro_renewals'] / 1e6:.1f} M micro renewals) in {r['wall_s']:.1f} s wall, "
         f"{r['cpu_s']:.1f} s CPU.</p>",
@@ -282,7 +288,7 @@ def run(quick: bool, seed: int) -> StudyResult:
            "<th>gamma below omega_x (95 %)</th><th>gamma above omega_x (95 %)</th></tr>"]
     for k, c in s["cases"].items():
         def gs(f):
-            return "-" if f is None else (f"{f['gamma']:.2f} &plusmn; {f['gamma_err']:.2f} over {f['band'][0]:.3g}-"
+            return "not fitted (band under a factor 2.5)" if f is None else (f"{fit_text(f)} over {f['band'][0]:.3g}-"
                                           f"{f['band'][1]:.3g} (closed form {f['gamma_theory']:.2f})")
         tbl.append(f"<tr><td>{html.escape(k)}</td><td>{c['R']:.0f}</td><td>{c['omega_x_measured']:.2f}</td>"
                    f"<td>{c['omega_x_theory']:.2f}</td><td>{c['omega_x_formula']:.2f}</td><td>{c['micro_amplitude_measured']:.3f}</td>"
@@ -297,11 +303,14 @@ def run(quick: bool, seed: int) -> StudyResult:
     parts.append("<p><b>A wider-band sensor</b> (reference case): local gamma " + ", ".join(
         f"{float(k):.0e} rad/s: {v:.1f}" for k, v in sn["gamma_local"].items()) + "; the micro share of zeta_rms^2 per "
         "decade stays below " + f"{max(v['micro_share'] for v in sn['rms_per_decade'].values()):.0e}.</p>")
+    verdicts = (ratio_verdict("model_Ib", "C_x / closed form, reference", r["band_ratios_vs_theory"],
+                              1.25, "1 (A10 one level down)"),
+                gamma_verdict("model_Ib", "gamma, reference case", g, 4.0, "4 (eq. 6)"))
     return StudyResult(key="model_Ib", title="Model Ib: the multiscale spring-block model (paper Fig. 1c)",
-                       numbers=numbers, figures=figs, html="\n".join(parts))
+                       numbers=numbers, figures=figs, html="\n".join(parts), verdicts=verdicts)
 
 
-STUDY = Study(key="model_Ib", label="model Ib (multiscale)", run=run)
+STUDY = Study(key="model_Ib", label="model Ib (multiscale)", run=run, cost=5.0)
 
 
 def _png_bytes(fig) -> bytes:

@@ -8,10 +8,12 @@ import numpy as np
 
 from reduced_models import asperity_force
 
-from ...analysis.fits import fit_power_law
+from ...analysis.fits import fit_power_law, flag_mark
 from ..html import esc, paragraphs, table
 from ...analysis.spectra import band_average, displacement_spectrum, force_series_spectrum
 from ..study import Figure, StudyResult
+from ..verdict import fit_text, ratio_verdict
+from ..html import pct, span
 from ._common import balances, band_ratios, param_rows, ratio_rows, run_scene, timing
 
 
@@ -67,7 +69,7 @@ def asperity_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
         esc(sc.description.replace("\n", " ")),
         f"{T:g} s simulated in {wall:.1f} s ({tr.metadata['us_per_step']:.0f} us per step). Mean speed "
         f"{1e3 * prm.v:.3f} mm/s (friction law: {1e3 * sc.steady_velocity:.3f} mm/s); friction balances the drive "
-        f"to {100 * d['force_balance_rel']:+.3f} %; energy balance {100 * d['energy_balance_rel']:+.4f} %.",
+        f"to {pct(d['force_balance_rel'])}; energy balance {pct(d['energy_balance_rel'], 4)}.",
         f"Model III with the scene's contact statistics (w = {1e3 * prm.w:.1f} mm, N = {prm.N:.1f} contacts, p = {prm.p:.4f} "
         f"per {1e3 * sc.substrate.cell:.2f} mm cell, f0 = {1e3 * prm.f0:.2f} mN) predicts a contact force with relative "
         f"std {math.sqrt(prm.N_w * asperity_force.grid_force_variance(prm)) / prm.F_f:.3f}; the scene's is "
@@ -80,13 +82,13 @@ def asperity_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
         f"(each contact carrying f0/2) reads {r_rigid[0]:.2f} of model III below v/w: the number of contacts "
         "fluctuates somewhat less than model III's independent cells, but the remaining factor "
         f"{r_rigid[0] / r_low[0]:.0f} is the load sharing. "
-        f"Force exponent above v/w: scene {fitF.gamma:.2f} &plusmn; {fitF.gamma_err:.2f}, model III simulation "
-        f"{fitF3.gamma:.2f} &plusmn; {fitF3.gamma_err:.2f} (closed form: 2). What remains in the scene is the "
+        f"Force exponent above v/w: scene {fit_text(fitF)}, model III simulation "
+        f"{fit_text(fitF3)} (closed form: 2). What remains in the scene is the "
         f"flank force of asperities entering and leaving the feet, with lines at the foot-passage frequency "
         f"2 pi v / foot = {w_foot:.1f} rad/s and its harmonics.",
         f"Response: omega* = N c / M = {wstar:.0f} rad/s, so the block responds viscously across the band "
         f"(C_x ~ C_F / omega^2, not model III's inertial C_F / (M^2 omega^4)); the scene's C_x reads "
-        f"gamma = {fit.gamma:.2f} &plusmn; {fit.gamma_err:.2f} over {high[0]:.2f}-{high[1]:.2f} rad/s. A weaker "
+        f"gamma = {fit_text(fit)} over {span(high[0], high[1])} rad/s. A weaker "
         "velocity strengthening would give an inertial band but no steady sliding under constant force.",
         "<b>Aliasing</b>: the scene's contact force is sampled once per output step, not averaged over it, and its short "
         "asperity pulses fold power from above the Nyquist frequency into every band: against the same run recorded at "
@@ -99,6 +101,9 @@ def asperity_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
     caption = (f"Scene {name}: contact-force spectrum ({T:g} s) beside model III (simulated and closed form) with the "
                f"scene's p, f0, w, and the rigid-block counterfactual. Scene / model III {r_low[0]:.1e} below 2 pi v / w "
                f"and {r_high[0]:.1e} above; counterfactual / model III {r_rigid[0]:.2f} below: load sharing. Force slope "
-               f"above v/w: scene {fitF.gamma:.2f} ± {fitF.gamma_err:.2f}, model III {fitF3.gamma:.2f} ± {fitF3.gamma_err:.2f}.")
+               f"above v/w: scene {fitF.gamma:.2f} ± {fitF.gamma_err:.2f}{flag_mark(fitF)}, model III {fitF3.gamma:.2f} ± "
+               f"{fitF3.gamma_err:.2f}{flag_mark(fitF3)}.")
     return StudyResult(f"scenarios/{name}", f"Scene: {name}", d, (Figure(f"scene_{name}", plots.figure_png_bytes(fig), caption),),
-                       text, (timing(f"scene {name}", f"{T:g} s, dt = {sc.run.dt:g} s", f"{wall:.2f}", "n/a (compared with model III)"),))
+                       text, (timing(f"scene {name}", f"{T:g} s, dt = {sc.run.dt:g} s", f"{wall:.2f}", "n/a (compared with model III)"),),
+                       (ratio_verdict(f"scenarios/{name}", "C_F / model III, 2 bands",
+                                      [float(r_low[0]), float(r_high[0])], 1.5, "1 (no load sharing)"),))

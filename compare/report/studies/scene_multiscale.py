@@ -27,13 +27,15 @@ import numpy as np
 from reduced_models import multiscale as ms
 from reduced_models.multiscale_fit import renewal_statistics
 
-from ..html import esc, paragraphs, table
+from ..html import esc, paragraphs, rst_inline, span, table
+from ..verdict import fit_text, ratio_verdict
 from ..study import Study, StudyResult
 from ._common import param_rows
 
 __all__ = ["STUDY", "run", "multiscale_parameters", "multiscale_params", "NAME"]
 
 NAME = "pads_multiscale"
+PROCEDURE = __doc__.split("stated in the report as here):")[1].split("The procedure is")[0]
 
 
 def multiscale_parameters(trace, scenario=None) -> dict:
@@ -134,22 +136,22 @@ def scene_against_model_Ib(name, sc, quick, seed, trace=None) -> StudyResult:
                                 title=f"Scene {name} against models I and Ib")
     d = {"extracted": ex, "band_ratios_vs_model_I": rI, "band_ratios_vs_model_Ib": rIb, "fits": fits,
          "regimes_rad_s": reg, "duration_s": T, "wall_s": wall, "params_Ib": pb.to_dict()}
-    gam = "; ".join(f"{esc(k)}: {f['gamma']:.2f} &plusmn; {f['gamma_err']:.2f} over {f['band'][0]:.3g}-{f['band'][1]:.3g} "
+    gam = "; ".join(f"{esc(k)}: {fit_text(f)} over {span(f['band'][0], f['band'][1])} "
                     f"rad/s (model Ib {f['gamma_model_Ib']:.2f})" for k, f in fits.items())
     text = paragraphs([
         f"{T:g} s of {name}. Scene / model I per band {ratio_range(rI)}, scene / model Ib {ratio_range(rIb)} over "
-        f"{edges[0]:.3g}-{edges[-1]:.3g} rad/s. Gamma per regime: {gam}. Measured a2 "
+        f"{span(edges[0], edges[-1])} rad/s. Gamma per regime: {gam}. Measured a2 "
         f"{1e6 * ex['a2']['measured']:.2f} um (scenario {1e6 * ex['a2']['value']:.2f} um); alpha2 {ex['alpha2']['value']:.3f} "
         f"(micro patch contrast {ex['alpha2'].get('substrate_value')}); f_kin2 {ex['f_kin2']['value']:.4g} N.",
-        __doc__.split("Procedure (:func:`multiscale_parameters`, stated in the report as here):")[1].split("The procedure is")[0]
-        .replace("\n", " "),
+        "Procedure: " + rst_inline(PROCEDURE),
     ]) + table("Model Ib parameters extracted from the scene", ["parameter", "value", "unit", "provenance"], param_rows(ex)) \
         + table("C_x(scene) / C_x(model I)", ["band (rad/s)", "ratio"], ratio_rows(rI)) \
         + table("C_x(scene) / C_x(model Ib)", ["band (rad/s)", "ratio"], ratio_rows(rIb))
     cap = (f"Scene {name} ({T:g} s) against models I and Ib in closed form, both with the scene's measured parameters: "
            f"scene / model I {ratio_range(rI)}, scene / model Ib {ratio_range(rIb)} per band.")
+    verdicts = (ratio_verdict(f"scenarios/{name}_model_Ib", "C_x / model Ib", rIb, 1.5, "1 (model Ib)"),)
     return StudyResult(f"scenarios/{name}_model_Ib", f"Scene {name} against model Ib", d,
-                       (Figure(f"scene_{name}_model_Ib", plots.figure_png_bytes(fig), cap),), text)
+                       (Figure(f"scene_{name}_model_Ib", plots.figure_png_bytes(fig), cap),), text, verdicts=verdicts)
 
 
 def run(quick: bool, seed: int) -> StudyResult:

@@ -12,15 +12,19 @@ from functools import partial
 
 import numpy as np
 
-from ...analysis.fits import fit_power_law
-from ..html import esc, paragraphs, table
+from ...analysis.fits import fit_power_law, flag_mark
+from ..html import pct
+from ..html import esc, paragraphs, span, table
 from ...analysis.spectra import displacement_spectrum, force_series_spectrum
 from ..study import Figure, Study, StudyResult
+from ..verdict import NOT_A_POWER_LAW, fit_text, ratio_verdict
 from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
 
-# relative wall cost, to hand the longest studies to workers first (measured in the quick report: the wear pair
-# 18 s, the rough profile 9 s, the asperity field 7 s, every other stage 0.5-3 s)
-_COST_HINT = {"pads_with_wear": 18.0, "pads_rough_profile": 9.0, "asperity_field": 7.0}
+# relative cost, to hand the longest studies to workers first (CPU seconds per study are printed by
+# benchmarks/bench_report.py: the wear pair, pads_multiscale with both models, and the line-scan and rough-profile
+# substrates, whose pads cost about 1.5 CPU s per simulated second, lead; a friction-patch scene costs about 0.35)
+_COST_HINT = {"pads_with_wear": 18.0, "pads_multiscale": 12.0, "pads_rough_profile": 9.0, "line_scan_example": 9.0,
+              "asperity_field": 7.0}
 
 
 def fitting_part(sc):
@@ -29,6 +33,13 @@ def fitting_part(sc):
     particles when it has any, else its friction law if that names one, else its substrate."""
     return next(part for part in (sc.wear_part, sc.law_part, sc.substrate_part) if part.reduced_model)
 
+
+# Recorded seconds of a scene in the full report (the quick one takes each part's ``quick_duration``, 8-16 s;
+# ``frictionnoise compare`` the scenario's own duration). 20 s resolve 3-30 v/a with 4 s Welch segments, so
+# gamma's 95 % half-width is about 0.13 (0.20 at 12 s; see benchmarks/results/report_speed.md), and every
+# per-band ratio averages at least 9 segments.
+FULL_DURATION = 20.0
+SHORTENED = ("model_I", "model_II", "model_III")
 
 # each reduced model's comparison with a scene: (module of this package, function), looked up when called
 COMPARISONS = {"model_I": ("scenes", "_model_I_result"), "model_II": ("scene_wear", "wear_result"),
@@ -106,24 +117,22 @@ def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
     fig = plots.spectrum_figure([(spec, f"scene {name}, {T:g} s"), (s1, "model I simulation, extracted parameters")],
                                 [(w, spring_block.theory_spectrum(p, w), "model I (A10), extracted parameters")],
                                 fits=[(fit, "scene ")], band=band, title=f"Scene {name} against model I")
-    verdict = " (within a factor 1.5)." if worst < math.log(1.5) else f" (outside a factor 1.5: worst ln ratio {worst:.2f})."
+    verdict = " (within a factor 1.5)." if worst < math.log(1.5) else f" (outside a factor 1.5: worst band x{math.exp(worst):.2f})."
+    a_sub_text = f" (substrate: {1e3 * a_sub:.3f} mm)" if a_sub else ""
+    alpha_sub = getattr(sc.substrate, "alpha", None)
+    alpha_text = f" (substrate: {alpha_sub:g})" if alpha_sub is not None and math.isfinite(alpha_sub) else ""
     parts = [
         esc(sc.description.replace("\n", " ")),
         f"{T:g} s simulated in {wall:.1f} s ({tr.metadata['us_per_step']:.0f} us per step). Mean speed "
-        f"{1e3 * ex['v']['value']:.3f} mm/s (friction law: {1e3 * sc.steady_velocity:.3f} mm/s); friction balances the drive "
-        f"to {100 * d['force_balance_rel']:+.3f} %; energy balance {100 * d['energy_balance_rel']:+.4f} %.",
-        f"Scene gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} over {band[0]:.3g}-{band[1]:.3g} rad/s (3-30 v/a); "
-        f"model I with the extracted parameters: {fit_m1.gamma:.3f} &plusmn; {fit_m1.gamma_err:.3f}. Per-band ratio "
-        f"scene / model I (A10): {ratio_range(ratios)} over {edges[0]:.3g}-{edges[-1]:.3g} rad/s" + verdict,
-        f"Model I's assumptions here: viscous response needs the band below omega* = N c / M = {wstar:.0f} rad/s and "
-        f"the resonance sqrt(N k0 / M) = {wc:.0f} rad/s; the fit band ends at {band[1]:.0f} rad/s, "
-        + ("so the response is viscous across it. " if viscous else "so the band reaches the crossover and the response is not purely viscous. ")
-        + f"The substrate force on the pads falls as omega^-{fit_f.gamma:.2f} &plusmn; {fit_f.gamma_err:.2f} there "
-        "(model I: omega^-2, abrupt renewals of a force white on long times). The renewal length from the pad-force "
-        f"correlation is {1e3 * ex['a']['value']:.3f} mm (substrate: {1e3 * sc.substrate.a:.3f} mm) and alpha = "
-        f"{ex['alpha']['value']:.3f} (substrate: {getattr(sc.substrate, 'alpha', float('nan')):g}).",
-        "Models II and III do not apply to this scene: it has no wear particles, and its contacts are spring-mounted "
-        "pads rather than a rigid flat block on sparse asperities.",
+        f"{1e3 * ex['v']['value']:.3f} mm/s (friction law: {1e3 * sc.steady_velocity:.3f} mm/s); force balance "
+        f"{pct(d['force_balance_rel'])}; energy balance {pct(d['energy_balance_rel'], 4)}.",
+        f"Scene gamma = {fit_text(fit, 3)} over {span(band[0], band[1])} rad/s; model I with the extracted "
+        f"parameters: {fit_text(fit_m1, 3)}. Per-band ratio scene / model I (A10): {ratio_range(ratios)} over "
+        f"{span(edges[0], edges[-1])} rad/s" + verdict,
+        f"omega* = {wstar:.0f} rad/s, omega_c = {wc:.0f} rad/s; the fit band ends at {band[1]:.0f} rad/s: "
+        + ("viscous response across it. " if viscous else "it reaches the crossover, the response is not purely viscous. ")
+        + f"Substrate force on the pads: omega^-({fit_text(fit_f)}) (model I: omega^-2). Renewal length "
+        f"{1e3 * ex['a']['value']:.3f} mm{a_sub_text}, alpha = {ex['alpha']['value']:.3f}{alpha_text}.",
     ]
     if sc.drive_part.extra_mass > 0:  # a drive with a body of its own on a rope (Leonardo's slider)
         parts.append(
@@ -135,17 +144,60 @@ def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
             + table("Model I parameters extracted from the scene", ["parameter", "value", "unit", "provenance"], param_rows(ex))
             + table("C_x(scene) / C_x(model I, A10), per log band", ["band (rad/s)", "ratio"], ratio_rows(ratios)))
     caption = (f"Scene {name} ({T:g} s) against model I simulated and in closed form (A10), both with the parameters "
-               f"extracted from the scene. Scene / (A10) {ratio_range(ratios)} per band over {edges[0]:.3g}-{edges[-1]:.3g} "
-               f"rad/s{verdict[:-1]}; gamma = {fit.gamma:.2f} ± {fit.gamma_err:.2f} (scene) and {fit_m1.gamma:.2f} ± "
-               f"{fit_m1.gamma_err:.2f} (model I) over the shaded band.")
+               f"extracted from the scene. Scene / (A10) {ratio_range(ratios)} per band over {span(edges[0], edges[-1])} "
+               f"rad/s{verdict[:-1]}; gamma = {fit.gamma:.2f} ± {fit.gamma_err:.2f}{flag_mark(fit)} (scene) and "
+               f"{fit_m1.gamma:.2f} ± {fit_m1.gamma_err:.2f}{flag_mark(fit_m1)} (model I) over the shaded band.")
+    verdicts = (ratio_verdict(f"scenarios/{name}", "C_x / model I (A10)", ratios, 1.5,
+                              "1 (model I)"),)
     return StudyResult(f"scenarios/{name}", f"Scene: {name}", d, (Figure(f"scene_{name}", plots.figure_png_bytes(fig), caption),),
-                       text, (timing(f"scene {name}", f"{T:g} s, dt = {sc.run.dt:g} s", f"{wall:.2f}", f"{log_err(ratios):.3f}"),))
+                       text, (timing(f"scene {name}", f"{T:g} s, dt = {sc.run.dt:g} s", f"{wall:.2f}", f"{log_err(ratios):.3f}"),),
+                       verdicts)
 
 
-def _run_shipped(name: str, quick: bool, seed: int) -> StudyResult:
+METHOD = [
+    "Each shipped scene runs with its own seed and is compared with the reduced model its parts name, built from "
+    "parameters measured on the scene itself (tables in each section: value, unit and provenance). Pads on friction "
+    "patches or rough tracks go to model I; a sole on sparse asperities to model III; wear particles to a paired "
+    "run without them and model II built from their episodes. The other models do not apply to a scene: the pad "
+    "scenes have no wear particles, and their contacts are spring-mounted pads rather than a rigid flat block on "
+    "sparse asperities.",
+    "Model I against a pad scene: gamma is fitted over 3-30 v/a, v the measured speed and a the renewal length "
+    "(12/7 x the pad forces' correlation length in sliding distance); model I is simulated with the extracted "
+    "parameters and the same band, and the scene's C_x is divided by model I's closed form (A10) in log bands. The "
+    "verdict is whether every band lies within a factor 1.5. Model I assumes a viscous response, which holds below "
+    "omega* = N c / M and the resonance omega_c = sqrt(N k0 / M), and a substrate force on each pad that renews "
+    "abruptly (C_f ~ omega^-2 above v/a); each section gives omega*, omega_c, the band's top and the measured "
+    "slope of the substrate force.",
+    f"A fit whose log-log residuals curve or whose band spans less than a decade is marked ({NOT_A_POWER_LAW}); "
+    "its exponent is stated but no verdict rests on it.",
+]
+
+
+def method_result(quick: bool, seed: int) -> StudyResult:
+    """The method shared by every scene section, said once before them."""
+    return StudyResult("scenes_method", "Scenes against the reduced models: the method", {"method": METHOD},
+                       html=paragraphs(METHOD))
+
+
+METHOD_STUDY = Study("scenes_method", "scenes: method", method_result, cost=0.0)
+
+
+def _run_shipped(name: str, quick: bool, seed: int) -> list:
+    """The scene against its reduced model; a scene with micro-pads also against model Ib, on the same run."""
     from engine_sim import load_scenario, shipped_scenarios
+    from engine_sim.scene import describe
 
-    return scene_result(name, load_scenario(shipped_scenarios()[name]), quick, seed)
+    sc = load_scenario(shipped_scenarios()[name])
+    part = fitting_part(sc)
+    # the full report's shorter record applies to the comparisons it was measured on (models I, II, III)
+    duration = part.quick_duration if quick else (FULL_DURATION if part.reduced_model in SHORTENED else None)
+    if "micro" not in describe(sc):
+        return [scene_result(name, sc, quick, seed, duration=duration)]
+    from .scene_multiscale import scene_against_model_Ib
+
+    trace = run_scene(sc, quick, seed, None, duration, None)[0]
+    return [scene_result(name, sc, quick, seed, trace=trace),
+            scene_against_model_Ib(name, sc, quick, seed, trace=trace)]
 
 
 def scene_studies() -> list:
