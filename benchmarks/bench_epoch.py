@@ -1,6 +1,6 @@
 """Cost of exact continuation: the pickle round trip every run takes at each epoch, against the stepping it
 interrupts, per scene, measured as a ratio in one run (round trips and stepping blocks taken in turns on the
-same scene, so drifts in machine speed hit both). Issue 15 target: at most 5 % at the default epoch on
+same scene, so drifts in machine speed hit both). Target: at most 5 % at the default epoch on
 pads_friction_patches and pads_rough_profile. Also states the most simulated time a kill can lose (one epoch,
 with --checkpoint-every at or below the epoch).
 

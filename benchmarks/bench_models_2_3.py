@@ -1,4 +1,4 @@
-"""Models II and III: wall time (issue 4 targets: model III with 1e7 grid steps <= 1 s; model II with
+"""Models II and III: wall time (targets: model III with 1e7 grid steps <= 1 s; model II with
 1000 particles and 1e6 output samples <= 5 s, on the 2-core machine).
 
     python -m benchmarks.bench_models_2_3 [--smoke]

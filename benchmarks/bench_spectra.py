@@ -1,4 +1,4 @@
-"""Spectrum + power-law fit of 10^7 samples (issue 2 target: <= 2 s on the 2-core machine).
+"""Spectrum + power-law fit of 10^7 samples (target: <= 2 s on the 2-core machine).
 
     python -m benchmarks.bench_spectra [--samples N] [--repeat R]
 

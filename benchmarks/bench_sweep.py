@@ -1,5 +1,5 @@
 """8 independent model I runs on a 2-worker dask LocalCluster against the same 8 run serially
-(issue 8 target: >= 1.7x). Cluster start-up is timed apart and reported both ways.
+(target: >= 1.7x speed-up). Cluster start-up is timed apart and reported both ways.
 
     python -m benchmarks.bench_sweep [--duration S] [--smoke]
 """

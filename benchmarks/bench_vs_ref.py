@@ -1,5 +1,5 @@
-"""Speed and numbers against a reference commit (issue 14: no loss of speed against c9e0afb; the quick report's
-summary.json identical to 1e-12 relative, or each difference explained).
+"""Speed and numbers against a reference commit: no loss of speed, and the quick report's summary.json identical
+to 1e-12 relative or each difference explained.
 
 Both commits are checked out in temporary git worktrees and run by this interpreter (the same venv) with
 PYTHONPATH set to their worktree and the worktree as working folder; each child reports where it imported

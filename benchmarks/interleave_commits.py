@@ -1,5 +1,6 @@
-"""The engine's loop / bare-step ratio per scene on two source trees, taking turns (issue 14: no loss of speed
-against an earlier commit, measured with the two interleaved, >= 3 repeats each).
+"""The engine's loop / bare-step ratio per scene on two source trees, taking turns, to show no loss of
+speed against an earlier commit: the two interleaved, >= 3 repeats each, so that a drift in the machine's speed
+hits both.
 
     python -m benchmarks.interleave_commits BASE_TREE NEW_TREE [--repeats 3] [--steps 20000] [--out FILE.md]
 

@@ -1,4 +1,4 @@
-"""Issue 17, item 2: is the particle-free twin of ``pads_with_wear`` at omega^-4, with and without cavities?
+"""Is the particle-free twin of ``pads_with_wear`` at omega^-4, with and without cavities?
 
     python -m benchmarks.wear_base_scene [--duration S] [--seeds 0,1,2] [--geometries shipped,none,...]
                                          [--out PREFIX] [--smoke]
@@ -99,7 +99,7 @@ def summary(rows):
 
 
 def markdown(runs, geometries, seeds, meta) -> str:
-    L = ["# Particle-free base scene of the wear study: gamma with and without cavities (issue 17, item 2)", "",
+    L = ["# Particle-free base scene of the wear study: gamma with and without cavities", "",
          "Commands: " + "; ".join(f"`{c}`" for c in meta.get("commands", [meta.get("command", "")])) + "  ",
          f"Scene: pads_with_wear with wear.count = 0 (20 iterations, dt 1e-4 s as shipped), {meta['duration']:g} s recorded "
          f"per run (+ 1 s warm-up), seeds {', '.join(map(str, seeds))}. Band 3-30 v/a with v = 5 mm/s (set speed), "

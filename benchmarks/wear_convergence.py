@@ -1,12 +1,12 @@
-"""Issue 17, item 1: do the wear grains' results converge in grain mass and solver settings?
+"""Do the wear grains' results converge in grain mass and solver settings?
 
     python -m benchmarks.wear_convergence [--duration S] [--seeds 0,1,2] [--masses 1e-5,1e-6,...]
                                          [--settings 20:1e-4,40:1e-4,20:5e-5] [--out PREFIX] [--smoke]
 
 The dt of a setting is the scenario's ``run.dt``; the scene cuts it into substeps by the grain step rule
 (``engine_sim.wear.grain_step``: omega_g dt <= 0.6 for the lightest grain), and the table's dt column is the
-pymunk step actually taken (runs before the rule took run.dt itself; at a given pymunk step the two are the same
-run). Rows whose energy residual exceeds 1 % are flagged.
+pymunk step actually taken (two runs with the same pymunk step are the same run, whether the step is run.dt or
+a substep of it). Rows whose energy residual exceeds 1 % are flagged.
 
 Runs ``pads_with_wear`` (50 grains) over grain mass (``wear.min_mass``) x solver settings (``run.iterations``,
 ``run.dt``) x paired seeds (same seed: same substrate and grain radii), one run at a time, and tabulates per run:
@@ -21,7 +21,7 @@ Runs ``pads_with_wear`` (50 grains) over grain mass (``wear.min_mass``) x solver
 
 Every finished run is written to ``PREFIX.json`` at once (a rerun with the same arguments skips finished runs),
 and the Markdown table ``PREFIX.md`` is rewritten, so a partial sweep leaves a partial table. Progress lines go
-to stderr. The verdict applies issue 17's criterion: at the two lightest masses, doubling the iterations and
+to stderr. The verdict applies the convergence criterion: at the two lightest masses, doubling the iterations and
 halving dt change each result by less than 3 % (paired by seed, the change of the 3-seed means), and the two
 masses agree within 5 %; next to every change the seed-to-seed scatter (standard error of the 3-seed mean) says
 whether 3 % is resolvable at this run length.
@@ -121,7 +121,7 @@ def paired_change(runs, a, b, seeds, q):
 
 
 def markdown(runs, masses, settings, seeds, meta) -> str:
-    L = [f"# Wear grains: convergence in grain mass and solver settings (issue 17, item 1)", "",
+    L = [f"# Wear grains: convergence in grain mass and solver settings", "",
          "Commands (in this order; finished runs are kept, a later command adds cells): "
          + "; ".join(f"`{c}`" for c in meta.get("commands", [meta.get("command", "")])) + "  ", f"Scene: pads_with_wear (50 grains), {meta['duration']:g} s recorded per run "
          f"(+ 1 s warm-up), seeds {', '.join(map(str, seeds))} (paired: same substrate and grain radii per seed).  ",
@@ -194,7 +194,7 @@ def markdown(runs, masses, settings, seeds, meta) -> str:
 
 
 def verdict(runs, masses, seeds) -> str:
-    """Issue 17's criterion at the two lightest masses run, and which masses hold the energy balance
+    """The convergence criterion at the two lightest masses run, and which masses hold the energy balance
     (|resid| < 1 %) with no grain lost."""
     ok = []
     for m in masses:

@@ -1,4 +1,4 @@
-"""Issue 17, item 1: is there a light-grain limit? One pad, one grain of a fixed radius, against closed forms.
+"""Is there a light-grain limit? One pad, one grain of a fixed radius, against closed forms.
 
     python -m benchmarks.wear_light_limit [--radii 25,50,80,140] [--masses 1e-5] [--steps 1e-4,6.25e-6,1.5625e-6]
                                           [--iterations 20] [--seeds 0,1] [--duration S] [--out PREFIX] [--smoke]
@@ -109,7 +109,7 @@ def markdown(runs: dict, meta: dict) -> str:
     rows = {}
     for rec in runs.values():
         rows.setdefault((rec["r_m"], rec["mass_kg"], rec["iterations"], rec["dt_step_s"]), []).append(rec)
-    lines = ["# Is there a light-grain limit? One pad, one grain, against closed forms (issue 17, item 1)", "",
+    lines = ["# Is there a light-grain limit? One pad, one grain, against closed forms", "",
              f"Commands: {'; '.join(f'`{c}`' for c in meta['commands'])}  ",
              f"Wall time so far: {meta['wall_s']:.0f} s; runs: {len(runs)}; last update {meta['updated']}.", "",
              "Scene: the wear study's (`scenarios/sweeps/pads_with_wear_study.toml`) reduced to one pad under 1/30 of its block, "

@@ -1,4 +1,4 @@
-"""Issue 17's stability must-show: many grains at the lightest shipped mass, a long run.
+"""Stability of the wear grains: many grains at the lightest shipped mass, a long run.
 
 The wear study's base scene (``scenarios/sweeps/pads_with_wear_study.toml``: grains of 1e-5 kg, 4 substeps of
 2.5e-5 s under the grain step rule) with ``--count`` grains (default 1000) for ``--duration`` simulated seconds.

@@ -1,4 +1,4 @@
-"""Issue 17, item 3: the wear study's results as committed tables (Markdown + CSV + figure) from a sweep folder.
+"""The wear study's results as committed tables (Markdown + CSV + figure) from a sweep folder.
 
     frictionnoise sweep scenarios/sweeps/wear_study_quick.toml --workers 1 -o /tmp/wear_study_quick
     python -m benchmarks.wear_study /tmp/wear_study_quick --wall S --command "..." [--out benchmarks/results/wear_study_quick]
@@ -141,7 +141,7 @@ def main(argv=None):
     plots.save_figure(gamma_figure(rows), out.with_suffix(".png"))
     proj = projected_wall(results, full)
     sim = sum("wear" in r for r in results)
-    L = [f"# Wear study ({spec.name}): does debris steepen the spectrum? (issue 17, item 3)", "",
+    L = [f"# Wear study ({spec.name}): does debris steepen the spectrum?", "",
          f"Command: `{a.command}`  ",
          f"Wall time: {a.wall:.0f} s ({a.wall / 3600:.2f} h) for {sim} tasks on {a.workers} worker"
          f"{'s' if a.workers > 1 else ''} (2 cores).  ",

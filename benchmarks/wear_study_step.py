@@ -1,4 +1,4 @@
-"""Issue 17: the wear study's one cell whose energy balance missed 1 %, rerun with a finer grain step.
+"""The wear study's one cell whose energy balance missed 1 %, rerun with a finer grain step.
 
     python -m benchmarks.wear_study_step [--duration 30] [--omega-dt 0.3] [--json benchmarks/results/wear_study_step.json]
 

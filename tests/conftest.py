@@ -1,10 +1,10 @@
-"""The fast tier touches every module (issue 14). After a run of the whole test folder (`python -m pytest -m
-"not slow"`, no file or -k selection) the project's modules that no selected test imported are listed and the
-run fails. A module counts when a file with a selected test imports it (an import statement anywhere in the file,
-or a module first loaded while the file was collected), or when it was loaded while the tests ran, and so does
-every module these import at their top, transitively (read from their source). A module that only files whose
-tests were all deselected import does not count. Subprocesses are not seen: a module only reached through
-`python -m ...` counts as untouched (the strict side).
+"""The fast tier touches every module, so no module ships untested. After a run of the whole test folder
+(`python -m pytest -m "not slow"`, no file or -k selection) the project's modules that no selected test imported
+are listed and the run fails. A module counts when a file with a selected test imports it (an import statement
+anywhere in the file, or a module first loaded while the file was collected), or when it was loaded while the tests
+ran, and so does every module these import at their top, transitively (read from their source). A module that only
+files whose tests were all deselected import does not count. Subprocesses are not seen: a module only reached
+through `python -m ...` counts as untouched (the strict side).
 
 Under pytest-xdist (``-n 2``, the README's fast-tier command) each worker lists what its own tests left
 untouched and the controller fails the run on the modules every worker left untouched.

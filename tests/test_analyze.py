@@ -80,10 +80,11 @@ def test_cli_bad_data_is_a_one_line_error(tmp_path, capsys):
     assert "--mass must be positive" in capsys.readouterr().err
 
 
-# ----------------------------------------------------------------------------- instrument exports (issue 15)
+# ----------------------------------------------------------------------------- instrument exports
 def test_shipped_um_file_is_read_in_micrometres_from_its_header(tmp_path, capsys):
-    # issue 15 item 5: without --x-unit the column x_um used to be read as metres (v = 496 m/s). The file is
-    # model I at v = 0.5 mm/s; the fitted mean velocity must be 5e-4 m/s within 2 % (200 s of a 0.1 mm rms noise).
+    # without --x-unit the unit comes from the column name x_um (read as metres it would give v = 496 m/s). The
+    # file is model I at v = 0.5 mm/s; the fitted mean velocity must be 5e-4 m/s within 2 % (200 s of a 0.1 mm
+    # rms noise).
     out = tmp_path / "out"
     assert main(["analyze", "scenarios/data/model1_synthetic_um.csv", "--mass", "1", "-o", str(out)]) == 0
     printed = capsys.readouterr().out
@@ -156,7 +157,7 @@ def test_only_what_cannot_be_read_is_refused(tmp_path):
         read_measured(f)
 
 
-# ----------------------------------------------------------------------------- force data (issue 16)
+# ----------------------------------------------------------------------------- force data
 RECIP = "scenarios/data/reciprocating_force.txt"
 
 

@@ -1,4 +1,5 @@
-"""The before/after tools of issue 14: the summary diff and the rules that explain each differing key."""
+"""The before/after tools of benchmarks/bench_vs_ref.py: the summary diff, and the rules that assign each differing
+key to a cause or list it as unexplained."""
 import math
 
 from benchmarks.bench_vs_ref import diff_summaries, rel_diff, study_walls

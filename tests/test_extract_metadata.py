@@ -38,7 +38,8 @@ def test_effective_mass_of_leonardo_slider_is_block_plus_hanging_mass():
 
 
 def test_traces_written_before_substrate_parts_still_load():
-    # before issue 14 a trace's metadata listed every kind's substrate fields; compare reads it leniently
+    # a trace whose metadata lists every substrate kind's fields (as older traces do) is rejected by the strict
+    # reader and read leniently by compare
     from engine_sim import ScenarioError, scenario_from_dict
 
     d = load_scenario("pads_rough_profile").to_dict()

@@ -137,7 +137,7 @@ def test_bent_spectrum_and_narrow_band_are_flagged():
 
 
 def test_flag_reaches_legends_and_the_sweep_table():
-    """Issue 15: a fit that is not a power law is marked in figures, tables and JSON, not only in its text."""
+    """A fit that is not a power law is marked in figures, tables and JSON, not only in its text."""
     from compare.report import plots
     from compare.analysis.fits import flag_mark
     from compare.report.sweep_report import build_sweep_report

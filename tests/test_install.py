@@ -1,8 +1,8 @@
-"""A non-editable install ships the scenarios: `pip install .` into a fresh venv, then run them by name from
-another folder (issue 14: a non-editable install used to lose every scene, silently). The install and its quick
-report are session fixtures (tests/installed.py, conftest.py): tests/test_report_cli.py reads the same report.
-Both tests are in the slow tier's `timing` group (one core, nothing beside them): the quick report runs its own
-worker processes on both cores and measures the particles' cost ratio (a speed)."""
+"""A non-editable install ships the scenarios: `pip install .` into a fresh venv, then run them by name from another
+folder (the scenario files are package data: an install without them would lose every scene, silently). The install
+and its quick report are session fixtures (tests/installed.py, conftest.py): tests/test_report_cli.py reads the same
+report. Both tests are in the slow tier's `timing` group (one core, nothing beside them): the quick report runs its
+own worker processes on both cores and measures the particles' cost ratio (a speed)."""
 import subprocess
 import time
 from pathlib import Path
@@ -48,8 +48,8 @@ def test_non_editable_install_runs_shipped_scenarios_by_name(installed):
 
 # the quick report: about 2-3 min on 2 cores, once per session (installed_quick_report)
 def test_non_editable_install_quick_report_holds_every_shipped_scene(installed, installed_quick_report):
-    """Issue 14's must-show: `frictionnoise report --quick` from another folder holds every shipped scene (it used
-    to hold the model sections only, silently). The design, asked of the installed package: the quick report's
+    """`frictionnoise report --quick` from another folder holds every shipped scene, not only the model sections
+    (a lost scene would be silent). The design, asked of the installed package: the quick report's
     studies are one per shipped scene (`compare.studies.scenes.scene_studies`) plus the models and any quick
     study of a scene beside a model (pads_multiscale against model Ib); the full report adds no scene of its own. Each scene is in summary.json and is a section of index.html
     with at least one figure."""

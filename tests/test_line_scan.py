@@ -210,7 +210,7 @@ def test_bad_profile_from_the_command_line_exits_2_and_writes_nothing(tmp_path, 
 @pytest.mark.slow
 @pytest.mark.timing
 def test_stylus_export_at_native_spacing_runs_3_s_in_under_30_s(tmp_path):
-    """The must-show: the profilometer export as the line_scan file at its native spacing (dx = 0: the pads' rule
+    """The profilometer export as the line_scan file at its native spacing (dx = 0: the pads' rule
     picks the grid), 3 s simulated after the 1 s warm-up, through the command line: the resampling line printed
     before the run, under 30 s wall for the whole command (imports, profile, probe and run). Measured 51 s under a
     load of 13 on 2 cores (6 helpers); the timing tier runs alone on one core."""

@@ -1,5 +1,5 @@
-"""The uniform reduced-model interface (issue 14): simulate(params, duration, dt_out=..., seed=...), RESPONSE,
-fit_band, for models I, Ib, II and III."""
+"""The uniform reduced-model interface that every registered model provides: simulate(params, duration,
+dt_out=..., seed=...), RESPONSE, fit_band, so that callers need not branch on the model."""
 import numpy as np
 import pytest
 

@@ -1,6 +1,6 @@
 """The rendered frame's layout (engine_sim.render): the time line and the key lie outside every axes' data
-region, the key names what is drawn, and pads_multiscale shows the whole block and an enlarged column 1 (a new
-user's trial: 3 of 30 columns, tiny micro-pads, no key, the bottom track under the caption)."""
+region, the key names what is drawn, and pads_multiscale shows the whole block (all 30 columns) and column 1 enlarged so that its micro-pads can be
+seen, with a key, and no track under the caption."""
 import numpy as np
 import pytest
 from matplotlib.text import Text
@@ -26,7 +26,7 @@ def test_caption_and_key_lie_outside_the_scene_and_inside_the_figure(name):
         assert fig_bb.x0 <= bb.x0 and bb.x1 <= fig_bb.x1 and fig_bb.y0 <= bb.y0 and bb.y1 <= fig_bb.y1, art
         for pn in r.panels:
             assert not bb.overlaps(pn["ax"].get_window_extent(rend)), (art, pn["view"]["ylabel"])
-    # no part writes its numbers over the scene (Leonardo's "hanging mass" label had covered the tracks)
+    # no part writes its numbers over the scene (a label such as Leonardo's "hanging mass" would cover the tracks)
     for pn in r.panels:
         for shape, art in pn["artists"].items():
             assert not (isinstance(art, Text) and art.get_text()), (shape, art.get_text())

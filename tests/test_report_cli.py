@@ -62,7 +62,7 @@ def test_summary_holds_every_shipped_scenario(quick_report):
             assert sc["wear"]["left_interface"] == 0 and sc["wear"]["recycled"] > 50
             assert sc["particle_penetration_max_m"] < 8e-6
             # per pymunk step, both scenes taking turns: 1.23-1.63 measured (quiet to loaded), 2.13 once beside a CI
-            # run; 3 still catches a return to the 4.9x of a global 20-iteration solver (issue 17)
+            # run; 3 catches a global 20-iteration solver (4.9x)
             assert 1.0 < sc["cost_ratio_particles"] < 3.0, sc["cost_ratio_particles"]
             assert sc["episodes"]["trapped"]["count"] > 100 and sc["episodes"]["moving"]["count"] > 100
             continue

@@ -1,4 +1,6 @@
-"""The multiscale scene (pad arrangement "micro", scenario pads_multiscale; issue 18, "In the scene")."""
+"""The multiscale scene (pad arrangement "micro", scenario pads_multiscale): its loads and the scale
+separations model Ib assumes, the validation of its micro fields, a bitwise resume from checkpoints, and its
+spectra against model Ib."""
 import math
 
 import numpy as np
@@ -35,7 +37,7 @@ def test_scene_builds_with_its_micro_pads_loads_and_orderings():
     assert sc.drive_force == pytest.approx(p.N * (sc.friction.mu0 * L + (sc.friction.c + p.n_micro * p.micro_c) * v),
                                            rel=1e-12)
     assert sc.steady_velocity == pytest.approx(v, rel=1e-9)
-    # the orderings issue 18 asks the scene to keep
+    # the scale separations model Ib assumes, which the scene must keep
     w2 = math.sqrt(p.micro_k / p.micro_mass)
     assert w2 > 10 * 30 * v / sc.substrate.a  # micro resonance well above the fit band's top, 30 v/a
     assert w2 > 2 * math.pi * v / p.micro_a

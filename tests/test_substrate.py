@@ -1,5 +1,5 @@
-"""The self-affine track generator against SurfaceTopography, the field's reference implementation (issue 14:
-the kernel used the 2D exponent -2(1+H) for a line and made H = 0.8 tracks read q^-3.59)."""
+"""The self-affine track generator against SurfaceTopography, the field's reference implementation: a line's
+spectrum must fall as q^-(1+2H), the 1D exponent (the 2D exponent -2(1+H) would make an H = 0.8 track read q^-3.6)."""
 import numpy as np
 import pytest
 
@@ -36,8 +36,8 @@ def test_self_affine_line_psd_exponent_and_rms_slope(hurst):
     lo, hi = 2 * (2 * np.pi / lr), 0.5 * (2 * np.pi / ls)  # clear of the roll-off and the cut-off
     gamma = _exponent(q, np.ma.mean(np.ma.array(Cs), axis=0), lo, hi)
     # measured 2.58 (H 0.8) and 1.58 (H 0.3); one profile scatters by 0.044, so the 8-profile ensemble by 0.016,
-    # plus a bias of ~0.02 from the Hann window and the FIR truncation: 0.1 is 5 sigma beyond it, while the old
-    # kernel (2D exponent) reads 1 + 2H + 1, ten times the tolerance away
+    # plus a bias of ~0.02 from the Hann window and the FIR truncation: 0.1 is 5 sigma beyond it, while a
+    # kernel with the 2D exponent reads 1 + 2H + 1, ten times the tolerance away
     assert abs(gamma - (1 + 2 * hurst)) < 0.1, gamma
     # SurfaceTopography's own generator, same cut-offs and band: it reads 0.07 steeper than ours (its roll-off
     # differs; 4 profiles scatter by 0.02), so the two agree within 0.15

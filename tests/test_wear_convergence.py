@@ -1,4 +1,4 @@
-"""Issue 17, item 1: the grain mass that pads_with_wear ships (wear.min_mass = 1e-4 kg) under the grain step rule
+"""The grain mass that pads_with_wear ships (wear.min_mass = 1e-4 kg) under the grain step rule
 (engine_sim.wear.grain_step: omega_g dt <= 0.6, here 2 substeps of 5e-5 s): converged in the solver iterations, NOT
 in the step below the rule's.
 

@@ -1,4 +1,4 @@
-"""The light-grain limit (issue 17, item 1): the wedge regimes and the climb force against exact cases, and a grain
+"""The light-grain limit of the wear grains: the wedge regimes and the climb force against exact cases, and a grain
 in the one-pad scene against them (benchmarks/wear_light_limit.py has the full table)."""
 import math
 

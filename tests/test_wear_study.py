@@ -1,5 +1,5 @@
-"""The wear study (issue 17, item 3): its factors, its per-cell statistics on cases with exact answers, and its
-sweep files; the slow check that a cell with particles reads the slope measured against its twin."""
+"""The wear study (does debris steepen the spectrum?): its factors, its per-cell statistics on cases with exact
+answers, and its sweep files; the slow check that a cell with particles reads the slope measured against its twin."""
 import math
 from pathlib import Path
 
@@ -111,7 +111,7 @@ def test_substepped_grains_resume_bit_for_bit(tmp_path):
         assert np.array_equal(getattr(a, name), getattr(b, name)), name
 
 
-# The slow check (issue 17, "must show"): one cell with particles (25 narrow grains) against its particle-free twin
+# The slow check of the study's verdict: one cell with particles (25 narrow grains) against its particle-free twin
 # (same track, substrate and seed), through the sweep's own task (compare.sweep.run_task with the wear hook), 12 s each.
 # MEASURED (seed 0): smooth track, rise +0.117 +- 0.329 (95 %; twin 3.773, with grains 3.890; C_x 1.8-17x per band): not steeper (the quick study pooled -0.06 +- 0.28
 # over 12 paired runs); cavity track, rise +0.640 +- 0.311 (twin 2.850, with grains 3.490;

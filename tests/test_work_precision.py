@@ -1,4 +1,5 @@
-"""The engine's shipped defaults sit on the speed-against-error Pareto front (issue 9)."""
+"""The engine's shipped defaults sit on the speed-against-error Pareto front: no other tested setting is both
+faster and more accurate."""
 import pytest
 
 from compare.analysis.work_precision import engine_work_precision, pareto
