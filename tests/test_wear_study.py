@@ -220,3 +220,16 @@ def test_committed_full_study_is_the_shipped_grid():
             for p, _ in expand(spec)}
     assert {(r["track"], r["size"], r["count"]) for r in rows} == grid and len(rows) == len(grid)
     assert {r["n"] for r in rows} == {str(len(spec.grid["seed"]))}
+
+
+def test_report_answer_states_the_cells_rise_in_numbers():
+    # the page's answer paragraph reads the same exact cells: +0.50 in both seeds on the smooth track, no interval
+    # excludes 0 from above less than it (0.5 - 0.1 > 0), C_x 4.00x the twin in the first band
+    from compare.report.wear_study import answer
+
+    rs = [_task(0, "narrow", "smooth", k, 4.0 + 0.1 * k, 0.1, [1.0, 1.0, 1.0]) for k in (0, 1)]
+    rs += [_task(50, "narrow", "smooth", k, 4.5 + 0.1 * k, 0.1, [4.0, 2.0, 1.0], [2.0, 2.0, 2.0], [1.0, 4.0, 2.0])
+           for k in (0, 1)]
+    text = answer(cells(rs))
+    assert "gamma 4.05 &plusmn;" in text and "by +0.50 to +0.50 over 1 cells (1 of them up)" in text
+    assert "1 cells steeper and 0 flatter" in text and "C_x 4.00, 2.00, 1.00x the twin's per band" in text
