@@ -90,28 +90,24 @@ def cmd_analyze(args) -> int:
     from pathlib import Path
 
     from ..report.html import write_report
-    from ..io.measured import DataFileError, read_measured, units_line
+    from ..io.measured import units_line
 
-    from ..io.inputs import input_file, sniff
-
-    if sniff(input_file(args.data)) != "text":  # kind, emptiness, binary; the format is read by compare.io.measured
-        raise UserError(f"{args.data}: binary data, not a CSV text file")
     force = args.force_col is not None
     _check_analyze_numbers(args)
     if not force:
         for flag in ("normal_col", "direction_col", "speed", "cut", "force_unit"):
             if getattr(args, flag) is not None:
                 raise UserError(f"--{flag.replace('_', '-')} applies to force data only (give --force-col)")
-    try:
-        data = read_measured(args.data, time_col=args.time_col, x_col=args.x_col, force_col=args.force_col,
-                             normal_col=args.normal_col, direction_col=args.direction_col, time_unit=args.time_unit,
-                             x_unit=args.x_unit, force_unit=args.force_unit, require_x=not force,
-                             resample=args.resample)
-    except DataFileError as e:
-        raise UserError(str(e)) from None
-    if data.warning:
-        print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)
-    _print_breaks(data.timeline)
+    if len(args.data) > 1:
+        if force:
+            raise UserError("several files make a velocity series of displacement records; force data: one file")
+        from .series import analyze_series
+
+        return analyze_series(args, _read_record)
+    if args.omega is not None:
+        raise UserError("--omega compares C_x across several records: give two or more displacement files")
+    args.data = args.data[0]
+    data = _read_record(args.data, args)
     out = output_dir(args.output, f"analyze-{Path(args.data).stem}", "index.html and summary.json")
     band = tuple(args.band) if args.band else None
     try:
@@ -134,6 +130,26 @@ def cmd_analyze(args) -> int:
     for line in (_force_lines if force else _displacement_lines)(summary, out / "index.html"):
         print(line)
     return 0
+
+
+def _read_record(path, args):
+    """One measured record as the analyze options describe it (a UserError for what cannot be read)."""
+    from ..io.inputs import input_file, sniff
+    from ..io.measured import DataFileError, read_measured
+
+    if sniff(input_file(path)) != "text":  # kind, emptiness, binary; the format is read by compare.io.measured
+        raise UserError(f"{path}: binary data, not a CSV text file")
+    try:
+        data = read_measured(path, time_col=args.time_col, x_col=args.x_col, force_col=args.force_col,
+                             normal_col=args.normal_col, direction_col=args.direction_col, time_unit=args.time_unit,
+                             x_unit=args.x_unit, force_unit=args.force_unit, require_x=args.force_col is None,
+                             resample=args.resample)
+    except DataFileError as e:
+        raise UserError(str(e)) from None
+    if data.warning:
+        print(f"frictionnoise: warning: {path}: {data.warning}", file=sys.stderr)
+    _print_breaks(data.timeline)
+    return data
 
 
 def _check_analyze_numbers(args) -> None:

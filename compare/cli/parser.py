@@ -99,8 +99,11 @@ def build_parser() -> argparse.ArgumentParser:
 
     an = add("analyze", "analyse measured x(t) or friction force F(t) from a text export: spectra, exponent, rms and a "
                         "report (deterministic: no random numbers, so no --seed)")
-    an.add_argument("data", help="text table (CSV, ;- or tab-separated; preamble, units row and decimal commas are read): "
-                                 "time and displacement or force columns")
+    an.add_argument("data", nargs="+",
+                    help="text table (CSV, ;- or tab-separated; preamble, units row and decimal commas are read): "
+                         "time and displacement or force columns. Several displacement files (e.g. one per sliding "
+                         "speed) are each analysed and compared as a velocity series: C_x at one omega against v, its "
+                         "exponent, the collapse in q = omega / v and model I's level alpha^2/(N a)")
     an.add_argument("--mass", type=float, default=None,
                     help="block mass M (kg), optional: with displacement data it adds C_F = M^2 omega^4 C_x (eq. 3) "
                          "and the force exponent (gamma, C_x, C_mu and the velocity need no mass); with force data "
@@ -128,6 +131,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="time stamps that change rate, skip, repeat or step back: put the record on one grid of DT "
                          "seconds (faster segments low-passed first; the filter is stated) instead of analysing its "
                          "uniform segments separately and together")
-    an.add_argument("-o", "--output", default=None, help="output folder (default: analyze-<file stem>)")
+    an.add_argument("--omega", type=float, default=None, metavar="W",
+                    help="several files: the angular frequency (rad/s) at which C_x is compared across speeds "
+                         "(default: the geometric centre of the band common to every record's fit band)")
+    an.add_argument("-o", "--output", default=None, help="output folder (default: analyze-<file stem>; several files: analyze-series-<first stem>)")
     an.set_defaults(func=cmd_analyze)
     return ap

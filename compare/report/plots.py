@@ -203,3 +203,42 @@ def episode_histogram_figure(ep: dict, title: str = ""):
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     return fig
+
+
+def velocity_series_figure(spectra: list, v, C, exponent: float, err: float, omega: float):
+    """The paper's Fig. 15 for measured records: C_x against omega for each speed (left) and C_x(omega) against v
+    with the fitted power law v^exponent (right), log-log; ``spectra`` is a list of (omega, C, label)."""
+    fig = new_figure(10.0, 4.0)
+    ax, bx = fig.subplots(1, 2)
+    for w, c, label in spectra:
+        ax.loglog(w, c, lw=1, label=label)
+    ax.axvline(omega, color="k", ls=":", lw=1, label=rf"$\omega^*$ = {omega:.3g} rad/s")
+    ax.set_xlabel(r"$\omega$ (rad/s)")
+    ax.set_ylabel(r"$C_x$ (m$^2$ s)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    v, C = np.asarray(v), np.asarray(C)
+    bx.loglog(v * 1e3, C, "o", label="records")
+    A = np.exp(np.mean(np.log(C) - exponent * np.log(v)))
+    vv = np.logspace(np.log10(v.min()), np.log10(v.max()), 20)
+    bx.loglog(vv * 1e3, A * vv**exponent, "-", label=f"fit: $v^{{{exponent:.2f} \\pm {err:.2f}}}$")
+    bx.set_xlabel("v (mm/s)")
+    bx.set_ylabel(rf"$C_x(\omega^*)$ (m$^2$ s)")
+    bx.grid(True, alpha=0.3)
+    bx.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def collapse_figure(curves: list):
+    """Spectra in the distance domain: v C_x(omega = q v) against q = omega / v (section 2); (q, C_s, label) each."""
+    fig = new_figure(5.4, 4.0)
+    ax = fig.add_subplot()
+    for q, c, label in curves:
+        ax.loglog(q, c, lw=1, label=label)
+    ax.set_xlabel(r"$q = \omega / v$ (rad/m)")
+    ax.set_ylabel(r"$v\,C_x(\omega = q v)$ (m$^3$)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
