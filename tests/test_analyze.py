@@ -331,3 +331,21 @@ def test_shipped_model_I_file_without_a_mass(tmp_path, method):
     s = json.loads((out / "summary.json").read_text())
     assert abs(s["gamma"] - 4.0) <= s["gamma_err"] and s["fit"]["method"] == method, s["fit"]
     assert s["mean_velocity"] == pytest.approx(5e-4, rel=0.02) and s["zeta_rms_m"] > 0 and s["mu_rms"] > 0
+
+
+def test_latin1_export_with_crlf_reads_on_the_command_line(tmp_path, capsys):
+    # an instrument's 8-bit export: the micro sign as latin-1 byte 0xB5 in the header, CRLF line ends. The record is
+    # a steady 10 um/s slide, so the mean velocity must read 1e-5 m/s (the header's um taken, not m); a binary file
+    # (control bytes throughout) stays refused
+    t = np.arange(4000) * 0.01
+    x = 10.0 * t + 0.01 * np.sin(3.0 * t)
+    f = tmp_path / "x_micro.csv"
+    f.write_bytes(("time (s),x (\u00b5m)\r\n" + "".join(f"{a:.4f},{b:.6f}\r\n" for a, b in zip(t, x))).encode("latin-1"))
+    out = tmp_path / "out"
+    assert main(["analyze", str(f), "-o", str(out)]) == 0
+    s = json.loads((out / "summary.json").read_text())
+    assert s["mean_velocity"] == pytest.approx(1e-5, rel=1e-3)
+    b = tmp_path / "noise.bin"
+    b.write_bytes(bytes(range(1, 256)) * 20)  # not UTF-8, and 25 % control bytes read as latin-1
+    assert main(["analyze", str(b), "-o", str(tmp_path / "out2")]) == 2
+    assert "binary data" in capsys.readouterr().err

@@ -43,7 +43,9 @@ def input_file(path) -> Path:
 
 
 def sniff(path) -> str:
-    """'npz' (a zip archive), 'text' (UTF-8 without NUL bytes) or 'binary', from the file's first bytes."""
+    """'npz' (a zip archive), 'text' or 'binary', from the file's first bytes. Text is UTF-8, or the 8-bit text
+    instruments write (latin-1, as a micro sign 0xB5 in a header): no NUL byte and, read as latin-1, at most 1 %
+    control characters other than tab, line ends and form feed."""
     with open(path, "rb") as fh:
         head = fh.read(_SNIFF)
     if head[:4] in _ZIP_MAGIC:
@@ -54,7 +56,8 @@ def sniff(path) -> str:
         head.decode("utf-8")
     except UnicodeDecodeError as e:
         if e.start < len(head) - 4:  # not just a multi-byte character cut at the sniff boundary
-            return "binary"
+            control = sum(b < 32 and b not in b"\t\n\r\f" or 127 <= b < 160 for b in head)
+            return "text" if control <= 0.01 * len(head) else "binary"
     return "text"
 
 
