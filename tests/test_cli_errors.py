@@ -385,3 +385,19 @@ def test_analyze_displacement_flags(args, needle, tmp_path, out, capsys):
     f.write_text("t_s,x_mm\n" + "".join(f"{a:.3f},{b:.6f}\n" for a, b in zip(t, t)))
     assert main(["analyze", str(f), *args, "-o", str(out)]) == 2
     _assert_user_error(capsys, out, needle)
+
+
+def test_shipped_examples_are_found_from_any_folder(tmp_path, monkeypatch):
+    # the README's examples name shipped files as scenarios/...: from a folder that has none, they are taken from the
+    # installed scenarios package (a sweep also by its bare name); an existing path of that spelling still wins
+    from compare.cli.options import shipped_file
+    from engine_sim.scenario import SCENARIO_DIR
+
+    monkeypatch.chdir(tmp_path)
+    assert shipped_file("scenarios/data/reciprocating_force.txt") == str(SCENARIO_DIR / "data" / "reciprocating_force.txt")
+    assert shipped_file("velocity_model1", "sweeps") == str(SCENARIO_DIR / "sweeps" / "velocity_model1.toml")
+    assert shipped_file("scenarios/sweeps/velocity_model1.toml") == str(SCENARIO_DIR / "sweeps" / "velocity_model1.toml")
+    assert shipped_file("nothing_here.csv") == "nothing_here.csv"
+    (tmp_path / "scenarios" / "data").mkdir(parents=True)
+    (tmp_path / "scenarios" / "data" / "reciprocating_force.txt").write_text("t,F\n")
+    assert shipped_file("scenarios/data/reciprocating_force.txt") == "scenarios/data/reciprocating_force.txt"

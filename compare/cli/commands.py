@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import sys
 
-from .options import UserError, check_seed, load_scenario_arg, output_dir, scenario_path, usable_cores
+from .options import UserError, check_seed, load_scenario_arg, output_dir, scenario_path, shipped_file, usable_cores
 from .progress import progress_bar
 
 __all__ = ["cmd_analyze", "cmd_compare", "cmd_render", "cmd_report", "cmd_run", "cmd_scenarios", "cmd_sweep"]
@@ -38,7 +38,7 @@ def cmd_sweep(args) -> int:
     from ..sweep import SchedulerError, SweepError, load_results, load_sweep, run_sweep
 
     try:
-        spec = load_sweep(args.sweep)
+        spec = load_sweep(shipped_file(args.sweep, "sweeps"))
     except SweepError as e:
         raise UserError(str(e)) from None
     if not 1 <= args.workers <= 64:
@@ -137,6 +137,7 @@ def _read_record(path, args):
     from ..io.inputs import input_file, sniff
     from ..io.measured import DataFileError, read_measured
 
+    path = shipped_file(path)
     if sniff(input_file(path)) != "text":  # kind, emptiness, binary; the format is read by compare.io.measured
         raise UserError(f"{path}: binary data, not a CSV text file")
     try:

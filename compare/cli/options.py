@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 
-__all__ = ["UserError", "output_dir", "check_seed", "scenario_path", "load_scenario_arg", "nearest_names", "data_table",
+__all__ = ["UserError", "output_dir", "check_seed", "scenario_path", "shipped_file", "load_scenario_arg", "nearest_names", "data_table",
            "usable_cores"]
 
 
@@ -60,6 +60,26 @@ def scenario_path(arg, models=()) -> str:
                     f"{nearest_names(p.stem, [*shipped_scenarios(), *models])}"
                     " (`frictionnoise scenarios` lists the shipped scenarios"
                     + (f"; reduced models: {', '.join(models)})" if models else ")"))
+
+
+def shipped_file(arg, folder: str = "") -> str:
+    """A file argument that need not exist where the command runs: an existing path as given; else a path that
+    starts with ``scenarios/`` (as the README writes the shipped examples) taken inside the installed
+    ``scenarios`` package; else, with ``folder`` (``"sweeps"``), a bare name of a file shipped there
+    (``velocity_model1``); else the argument as given (the input layer then names the problem)."""
+    from pathlib import Path
+
+    from engine_sim.scenario import SCENARIO_DIR
+
+    if os.path.lexists(arg):
+        return arg
+    p = Path(arg)
+    candidates = []
+    if p.parts and p.parts[0] == "scenarios":
+        candidates.append(SCENARIO_DIR.joinpath(*p.parts[1:]))
+    if folder and p.parent == Path("."):
+        candidates += [SCENARIO_DIR / folder / p.name, SCENARIO_DIR / folder / f"{p.name}.toml"]
+    return str(next((c for c in candidates if c.is_file()), arg))
 
 
 def nearest_names(name: str, names) -> str:
