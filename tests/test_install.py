@@ -16,7 +16,7 @@ pytestmark = [pytest.mark.slow, pytest.mark.timing]
 
 def _listed(exe, cwd) -> list:
     listed = subprocess.run([exe, "scenarios"], cwd=cwd, check=True, capture_output=True, text=True).stdout
-    return [line.split()[0] for line in listed.splitlines() if line.strip()]
+    return [line.split()[0] for line in listed.splitlines() if line.strip() and not line[0].isspace()]
 
 
 def test_non_editable_install_runs_shipped_scenarios_by_name(installed):
@@ -50,7 +50,7 @@ def test_non_editable_install_runs_shipped_scenarios_by_name(installed):
 def test_non_editable_install_quick_report_holds_every_shipped_scene(installed, installed_quick_report):
     """`frictionnoise report --quick` from another folder holds every shipped scene, not only the model sections
     (a lost scene would be silent). The design, asked of the installed package: the quick report's
-    studies are one per shipped scene (`compare.studies.scenes.scene_studies`) plus the models and any quick
+    studies are one per shipped scene (`compare.report.studies.scenes.scene_studies`) plus the models and any quick
     study of a scene beside a model (pads_multiscale against model Ib); the full report adds no scene of its own. Each scene is in summary.json and is a section of index.html
     with at least one figure."""
     import json
@@ -58,7 +58,7 @@ def test_non_editable_install_quick_report_holds_every_shipped_scene(installed, 
 
     py, exe, elsewhere, _, _ = installed
     names = _listed(exe, elsewhere)
-    design = subprocess.run([py, "-c", "import json; from compare import studies; print(json.dumps("
+    design = subprocess.run([py, "-c", "import json; from compare.report import studies; print(json.dumps("
                                        "[[s.key, s.quick] for s in studies.STUDIES]))"],
                             cwd=elsewhere, check=True, capture_output=True, text=True).stdout
     design = dict(json.loads(design))

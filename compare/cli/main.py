@@ -46,6 +46,11 @@ def main(argv=None) -> int:
             sys.stderr.flush()
             os._exit(130)
         return 130
+    except BrokenPipeError:  # the reader of a pipe closed it (`frictionnoise scenarios | head`): stop quietly
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no second error at the interpreter's exit
+        return 141
     finally:
         if main_thread:
             signal.signal(signal.SIGTERM, old)

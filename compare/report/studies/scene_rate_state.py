@@ -19,7 +19,8 @@ from ...analysis.fits import fit_power_law
 from ...analysis.spectra import displacement_spectrum
 from ..html import esc, paragraphs, table
 from ..study import Figure, StudyResult
-from ._common import band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
+from ..verdict import fit_text
+from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
 
 __all__ = ["ageing_params", "ageing_result", "slider_result"]
 
@@ -140,7 +141,7 @@ def slider_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
     d = {**fit.to_dict(), "k": k, "k_c": kc, "k_over_k_c": k / kc, "onset_period": period0, "stick_slip_period": period,
          "sticks": stick, "v_min_over_V": float(np.min(v[half]) / V), "v_max_over_V": float(np.max(v[half]) / V),
          "wall_s": wall, "duration_s": T, "us_per_step": tr.metadata["us_per_step"],
-         "stick_slip_as_predicted": bool(stick == (k < kc))}
+         "stick_slip_as_predicted": bool(stick == (k < kc)), **balances(tr)}
     parts = [
         esc(sc.description.replace("\n", " ")),
         f"{T:g} s simulated in {wall:.1f} s ({tr.metadata['us_per_step']:.0f} us per step). Stiffness k = {k:.4g} N/m "
@@ -151,7 +152,7 @@ def slider_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
          + f"Stick-slip period {period:.3g} s against the neutral period at onset 2 pi D_c / (V sqrt((B - A)/A)) = "
            f"{period0:.3g} s (the two agree only at k -> k_c; below it the cycles are nonlinear and longer)."),
     ]
-    parts.append(f"C_x falls as omega^-{fit.gamma:.2f} &plusmn; {fit.gamma_err:.2f} over {band[0]:.3g}-{band[1]:.3g} "
+    parts.append(f"C_x falls as omega^-{fit_text(fit)} over {band[0]:.3g}-{band[1]:.3g} "
                  "rad/s (2-20 times the onset frequency): the harmonics of the stick-slip cycle.")
     fig = plots.spectrum_figure([(spec, f"scene {name}, {T:g} s")], fits=[(fit, "scene ")], band=band,
                                 title=f"Scene {name}: k = {k / kc:.2f} k_c")
