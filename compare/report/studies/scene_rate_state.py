@@ -17,7 +17,7 @@ import numpy as np
 
 from ...analysis.fits import fit_power_law
 from ...analysis.spectra import displacement_spectrum
-from ..html import esc, paragraphs, table
+from ..html import esc, paragraphs, span, table
 from ..study import Figure, StudyResult
 from ..verdict import fit_text
 from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
@@ -66,7 +66,7 @@ def ageing_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
     ratios = band_ratios(spec, ageing.theory_spectrum(p, spec.omega), edges)
     ratios_sim = band_ratios(s_sim, ageing.theory_spectrum(p, s_sim.omega), edges)
     worst = max(abs(math.log(b["ratio"])) for b in ratios)
-    d = {**fit.to_dict(), "model_ageing_sim": fit_sim.to_dict(), "band_ratios_vs_model_ageing": ratios,
+    d = {**fit.to_dict(), **balances(tr), "model_ageing_sim": fit_sim.to_dict(), "band_ratios_vs_model_ageing": ratios,
          "model_ageing_sim_vs_theory": ratios_sim, "within_factor_1p5": bool(worst < math.log(1.5)),
          "ageing_params": p.to_dict(), "extracted": ex, "wall_s": wall, "duration_s": T,
          "us_per_step": tr.metadata["us_per_step"], "mean_velocity": p.v, "law_velocity": sc.steady_velocity}
@@ -79,9 +79,9 @@ def ageing_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
         esc(sc.description.replace("\n", " ")),
         f"{T:g} s simulated in {wall:.1f} s ({tr.metadata['us_per_step']:.0f} us per step). Mean speed "
         f"{1e3 * p.v:.3f} mm/s (steady law: {1e3 * sc.steady_velocity:.3f} mm/s).",
-        f"Scene gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} over {band[0]:.3g}-{band[1]:.3g} rad/s (3-30 v/a); "
+        f"Scene gamma = {fit.gamma:.3f} &plusmn; {fit.gamma_err:.3f} over {span(band[0], band[1])} rad/s (3-30 v/a); "
         f"model_ageing simulated with the scene's parameters: {fit_sim.gamma:.3f} &plusmn; {fit_sim.gamma_err:.3f}. "
-        f"Per-band ratio scene / linear response: {ratio_range(ratios)} over {edges[0]:.3g}-{edges[-1]:.3g} rad/s"
+        f"Per-band ratio scene / linear response: {ratio_range(ratios)} over {span(edges[0], edges[-1])} rad/s"
         + verdict + f" The model's own simulation / linear response: {ratio_range(ratios_sim)}.",
         f"The contacts' slope turns from (A - B) f_n / v to A f_n / v above v / D_c = {p.v / p.D_c:.3g} rad/s.",
     ]
@@ -152,7 +152,7 @@ def slider_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
          + f"Stick-slip period {period:.3g} s against the neutral period at onset 2 pi D_c / (V sqrt((B - A)/A)) = "
            f"{period0:.3g} s (the two agree only at k -> k_c; below it the cycles are nonlinear and longer)."),
     ]
-    parts.append(f"C_x falls as omega^-{fit_text(fit)} over {band[0]:.3g}-{band[1]:.3g} "
+    parts.append(f"C_x falls as omega^-{fit_text(fit)} over {span(band[0], band[1])} "
                  "rad/s (2-20 times the onset frequency): the harmonics of the stick-slip cycle.")
     fig = plots.spectrum_figure([(spec, f"scene {name}, {T:g} s")], fits=[(fit, "scene ")], band=band,
                                 title=f"Scene {name}: k = {k / kc:.2f} k_c")
