@@ -1,0 +1,207 @@
+"""The vibration sweep's section (paper section 10: does a vibration out of the band show in the band?): each shaken
+cell of pads_friction_patches against its unshaken twin (same seed), set against the rigid-contact predictions of
+:mod:`reduced_models.vibration`.
+
+Read from the task files of ``frictionnoise sweep scenarios/sweeps/vibration_sweep_<drive>_<f>hz.toml`` (the line at
+omega_v and its harmonics already removed from x(t) by :func:`compare.analysis.harmonics.remove_harmonics`):
+per cell the in-band C_x ratio to the twin (geometric mean of the log-binned C_x over the band), the fitted gamma
+(Whittle, the task's band), the mean Coulomb part of the friction (F_t) and the drive's mean force over the twin's,
+and the mean speed over the twin's; each as the mean over seeds with a Student-t 95 % interval of the paired values.
+
+Prediction: each pad's law is mu N sign(w) + c w on its velocity w relative to the substrate. The block and pads,
+carried by the viscous part N c, follow the substrate except for the share |i omega M| / |N c + i omega M| of its
+velocity (M: block and pads), which the pads see as slip of amplitude U = share A omega. Rigid contacts: the mean
+Coulomb part is (2/pi) arcsin(v/U) of its value (1 for U <= v); a compliant contact (pad spring k0, deflection
+d = mu N / k0) does not reverse below the minimum amplitude and reaches the arcsin law only at a few d (the Jenkins
+element, :func:`reduced_models.vibration.compliant_mean_ratio`). The constant force drive's speed rises as the mean
+falls (:func:`reduced_models.vibration.steady_speed`); the constant velocity drive's mean force falls with it.
+"""
+from __future__ import annotations
+
+import json
+import math
+from collections import defaultdict
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["VibratedScene", "load_tasks", "cells", "prediction", "answer", "section"]
+
+
+@dataclass(frozen=True)
+class VibratedScene:
+    """The shaken scene's constants (SI): pads N, block mass M (kg), pad mass m (kg), per-pad viscous c (N s/m),
+    mu0, pad spring k0 (N/m), sliding speed v (m/s), the band (rad/s). Defaults: scenarios/sweeps/vibrated_patches
+    and vibrated_velocity."""
+
+    N: int = 30
+    M: float = 0.1
+    m: float = 1e-3
+    c: float = 10.0
+    mu0: float = 0.6
+    k0: float = 3333.0
+    v: float = 5e-3
+    band: tuple = (20.0, 150.0)
+
+    def __post_init__(self):
+        for name in ("M", "m", "c", "mu0", "k0", "v"):
+            if not getattr(self, name) > 0:
+                raise ValueError(f"VibratedScene.{name} must be > 0 (got {getattr(self, name)!r})")
+
+    @property
+    def mu_n(self) -> float:
+        """Coulomb part per pad (N): mu0 times the pad's share of the block's weight and its own."""
+        return self.mu0 * 9.81 * (self.M / self.N + self.m)
+
+    @property
+    def deflection(self) -> float:
+        """mu N / k0 (m): the pad's deflection at the onset of slip, the scale of the minimum amplitude."""
+        return self.mu_n / self.k0
+
+
+def load_tasks(folders) -> list:
+    """Every task result (dict) with a spectrum under ``folder/tasks`` for each folder."""
+    out = []
+    for folder in folders:
+        for f in sorted(Path(folder, "tasks").glob("*.json")):
+            d = json.loads(f.read_text())
+            if "C" in d:
+                out.append(d)
+    return out
+
+
+def _t95(n: int) -> float:
+    from scipy.stats import t
+
+    return float(t.ppf(0.975, n - 1)) if n > 1 else float("nan")
+
+
+def _level(d, band) -> float:
+    w, C = np.asarray(d["omega"]), np.asarray(d["C"])
+    m = (w >= band[0]) & (w <= band[1])
+    return float(np.exp(np.mean(np.log(C[m]))))
+
+
+def _mean_ci(x) -> tuple[float, float]:
+    x = np.asarray(x, float)
+    return float(x.mean()), _t95(len(x)) * float(x.std(ddof=1)) / math.sqrt(len(x)) if len(x) > 1 else float("nan")
+
+
+def prediction(f: float, A: float, constant_force: bool, sc: VibratedScene = VibratedScene()) -> dict:
+    """Rigid-contact and compliant predictions for the substrate shaken at f (Hz) with amplitude A (m)."""
+    from reduced_models.vibration import arcsin_ratio, compliant_mean_ratio, steady_speed
+
+    w = 2 * math.pi * f
+    M = sc.M + sc.N * sc.m
+    share = abs(1j * w * M) / abs(sc.N * sc.c + 1j * w * M)
+    U = share * A * w
+    xi_eff = sc.v / U if U > 0 else math.inf
+    rigid = float(arcsin_ratio(min(xi_eff, 1.0))) if U > sc.v else 1.0
+    compliant = float(compliant_mean_ratio(min(xi_eff, 1.0), share * A / sc.deflection)) if U > sc.v else 1.0
+    out = {"share": share, "U": U, "xi_eff": xi_eff, "coulomb_rigid": rigid, "coulomb_compliant": compliant,
+           "A_over_deflection": share * A / sc.deflection}
+    F = sc.mu_n + sc.c * sc.v  # per pad
+    if constant_force:
+        v1 = steady_speed(F, sc.mu_n, sc.c, U) if U > sc.v else sc.v
+        out["speed_rigid"] = v1 / sc.v
+        out["speed_compliant"] = (F - compliant * sc.mu_n) / (sc.c * sc.v)
+    else:
+        out["drive_rigid"] = (rigid * sc.mu_n + sc.c * sc.v) / F
+        out["drive_compliant"] = (compliant * sc.mu_n + sc.c * sc.v) / F
+    return out
+
+
+def cells(tasks: list, sc: VibratedScene = VibratedScene()) -> list:
+    """One row per shaken cell (frequency, amplitude): paired ratios to the unshaken twin of the same seed (the task
+    with amplitude 0), gamma, with their intervals, beside :func:`prediction`. ``constant_force`` is read from the
+    twin's mean drive force (fixed under the force drive: every seed's equal)."""
+    by = defaultdict(dict)
+    for d in tasks:
+        p = d["params"]
+        by[(p["vibration.frequency"], p["vibration.amplitude"])][d["seed"]] = d
+    twins = {}
+    for (f, A), seeds in by.items():
+        if A == 0:
+            twins.update(seeds)
+    if not twins:
+        return []
+    drives = [d["mean_F_drive"] for d in twins.values()]
+    constant_force = bool(np.ptp(drives) < 1e-9 * abs(np.mean(drives)))
+    rows = []
+    for (f, A), seeds in sorted(by.items()):
+        pairs = [(d, twins[s]) for s, d in sorted(seeds.items()) if s in twins and A > 0]
+        if not pairs:
+            continue
+        q = {"C_ratio": [_level(d, sc.band) / _level(t, sc.band) for d, t in pairs],
+             "gamma": [d["fit"].get("gamma", np.nan) for d, _ in pairs],
+             "gamma_twin": [t["fit"].get("gamma", np.nan) for _, t in pairs],
+             "coulomb": [d["mean_F_t"] / t["mean_F_t"] for d, t in pairs],
+             "drive": [d["mean_F_drive"] / t["mean_F_drive"] for d, t in pairs],
+             "speed": [d["mean_velocity"] / t["mean_velocity"] for d, t in pairs]}
+        row = {"frequency": f, "amplitude": A, "xi": sc.v / (A * 2 * math.pi * f), "seeds": len(pairs),
+               "constant_force": constant_force, "line": float(np.mean([d["line_removed"]["amplitude"][0]
+                                                                       for d, _ in pairs]))}
+        for k, x in q.items():
+            row[k], row[k + "_ci"] = _mean_ci(x)
+        row["gamma_fit_err"] = float(np.mean([d["fit"].get("gamma_err", np.nan) for d, _ in pairs]))
+        row.update(prediction(f, A, constant_force, sc))
+        rows.append(row)
+    return rows
+
+
+def _shows(r) -> bool:
+    """The in-band level differs from the twin's beyond its interval."""
+    return abs(r["C_ratio"] - 1) > r["C_ratio_ci"]
+
+
+def answer(rows: list, sc: VibratedScene = VibratedScene()) -> str:
+    """The paper's question answered in one paragraph, with the measured numbers."""
+    parts = []
+    for f in sorted({r["frequency"] for r in rows}):
+        rs = [r for r in rows if r["frequency"] == f]
+        inside = sc.band[0] <= 2 * math.pi * f <= sc.band[1]
+        where = "inside the band" if inside else f"{2 * math.pi * f / sc.band[1]:.0f}x the band's top"
+        for cf in (True, False):
+            rr = sorted((r for r in rs if r["constant_force"] == cf), key=lambda r: r["amplitude"])
+            if not rr:
+                continue
+            shown = [r for r in rr if _shows(r)]
+            low = rr[-1]
+            drive = "constant force" if cf else "constant velocity"
+            txt = (f"{f:g} Hz ({where}), {drive}: at the largest amplitude ({low['amplitude'] * 1e6:.3g} um, xi = "
+                   f"{low['xi']:.2g}, A / (mu N / k0) = {low['amplitude'] / sc.deflection:.2g}) C_x in the band is "
+                   f"{low['C_ratio']:.3g} &plusmn; {low['C_ratio_ci']:.2g} of the twin's, gamma {low['gamma']:.2f} "
+                   f"&plusmn; {low['gamma_ci']:.2f} (twin {low['gamma_twin']:.2f})")
+            if shown:
+                txt += (f"; it shows from A = {shown[0]['amplitude'] * 1e6:.3g} um (xi = {shown[0]['xi']:.2g}, "
+                        f"A / (mu N / k0) = {shown[0]['amplitude'] / sc.deflection:.2g}) up")
+            else:
+                txt += "; no amplitude of the sweep shows beyond its interval"
+            parts.append(txt + ".")
+    return " ".join(parts)
+
+
+def section(rows: list, sc: VibratedScene = VibratedScene()):
+    """The StudyResult: the table, the figure and the answer."""
+    from . import plots
+    from .html import paragraphs, table
+    from .study import Figure, StudyResult
+
+    head = ["f (Hz)", "drive", "A (um)", "xi", "held share", "C_x / twin", "gamma", "Coulomb / twin",
+            "rigid", "compliant", "speed / twin", "drive force / twin", "seeds"]
+    body = [[f"{r['frequency']:g}", "force" if r["constant_force"] else "velocity", f"{r['amplitude'] * 1e6:.3g}",
+             f"{r['xi']:.3g}", f"{r['share']:.3f}", f"{r['C_ratio']:.3g} &plusmn; {r['C_ratio_ci']:.2g}",
+             f"{r['gamma']:.2f} &plusmn; {r['gamma_ci']:.2f}", f"{r['coulomb']:.3f} &plusmn; {r['coulomb_ci']:.3f}",
+             f"{r['coulomb_rigid']:.3f}", f"{r['coulomb_compliant']:.3f}",
+             f"{r['speed']:.3f} &plusmn; {r['speed_ci']:.3f}", f"{r['drive']:.3f} &plusmn; {r['drive_ci']:.3f}",
+             str(r["seeds"])] for r in rows]
+    fig = plots.vibration_figure(rows, sc.deflection, sc.v)
+    html = paragraphs([answer(rows, sc)]) + table(
+        "Shaken cells against their unshaken twins (95 % Student-t intervals over paired seeds; the line at omega_v "
+        "and its first 4 harmonics fitted and removed from x(t) before the spectrum)", head, body)
+    cap = ("In-band C_x over the unshaken twin, gamma, the mean Coulomb part over the twin's and the mean speed "
+           "(constant force) against xi = v / (A omega_v): measured (95 % intervals over paired seeds) and the "
+           "rigid-contact (arcsin with the held share) and compliant-contact predictions; dotted: A = mu N / k0.")
+    return StudyResult("vibration_sweep", "Vibration out of and inside the band (paper section 10)",
+                       {"rows": rows}, (Figure("vibration_sweep", plots.figure_png_bytes(fig), cap),), html)

@@ -1,0 +1,65 @@
+"""compare.report.vibration: the pairing of shaken cells with their unshaken twins, the intervals and the
+predictions, on synthetic task results whose ratios are known exactly."""
+import math
+
+import numpy as np
+import pytest
+
+from compare.report.vibration import VibratedScene, cells, prediction, section
+
+W = np.logspace(0, 3, 40)
+
+
+def _task(f, A, seed, scale, drive=2.0, coulomb=0.8, speed=5e-3, gamma=4.0):
+    return {"params": {"vibration.frequency": f, "vibration.amplitude": A}, "seed": seed, "omega": W.tolist(),
+            "C": (scale * W ** -4.0).tolist(), "n_avg": [1] * len(W), "fit": {"gamma": gamma, "gamma_err": 0.1},
+            "mean_velocity": speed, "mean_F_drive": drive, "mean_F_t": coulomb, "mean_F_drag": 1.5,
+            "line_removed": {"amplitude": [A, 0.0, 0.0, 0.0]}}
+
+
+def _sweep(twin_drives=(2.0, 2.0, 2.0)):
+    twins = [_task(1000.0, 0.0, s, 1.0 + s, drive=d) for s, d in enumerate(twin_drives)]
+    # the shaken cell's C is 0.4, 0.5, 0.6 of its twin's; its Coulomb part 0.3, 0.4, 0.5 of 0.8
+    shaken = [_task(1000.0, 1e-5, s, (1.0 + s) * (0.4 + 0.1 * s), drive=twin_drives[s], coulomb=0.8 * (0.3 + 0.1 * s),
+                    speed=5e-3 * (1.2 + 0.1 * s), gamma=3.9 + 0.1 * s) for s in range(3)]
+    return twins + shaken
+
+
+def test_paired_ratios_and_student_intervals():
+    (r,) = cells(_sweep())
+    t = 4.302652729911275  # Student-t 0.975 quantile, 2 degrees of freedom
+    assert r["seeds"] == 3 and r["constant_force"]
+    assert r["C_ratio"] == pytest.approx(0.5) and r["C_ratio_ci"] == pytest.approx(t * 0.1 / math.sqrt(3))
+    assert r["coulomb"] == pytest.approx(0.4) and r["coulomb_ci"] == pytest.approx(t * 0.1 / math.sqrt(3))
+    assert r["speed"] == pytest.approx(1.3) and r["gamma"] == pytest.approx(4.0)
+    assert r["xi"] == pytest.approx(5e-3 / (1e-5 * 2 * math.pi * 1000))
+
+
+def test_velocity_drive_recognised_by_its_varying_force():
+    (r,) = cells(_sweep(twin_drives=(2.0, 2.1, 1.9)))
+    assert not r["constant_force"] and "drive_rigid" in r
+
+
+def test_no_twin_no_rows():
+    assert cells([t for t in _sweep() if t["params"]["vibration.amplitude"] > 0]) == []
+
+
+def test_prediction_limits():
+    sc = VibratedScene()
+    # below the threshold U <= v nothing changes
+    p = prediction(20.0, 1e-7, True, sc)
+    assert p["coulomb_rigid"] == 1.0 and p["speed_rigid"] == 1.0
+    # far above it the rigid mean is the arcsin law of the pads' own slip amplitude U = share A omega
+    p = prediction(1000.0, 1e-4, False, sc)
+    assert p["coulomb_rigid"] == pytest.approx(2 / math.pi * math.asin(sc.v / p["U"]), rel=1e-12)
+    assert p["drive_rigid"] == pytest.approx((p["coulomb_rigid"] * sc.mu_n + sc.c * sc.v) / (sc.mu_n + sc.c * sc.v))
+    # the compliant pad lags the rigid law (less reduction) at an amplitude of a few deflections
+    assert p["coulomb_compliant"] >= p["coulomb_rigid"]
+    with pytest.raises(ValueError, match="k0"):
+        VibratedScene(k0=0.0)
+
+
+def test_section_has_table_figure_and_answer():
+    res = section(cells(_sweep()))
+    assert res.figures[0].png[:4] == b"\x89PNG"
+    assert "1000 Hz" in res.html and "&plusmn;" in res.html
