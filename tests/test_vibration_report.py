@@ -19,8 +19,9 @@ def _task(f, A, seed, scale, drive=2.0, coulomb=0.8, speed=5e-3, gamma=4.0):
 
 def _sweep(twin_drives=(2.0, 2.0, 2.0)):
     twins = [_task(1000.0, 0.0, s, 1.0 + s, drive=d) for s, d in enumerate(twin_drives)]
-    # the shaken cell's C is 0.4, 0.5, 0.6 of its twin's; its Coulomb part 0.3, 0.4, 0.5 of 0.8
-    shaken = [_task(1000.0, 1e-5, s, (1.0 + s) * (0.4 + 0.1 * s), drive=twin_drives[s], coulomb=0.8 * (0.3 + 0.1 * s),
+    # the shaken cell's C is 0.4, 0.5, 0.6 of its twin's; its speed 1.2, 1.3, 1.4 of 5 mm/s, so its Coulomb part
+    # (the drive's force less N c v = 300 N s/m times the speed) 0.2, 0.05, -0.1 N against the twin's 0.5 N
+    shaken = [_task(1000.0, 1e-5, s, (1.0 + s) * (0.4 + 0.1 * s), drive=twin_drives[s], coulomb=0.0,
                     speed=5e-3 * (1.2 + 0.1 * s), gamma=3.9 + 0.1 * s) for s in range(3)]
     return twins + shaken
 
@@ -30,7 +31,7 @@ def test_paired_ratios_and_student_intervals():
     t = 4.302652729911275  # Student-t 0.975 quantile, 2 degrees of freedom
     assert r["seeds"] == 3 and r["constant_force"]
     assert r["C_ratio"] == pytest.approx(0.5) and r["C_ratio_ci"] == pytest.approx(t * 0.1 / math.sqrt(3))
-    assert r["coulomb"] == pytest.approx(0.4) and r["coulomb_ci"] == pytest.approx(t * 0.1 / math.sqrt(3))
+    assert r["coulomb"] == pytest.approx(0.1) and r["coulomb_ci"] == pytest.approx(t * 0.3 / math.sqrt(3))
     assert r["speed"] == pytest.approx(1.3) and r["gamma"] == pytest.approx(4.0)
     assert r["xi"] == pytest.approx(5e-3 / (1e-5 * 2 * math.pi * 1000))
 

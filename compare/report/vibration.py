@@ -5,7 +5,8 @@ cell of pads_friction_patches against its unshaken twin (same seed), set against
 Read from the task files of ``frictionnoise sweep scenarios/sweeps/vibration_sweep_<drive>_<f>hz.toml`` (the line at
 omega_v and its harmonics already removed from x(t) by :func:`compare.analysis.harmonics.remove_harmonics`):
 per cell the in-band C_x ratio to the twin (geometric mean of the log-binned C_x over the band), the fitted gamma
-(Whittle, the task's band), the mean Coulomb part of the friction (F_t) and the drive's mean force over the twin's,
+(Whittle, the task's band), the mean Coulomb part of the friction (from the force balance) and the drive's mean
+force over the twin's,
 and the mean speed over the twin's; each as the mean over seeds with a Student-t 95 % interval of the paired values.
 
 Prediction: each pad's law is mu N sign(w) + c w on its velocity w relative to the substrate. The block and pads,
@@ -84,8 +85,20 @@ def _level(d, band) -> float:
 
 
 def _mean_ci(x) -> tuple[float, float]:
+    """Mean and Student-t 95 % half-width of the finite values (a seed whose fit failed drops out)."""
     x = np.asarray(x, float)
+    x = x[np.isfinite(x)]
+    if not len(x):
+        return float("nan"), float("nan")
     return float(x.mean()), _t95(len(x)) * float(x.std(ddof=1)) / math.sqrt(len(x)) if len(x) > 1 else float("nan")
+
+
+def _coulomb(d, sc: VibratedScene) -> float:
+    """Mean Coulomb part of the friction (N) from the force balance: the drive's mean force less the viscous part's
+    mean N c v (the law is linear in the relative velocity, whose mean is the mean speed, read from the positions).
+    The sampled F_t is not used: the output step is phase-locked to the vibration (4 samples per period at 1 kHz),
+    so the mean of its samples of a force that reverses each cycle is biased."""
+    return d["mean_F_drive"] - sc.N * sc.c * d["mean_velocity"]
 
 
 def prediction(f: float, A: float, constant_force: bool, sc: VibratedScene = VibratedScene()) -> dict:
@@ -136,7 +149,7 @@ def cells(tasks: list, sc: VibratedScene = VibratedScene()) -> list:
         q = {"C_ratio": [_level(d, sc.band) / _level(t, sc.band) for d, t in pairs],
              "gamma": [d["fit"].get("gamma", np.nan) for d, _ in pairs],
              "gamma_twin": [t["fit"].get("gamma", np.nan) for _, t in pairs],
-             "coulomb": [d["mean_F_t"] / t["mean_F_t"] for d, t in pairs],
+             "coulomb": [_coulomb(d, sc) / _coulomb(t, sc) for d, t in pairs],
              "drive": [d["mean_F_drive"] / t["mean_F_drive"] for d, t in pairs],
              "speed": [d["mean_velocity"] / t["mean_velocity"] for d, t in pairs]}
         row = {"frequency": f, "amplitude": A, "xi": sc.v / (A * 2 * math.pi * f), "seeds": len(pairs),
