@@ -248,7 +248,8 @@ def vibration_figure(rows: list, deflection: float, v: float):
     """The vibration sweep against xi = v / (A omega_v), one curve per frequency (colour) and drive (marker: o
     constant force, s constant velocity): in-band C_x over the unshaken twin, gamma, the mean Coulomb part over the
     twin's, and the mean speed (force drive) or drive force (velocity drive) over the twin's, with 95 % intervals
-    and the rigid (dashed) and compliant (dotted) contact predictions; a thin vertical line per frequency where the
+    and the rigid (dashed) and compliant (dotted) contact predictions (first panel, dashed: the square of the
+    measured Coulomb part's ratio); a thin vertical line per frequency where the
     amplitude equals the pads' deflection mu N / k0 (``deflection``, m)."""
     fig = new_figure(10.0, 7.4)
     axs = fig.subplots(2, 2, sharex=True).ravel()
@@ -269,6 +270,8 @@ def vibration_figure(rows: list, deflection: float, v: float):
                 y, e = np.array([r[k] for r in rr]), np.array([r[k + "_ci"] for r in rr])
                 ax.errorbar(xi, y, yerr=e, fmt=mk + "-", color=colours[f], ms=4, lw=0.8, capsize=2,
                             mfc="none" if not cf else colours[f], label=lab)
+                if key == "C_ratio":  # the square of the measured Coulomb part's ratio
+                    ax.plot(xi, [r["coulomb_sq"] for r in rr], "--", color=colours[f], lw=1.0)
                 if pred is not None:
                     base = {"coulomb": "coulomb", "motion": "speed" if cf else "drive"}[pred]
                     for suffix, ls in (("_rigid", "--"), ("_compliant", ":")):
@@ -280,13 +283,18 @@ def vibration_figure(rows: list, deflection: float, v: float):
     twin = [r["gamma_twin"] for r in rows]
     if twin:
         axs[1].axhline(float(np.nanmean(twin)), color="k", lw=0.6, label="unshaken twins")
+    from matplotlib.ticker import NullFormatter
+
     for ax, (_, ylab, _) in zip(axs, panels):
         ax.set_xscale("log")
+        ax.xaxis.set_minor_formatter(NullFormatter())
         ax.set_ylabel(ylab)
         ax.grid(True, alpha=0.3)
     for ax in axs[2:]:
         ax.set_xlabel(r"$\xi = v / (A\,\omega_v)$")
-    axs[0].legend(fontsize=7)
+    h, _ = axs[0].get_legend_handles_labels()
+    axs[0].legend(handles=h + [Line2D([], [], color="k", ls="--", label="(measured Coulomb part / twin)$^2$")],
+                  fontsize=7)
     axs[2].legend(handles=[Line2D([], [], color="k", ls="--", label="rigid contacts (arcsin, held share)"),
                            Line2D([], [], color="k", ls=":", label="compliant pads (Jenkins element)")], fontsize=7)
     fig.tight_layout()

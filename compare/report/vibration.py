@@ -4,7 +4,10 @@ cell of pads_friction_patches against its unshaken twin (same seed), set against
 
 Read from the task files of ``frictionnoise sweep scenarios/sweeps/vibration_sweep_<drive>_<f>hz.toml`` (the line at
 omega_v and its harmonics already removed from x(t) by :func:`compare.analysis.harmonics.remove_harmonics`):
-per cell the in-band C_x ratio to the twin (geometric mean of the log-binned C_x over the band), the fitted gamma
+per cell the in-band C_x ratio to the twin (geometric mean of the log-binned C_x over the band), beside the square
+of the measured Coulomb part's ratio (the patches' noise is a fluctuation of mu, so of the Coulomb part: a contact
+that the vibration makes reverse averages the part and its fluctuation alike, and the power goes as its square), the
+fitted gamma
 (Whittle, the task's band), the mean Coulomb part of the friction (from the force balance) and the drive's mean
 force over the twin's,
 and the mean speed over the twin's; each as the mean over seeds with a Student-t 95 % interval of the paired values.
@@ -150,6 +153,7 @@ def cells(tasks: list, sc: VibratedScene = VibratedScene()) -> list:
              "gamma": [d["fit"].get("gamma", np.nan) for d, _ in pairs],
              "gamma_twin": [t["fit"].get("gamma", np.nan) for _, t in pairs],
              "coulomb": [_coulomb(d, sc) / _coulomb(t, sc) for d, t in pairs],
+             "coulomb_sq": [(_coulomb(d, sc) / _coulomb(t, sc)) ** 2 for d, t in pairs],
              "drive": [d["mean_F_drive"] / t["mean_F_drive"] for d, t in pairs],
              "speed": [d["mean_velocity"] / t["mean_velocity"] for d, t in pairs]}
         row = {"frequency": f, "amplitude": A, "xi": sc.v / (A * 2 * math.pi * f), "seeds": len(pairs),
@@ -201,10 +205,12 @@ def section(rows: list, sc: VibratedScene = VibratedScene()):
     from .html import paragraphs, table
     from .study import Figure, StudyResult
 
-    head = ["f (Hz)", "drive", "A (um)", "xi", "held share", "C_x / twin", "gamma", "Coulomb / twin",
+    head = ["f (Hz)", "drive", "A (um)", "xi", "held share", "C_x / twin", "(Coulomb / twin)^2", "gamma",
+            "Coulomb / twin",
             "rigid", "compliant", "speed / twin", "drive force / twin", "seeds"]
     body = [[f"{r['frequency']:g}", "force" if r["constant_force"] else "velocity", f"{r['amplitude'] * 1e6:.3g}",
              f"{r['xi']:.3g}", f"{r['share']:.3f}", f"{r['C_ratio']:.3g} &plusmn; {r['C_ratio_ci']:.2g}",
+             f"{r['coulomb_sq']:.3g} &plusmn; {r['coulomb_sq_ci']:.2g}",
              f"{r['gamma']:.2f} &plusmn; {r['gamma_ci']:.2f}", f"{r['coulomb']:.3f} &plusmn; {r['coulomb_ci']:.3f}",
              f"{r['coulomb_rigid']:.3f}", f"{r['coulomb_compliant']:.3f}",
              f"{r['speed']:.3f} &plusmn; {r['speed_ci']:.3f}", f"{r['drive']:.3f} &plusmn; {r['drive_ci']:.3f}",
