@@ -64,3 +64,15 @@ def test_section_has_table_figure_and_answer():
     res = section(cells(_sweep()))
     assert res.figures[0].png[:4] == b"\x89PNG"
     assert "1000 Hz" in res.html and "&plusmn;" in res.html
+
+
+def test_sweep_report_of_a_vibration_sweep_carries_the_section():
+    from compare.report.sweep_report import build_sweep_report
+    from compare.sweep.spec import SweepSpec
+
+    spec = SweepSpec(name="v", target="scenario", fixed={}, scenario="vibrated_patches.toml",
+                     grid={"vibration.frequency": [1000.0], "vibration.amplitude": [0.0, 1e-5], "seed": [0, 1, 2]})
+    results = [{**t, "wall_s": 1.0, "v": 5e-3} for t in _sweep()]
+    out, summary = build_sweep_report(spec, results, [])
+    assert [r.key for r in out] == ["results", "vibration_sweep"]
+    assert summary["vibration"][0]["C_ratio"] == pytest.approx(0.5)
