@@ -17,20 +17,22 @@ from compare.report.vibration import VibratedScene, answer, cells, load_tasks
 
 def markdown(rows: list, sc: VibratedScene) -> str:
     """The rows as a markdown table (95 % Student-t intervals over the paired seeds)."""
-    out = ["| f (Hz) | drive | A (um) | xi | A / (mu N/k0) | held share | C_x / twin | (Coulomb / twin)^2 | gamma | "
-           "Coulomb / twin | "
-           "rigid | compliant | speed / twin | drive force / twin | pred. (rigid, compliant) | line (um) | seeds |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    out = ["| f (Hz) | drive | A (um) | xi | A / (mu N/k0) | A / A_onset | C_x / twin | (Coulomb / twin)^2 | gamma | "
+           "Coulomb / twin | rigid | linear pads | compliant | speed / twin | drive force / twin | pred. (rigid, compliant) | line (um) | seeds |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         cf = r["constant_force"]
-        pred = (f"{r['speed_rigid']:.3f}, {r['speed_compliant']:.3f}" if cf else
-                f"{r['drive_rigid']:.3f}, {r['drive_compliant']:.3f}")
+        pred = (f"speed {r['speed_rigid']:.3f}, {r['speed_compliant']:.3f}" if cf else
+                f"force {r['drive_rigid']:.3f}, {r['drive_compliant']:.3f}; speed {r['speed_rigid']:.3f}, "
+                f"{r['speed_compliant']:.3f}")
         out.append(
             f"| {r['frequency']:g} | {'force' if cf else 'velocity'} | {r['amplitude'] * 1e6:.3g} | {r['xi']:.3g} | "
-            f"{r['amplitude'] / sc.deflection:.2g} | {r['share']:.3f} | {r['C_ratio']:.3g} +- {r['C_ratio_ci']:.2g} | "
+            f"{r['amplitude'] / sc.deflection:.2g} | {r['amplitude'] / r['A_onset']:.2g} | "
+            f"{r['C_ratio']:.3g} +- {r['C_ratio_ci']:.2g} | "
             f"{r['coulomb_sq']:.3g} +- {r['coulomb_sq_ci']:.2g} | "
             f"{r['gamma']:.2f} +- {r['gamma_ci']:.2f} (twin {r['gamma_twin']:.2f}) | "
-            f"{r['coulomb']:.3f} +- {r['coulomb_ci']:.3f} | {r['coulomb_rigid']:.3f} | {r['coulomb_compliant']:.3f} | "
+            f"{r['coulomb']:.3f} +- {r['coulomb_ci']:.3f} | {r['coulomb_rigid']:.3f} | {r['coulomb_pads']:.3f} | "
+            f"{r['coulomb_compliant']:.3f} | "
             f"{r['speed']:.4f} +- {r['speed_ci']:.4f} | {r['drive']:.4f} +- {r['drive_ci']:.4f} | {pred} | "
             f"{r['line'] * 1e6:.3g} | {r['seeds']} |")
     return "\n".join(out)

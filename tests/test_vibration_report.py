@@ -47,17 +47,31 @@ def test_no_twin_no_rows():
 
 def test_prediction_limits():
     sc = VibratedScene()
-    # below the threshold U <= v nothing changes
+    # below the threshold (slip amplitude U <= v) nothing changes
     p = prediction(20.0, 1e-7, True, sc)
-    assert p["coulomb_rigid"] == 1.0 and p["speed_rigid"] == 1.0
+    assert p["coulomb_rigid"] == 1.0 and p["speed_rigid"] == pytest.approx(1.0, abs=1e-9)  # bisection to 2^-40
     # far above it the rigid mean is the arcsin law of the pads' own slip amplitude U = share A omega
     p = prediction(1000.0, 1e-4, False, sc)
     assert p["coulomb_rigid"] == pytest.approx(2 / math.pi * math.asin(sc.v / p["U"]), rel=1e-12)
-    assert p["drive_rigid"] == pytest.approx((p["coulomb_rigid"] * sc.mu_n + sc.c * sc.v) / (sc.mu_n + sc.c * sc.v))
+    step = 1 - (p["coulomb_rigid"] * sc.mu_n + sc.c * sc.v) / (sc.mu_n + sc.c * sc.v)
+    assert p["drive_rigid"] == pytest.approx(1 - step * sc.relaxed_share())
     # the compliant pad lags the rigid law (less reduction) at an amplitude of a few deflections
     assert p["coulomb_compliant"] >= p["coulomb_rigid"]
+    # constant force: the steady speed balances the drive, F = R(V) mu N + c V per pad
+    q = prediction(1000.0, 1e-5, True, sc)
+    V = q["speed_rigid"] * sc.v
+    assert q["coulomb_rigid"] * sc.mu_n + sc.c * V == pytest.approx(sc.mu_n + sc.c * sc.v, rel=1e-9)
     with pytest.raises(ValueError, match="k0"):
         VibratedScene(k0=0.0)
+
+
+def test_relaxed_share_of_an_exponential():
+    """The record mean of a step relaxing as exp(-t / tau) from t = 0, over [w, w + T]: a closed form checked by
+    quadrature."""
+    sc = VibratedScene()
+    tau = sc.N * sc.c / sc.k_drive
+    t = np.linspace(sc.warmup, sc.warmup + sc.duration, 200001)
+    assert 1 - np.trapezoid(np.exp(-t / tau), t) / sc.duration == pytest.approx(sc.relaxed_share(), rel=1e-9)
 
 
 def test_section_has_table_figure_and_answer():

@@ -274,8 +274,9 @@ def vibration_figure(rows: list, deflection: float, v: float):
                     ax.plot(xi, [r["coulomb_sq"] for r in rr], "--", color=colours[f], lw=1.0)
                 if pred is not None:
                     base = {"coulomb": "coulomb", "motion": "speed" if cf else "drive"}[pred]
-                    for suffix, ls in (("_rigid", "--"), ("_compliant", ":")):
-                        ax.plot(xi, [r[base + suffix] for r in rr], ls, color=colours[f], lw=1.0)
+                    for suffix, ls in (("_rigid", "--"), ("_compliant", ":"), ("_pads", "-.")):
+                        if base + suffix in rr[0]:
+                            ax.plot(xi, [r[base + suffix] for r in rr], ls, color=colours[f], lw=1.0)
         for ax in axs:
             ax.axvline(v / (deflection * 2 * np.pi * f), color=colours[f], lw=0.6, ls=(0, (1, 3)))
     axs[0].set_yscale("log")
@@ -296,6 +297,8 @@ def vibration_figure(rows: list, deflection: float, v: float):
     axs[0].legend(handles=h + [Line2D([], [], color="k", ls="--", label="(measured Coulomb part / twin)$^2$")],
                   fontsize=7)
     axs[2].legend(handles=[Line2D([], [], color="k", ls="--", label="rigid contacts (arcsin, held share)"),
-                           Line2D([], [], color="k", ls=":", label="compliant pads (Jenkins element)")], fontsize=7)
+                           Line2D([], [], color="k", ls=":", label="compliant pads (Jenkins element)"),
+                           Line2D([], [], color="k", ls="-.", label="arcsin with the linear pads' slip share")],
+                   fontsize=7)
     fig.tight_layout()
     return fig

@@ -15,7 +15,9 @@ and the mean speed over the twin's; each as the mean over seeds with a Student-t
 Prediction: each pad's law is mu N sign(w) + c w on its velocity w relative to the substrate. The block and pads,
 carried by the viscous part N c, follow the substrate except for the share |i omega M| / |N c + i omega M| of its
 velocity (M: block and pads), which the pads see as slip of amplitude U = share A omega. Rigid contacts: the mean
-Coulomb part is (2/pi) arcsin(v/U) of its value (1 for U <= v); a compliant contact (pad spring k0, deflection
+Coulomb part is (2/pi) arcsin(v/U) of its value (1 for U <= v). With the pads' springs and masses in the linear
+motion the pads slip relative to the substrate with the share :meth:`VibratedScene.pad_share` of its motion, which
+sets the onset of reversal, A_onset = v / (pad share omega), and an arcsin law of its own; a compliant contact (pad spring k0, deflection
 d = mu N / k0) does not reverse below the minimum amplitude and reaches the arcsin law only at a few d (the Jenkins
 element, :func:`reduced_models.vibration.compliant_mean_ratio`). The constant force drive's speed rises as the mean
 falls (:func:`reduced_models.vibration.steady_speed`); the constant velocity drive's mean force falls with it.
@@ -47,9 +49,20 @@ class VibratedScene:
     k0: float = 3333.0
     v: float = 5e-3
     band: tuple = (20.0, 150.0)
+    k_drive: float = 100.0
+    warmup: float = 0.5
+    duration: float = 11.0
+
+    def relaxed_share(self) -> float:
+        """The share of a step in the velocity drive's mean force that the record's mean sees as relaxed: the drive
+        spring relaxes to a new mean friction through the viscous part with tau = N c / k_drive (3 s), from the
+        start of the vibration; over a record from ``warmup`` to ``warmup + duration`` the mean keeps the fraction
+        (tau / T) (exp(-w / tau) - exp(-(w + T) / tau)) of the step unrelaxed. Returns 1 less that fraction."""
+        tau = self.N * self.c / self.k_drive
+        return 1.0 - tau / self.duration * (math.exp(-self.warmup / tau) - math.exp(-(self.warmup + self.duration) / tau))
 
     def __post_init__(self):
-        for name in ("M", "m", "c", "mu0", "k0", "v"):
+        for name in ("M", "m", "c", "mu0", "k0", "v", "k_drive", "duration"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"VibratedScene.{name} must be > 0 (got {getattr(self, name)!r})")
 
@@ -57,6 +70,14 @@ class VibratedScene:
     def mu_n(self) -> float:
         """Coulomb part per pad (N): mu0 times the pad's share of the block's weight and its own."""
         return self.mu0 * 9.81 * (self.M / self.N + self.m)
+
+    def pad_share(self, omega: float) -> float:
+        """|x_p| / A: the pads' slip amplitude relative to the substrate over its amplitude, for contacts that do
+        not reverse (the motion is linear): the block (M) on the pads' springs (N k0), the pads (N m) on the viscous
+        part (N c), every mass under the inertial force -m s''. Its rigid-pad limit (k0 -> inf) is the held share."""
+        K, C, mp = self.N * self.k0, self.N * self.c, self.N * self.m
+        a = np.array([[K - self.M * omega ** 2, -K], [-K, K + 1j * omega * C - mp * omega ** 2]])
+        return float(abs(np.linalg.solve(a, np.array([self.M, mp]) * omega ** 2)[1]))
 
     @property
     def deflection(self) -> float:
@@ -104,27 +125,47 @@ def _coulomb(d, sc: VibratedScene) -> float:
     return d["mean_F_drive"] - sc.N * sc.c * d["mean_velocity"]
 
 
+def _speed(F: float, sc: VibratedScene, ratio) -> float:
+    """The constant force drive's steady speed V: the per-pad force F balances ratio(V) mu N + c V, with ratio(V)
+    the mean Coulomb part's ratio at speed V (increasing in V), by bisection between v and F / c."""
+    lo, hi = sc.v, F / sc.c
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if ratio(mid) * sc.mu_n + sc.c * mid < F else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
 def prediction(f: float, A: float, constant_force: bool, sc: VibratedScene = VibratedScene()) -> dict:
-    """Rigid-contact and compliant predictions for the substrate shaken at f (Hz) with amplitude A (m)."""
-    from reduced_models.vibration import arcsin_ratio, compliant_mean_ratio, steady_speed
+    """The mean Coulomb part's ratio to its unshaken value for the substrate shaken at f (Hz) with amplitude A (m),
+    three ways: rigid pads (arcsin at the held share's slip amplitude), the linear pads' slip share (arcsin), a
+    massless compliant pad (Jenkins element at the held share's amplitude); under the constant force drive each at
+    its own steady speed (the speed rises as the mean falls), with that speed's ratio; under the constant velocity
+    drive the drive force's and the speed's record means (the drive spring's relaxation included)."""
+    from reduced_models.vibration import arcsin_ratio, compliant_mean_ratio
 
     w = 2 * math.pi * f
     M = sc.M + sc.N * sc.m
     share = abs(1j * w * M) / abs(sc.N * sc.c + 1j * w * M)
-    U = share * A * w
-    xi_eff = sc.v / U if U > 0 else math.inf
-    rigid = float(arcsin_ratio(min(xi_eff, 1.0))) if U > sc.v else 1.0
-    compliant = float(compliant_mean_ratio(min(xi_eff, 1.0), share * A / sc.deflection)) if U > sc.v else 1.0
-    out = {"share": share, "U": U, "xi_eff": xi_eff, "coulomb_rigid": rigid, "coulomb_compliant": compliant,
-           "A_over_deflection": share * A / sc.deflection}
+    pad = sc.pad_share(w)
+    models = {"rigid": lambda V: float(arcsin_ratio(min(V / (share * A * w), 1.0))),
+              "pads": lambda V: float(arcsin_ratio(min(V / (pad * A * w), 1.0))),
+              "compliant": lambda V: float(compliant_mean_ratio(min(V / (share * A * w), 1.0),
+                                                                share * A / sc.deflection, steps=1024, cycles=3))}
+    out = {"share": share, "U": share * A * w, "A_over_deflection": share * A / sc.deflection, "pad_share": pad,
+           "A_onset": sc.v / (pad * w), "drive_force": not constant_force}
     F = sc.mu_n + sc.c * sc.v  # per pad
-    if constant_force:
-        v1 = steady_speed(F, sc.mu_n, sc.c, U) if U > sc.v else sc.v
-        out["speed_rigid"] = v1 / sc.v
-        out["speed_compliant"] = (F - compliant * sc.mu_n) / (sc.c * sc.v)
-    else:
-        out["drive_rigid"] = (rigid * sc.mu_n + sc.c * sc.v) / F
-        out["drive_compliant"] = (compliant * sc.mu_n + sc.c * sc.v) / F
+    rel = sc.relaxed_share()
+    for name, ratio in models.items():
+        if constant_force:
+            V = _speed(F, sc, ratio)
+            out["coulomb_" + name], out["speed_" + name] = ratio(V), V / sc.v
+        else:  # the record's means, with the drive spring's relaxation (VibratedScene.relaxed_share)
+            R = ratio(sc.v)
+            step = 1.0 - (R * sc.mu_n + sc.c * sc.v) / F  # the steady drive force's fall, over its unshaken value
+            out["coulomb_" + name], out["drive_" + name] = R, 1.0 - step * rel
+            # the block gains the stretch the spring gives up over the record: its mean speed rises by
+            # dF (1 - rel) / (tau k_drive) = dF (1 - rel) / (N c), dF = step N F
+            out["speed_" + name] = 1.0 + step * F * (1.0 - rel) / (sc.c * sc.v)
     return out
 
 
@@ -187,12 +228,17 @@ def answer(rows: list, sc: VibratedScene = VibratedScene()) -> str:
             low = rr[-1]
             drive = "constant force" if cf else "constant velocity"
             txt = (f"{f:g} Hz ({where}), {drive}: at the largest amplitude ({low['amplitude'] * 1e6:.3g} um, xi = "
-                   f"{low['xi']:.2g}, A / (mu N / k0) = {low['amplitude'] / sc.deflection:.2g}) C_x in the band is "
+                   f"{low['xi']:.2g}, A / A_onset = {low['amplitude'] / low['A_onset']:.2g}) C_x in the band is "
                    f"{low['C_ratio']:.3g} &plusmn; {low['C_ratio_ci']:.2g} of the twin's, gamma {low['gamma']:.2f} "
                    f"&plusmn; {low['gamma_ci']:.2f} (twin {low['gamma_twin']:.2f})")
             if shown:
+                quiet = [r for r in rr if not _shows(r) and r["amplitude"] < shown[0]["amplitude"]]
                 txt += (f"; it shows from A = {shown[0]['amplitude'] * 1e6:.3g} um (xi = {shown[0]['xi']:.2g}, "
-                        f"A / (mu N / k0) = {shown[0]['amplitude'] / sc.deflection:.2g}) up")
+                        f"A / A_onset = {shown[0]['amplitude'] / shown[0]['A_onset']:.2g}) up")
+                if quiet:
+                    txt += (f", not at {quiet[-1]['amplitude'] * 1e6:.3g} um (A / A_onset = "
+                            f"{quiet[-1]['amplitude'] / quiet[-1]['A_onset']:.2g}: "
+                            f"{quiet[-1]['C_ratio']:.3g} &plusmn; {quiet[-1]['C_ratio_ci']:.2g})")
             else:
                 txt += "; no amplitude of the sweep shows beyond its interval"
             parts.append(txt + ".")
@@ -205,14 +251,14 @@ def section(rows: list, sc: VibratedScene = VibratedScene()):
     from .html import paragraphs, table
     from .study import Figure, StudyResult
 
-    head = ["f (Hz)", "drive", "A (um)", "xi", "held share", "C_x / twin", "(Coulomb / twin)^2", "gamma",
-            "Coulomb / twin",
-            "rigid", "compliant", "speed / twin", "drive force / twin", "seeds"]
+    head = ["f (Hz)", "drive", "A (um)", "xi", "A / A_onset", "C_x / twin", "(Coulomb / twin)^2", "gamma",
+            "Coulomb / twin", "rigid", "linear pads", "compliant", "speed / twin", "drive force / twin", "seeds"]
     body = [[f"{r['frequency']:g}", "force" if r["constant_force"] else "velocity", f"{r['amplitude'] * 1e6:.3g}",
-             f"{r['xi']:.3g}", f"{r['share']:.3f}", f"{r['C_ratio']:.3g} &plusmn; {r['C_ratio_ci']:.2g}",
+             f"{r['xi']:.3g}", f"{r['amplitude'] / r['A_onset']:.2g}",
+             f"{r['C_ratio']:.3g} &plusmn; {r['C_ratio_ci']:.2g}",
              f"{r['coulomb_sq']:.3g} &plusmn; {r['coulomb_sq_ci']:.2g}",
              f"{r['gamma']:.2f} &plusmn; {r['gamma_ci']:.2f}", f"{r['coulomb']:.3f} &plusmn; {r['coulomb_ci']:.3f}",
-             f"{r['coulomb_rigid']:.3f}", f"{r['coulomb_compliant']:.3f}",
+             f"{r['coulomb_rigid']:.3f}", f"{r['coulomb_pads']:.3f}", f"{r['coulomb_compliant']:.3f}",
              f"{r['speed']:.3f} &plusmn; {r['speed_ci']:.3f}", f"{r['drive']:.3f} &plusmn; {r['drive_ci']:.3f}",
              str(r["seeds"])] for r in rows]
     fig = plots.vibration_figure(rows, sc.deflection, sc.v)
