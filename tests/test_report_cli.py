@@ -43,6 +43,8 @@ def test_summary_holds_every_shipped_scenario(quick_report):
     s = json.loads((quick_report / "summary.json").read_text())
     extra = set(s["scenarios"]) - set(shipped_scenarios())
     assert set(shipped_scenarios()) <= set(s["scenarios"]) and extra == {"pads_multiscale_model_Ib"}, extra
+    # every scene has at least one row in the summary table
+    assert {f"scenarios/{n}" for n in s["scenarios"]} <= {v["study"] for v in s["verdicts"]}
     for name, sc in s["scenarios"].items():
         if name == "pads_multiscale_model_Ib":
             # Model Ib built from the scene's measured parameters (12 s, 6 bands up to 1571 rad/s) reads it within a

@@ -19,7 +19,7 @@ from ...analysis.fits import fit_power_law
 from ...analysis.spectra import displacement_spectrum
 from ..html import esc, paragraphs, span, table
 from ..study import Figure, StudyResult
-from ..verdict import fit_text
+from ..verdict import Verdict, fit_text, ratio_verdict
 from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
 
 __all__ = ["ageing_params", "ageing_result", "slider_result"]
@@ -95,8 +95,11 @@ def ageing_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
     caption = (f"Scene {name} ({T:g} s) against model I with ageing contacts, simulated and in linear response, both "
                f"with the scene's parameters. Scene / theory {ratio_range(ratios)} per band; gamma = {fit.gamma:.2f} "
                f"± {fit.gamma_err:.2f} (scene) and {fit_sim.gamma:.2f} ± {fit_sim.gamma_err:.2f} (model).")
+    verdicts = (ratio_verdict(f"scenarios/{name}", "C_x / model I with ageing contacts (A10)", ratios, 1.5,
+                              "1 (model_ageing)"),)
     return StudyResult(f"scenarios/{name}", f"Scene: {name}", d, (Figure(f"scene_{name}", plots.figure_png_bytes(fig), caption),),
-                       text, (timing(f"scene {name}", f"{T:g} s, dt = {sc.run.dt:g} s", f"{wall:.2f}", f"{log_err(ratios):.3f}"),))
+                       text, (timing(f"scene {name}", f"{T:g} s, dt = {sc.run.dt:g} s", f"{wall:.2f}", f"{log_err(ratios):.3f}"),),
+                       verdicts)
 
 
 def cycle_period(v, dt: float, shortest: float) -> float:
@@ -158,6 +161,10 @@ def slider_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
                                 title=f"Scene {name}: k = {k / kc:.2f} k_c")
     caption = (f"Scene {name}: the block's C_x, k = {k / kc:.2f} k_c; gamma = {fit.gamma:.2f} ± {fit.gamma_err:.2f} "
                "over the shaded band (2-20 times the neutral frequency at onset).")
+    motion = "stick-slip" if stick else "steady sliding"
+    verdicts = (Verdict(f"scenarios/{name}", "stick-slip or steady sliding, k against k_c", f"{motion} at k = {k / kc:.2f} k_c",
+                        "stick-slip iff k < k_c = N_pad (B - A) / D_c", d["stick_slip_as_predicted"],
+                        f"speed {d['v_min_over_V']:.3g}-{d['v_max_over_V']:.3g} V over the second half"),)
     return StudyResult(f"scenarios/{name}", f"Scene: {name}", d,
                        (Figure(f"scene_{name}", plots.figure_png_bytes(fig), caption),), paragraphs(parts),
-                       (timing(f"scene {name}", f"{T:g} s, dt = {sc.run.dt:g} s", f"{wall:.2f}", "n/a"),))
+                       (timing(f"scene {name}", f"{T:g} s, dt = {sc.run.dt:g} s", f"{wall:.2f}", "n/a"),), verdicts)
