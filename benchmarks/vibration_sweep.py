@@ -52,7 +52,7 @@ def main(argv=None):
     if a.png is not None:
         from compare.report import plots
 
-        plots.save_figure(plots.vibration_figure(rows, sc.deflection, sc.v), a.png)
+        plots.save_figure(plots.vibration_figure(rows), a.png)
 
 
 if __name__ == "__main__":

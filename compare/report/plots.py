@@ -244,13 +244,13 @@ def collapse_figure(curves: list):
     return fig
 
 
-def vibration_figure(rows: list, deflection: float, v: float):
+def vibration_figure(rows: list):
     """The vibration sweep against xi = v / (A omega_v), one curve per frequency (colour) and drive (marker: o
     constant force, s constant velocity): in-band C_x over the unshaken twin, gamma, the mean Coulomb part over the
     twin's, and the mean speed (force drive) or drive force (velocity drive) over the twin's, with 95 % intervals
     and the rigid (dashed) and compliant (dotted) contact predictions (first panel, dashed: the square of the
-    measured Coulomb part's ratio); a thin vertical line per frequency where the
-    amplitude equals the pads' deflection mu N / k0 (``deflection``, m)."""
+    measured Coulomb part's ratio); a thin vertical line per frequency at the onset of reversal of the linear pads
+    (xi = the pads' slip share, A = A_onset)."""
     fig = new_figure(10.0, 7.4)
     axs = fig.subplots(2, 2, sharex=True).ravel()
     freqs = sorted({r["frequency"] for r in rows})
@@ -277,8 +277,9 @@ def vibration_figure(rows: list, deflection: float, v: float):
                     for suffix, ls in (("_rigid", "--"), ("_compliant", ":"), ("_pads", "-.")):
                         if base + suffix in rr[0]:
                             ax.plot(xi, [r[base + suffix] for r in rr], ls, color=colours[f], lw=1.0)
+        onset = [r["pad_share"] for r in rows if r["frequency"] == f]
         for ax in axs:
-            ax.axvline(v / (deflection * 2 * np.pi * f), color=colours[f], lw=0.6, ls=(0, (1, 3)))
+            ax.axvline(onset[0], color=colours[f], lw=0.6, ls=(0, (1, 3)))
     axs[0].set_yscale("log")
     axs[0].axhline(1.0, color="k", lw=0.6)
     twin = [r["gamma_twin"] for r in rows]

@@ -261,12 +261,13 @@ def section(rows: list, sc: VibratedScene = VibratedScene()):
              f"{r['coulomb_rigid']:.3f}", f"{r['coulomb_pads']:.3f}", f"{r['coulomb_compliant']:.3f}",
              f"{r['speed']:.3f} &plusmn; {r['speed_ci']:.3f}", f"{r['drive']:.3f} &plusmn; {r['drive_ci']:.3f}",
              str(r["seeds"])] for r in rows]
-    fig = plots.vibration_figure(rows, sc.deflection, sc.v)
+    fig = plots.vibration_figure(rows)
     html = paragraphs([answer(rows, sc)]) + table(
         "Shaken cells against their unshaken twins (95 % Student-t intervals over paired seeds; the line at omega_v "
         "and its first 4 harmonics fitted and removed from x(t) before the spectrum)", head, body)
     cap = ("In-band C_x over the unshaken twin, gamma, the mean Coulomb part over the twin's and the mean speed "
            "(constant force) against xi = v / (A omega_v): measured (95 % intervals over paired seeds) and the "
-           "rigid-contact (arcsin with the held share) and compliant-contact predictions; dotted: A = mu N / k0.")
+           "predictions (dashed: rigid pads; dash-dot: the linear pads' slip share; dotted: a massless compliant "
+           "pad); thin vertical: the onset of reversal, A = v / (pad share omega_v).")
     return StudyResult("vibration_sweep", "Vibration out of and inside the band (paper section 10)",
                        {"rows": rows}, (Figure("vibration_sweep", plots.figure_png_bytes(fig), cap),), html)
