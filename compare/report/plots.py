@@ -282,6 +282,9 @@ def vibration_figure(rows: list):
             ax.axvline(onset[0], color=colours[f], lw=0.6, ls=(0, (1, 3)))
     axs[0].set_yscale("log")
     axs[0].axhline(1.0, color="k", lw=0.6)
+    measured = [r["C_ratio"] for r in rows if r["C_ratio"] > 0]
+    if measured:  # the measured levels set the axis; the squared Coulomb ratio may run far below them
+        axs[0].set_ylim(min(measured) / 5, max(max(measured), 1.0) * 3)
     twin = [r["gamma_twin"] for r in rows]
     if twin:
         axs[1].axhline(float(np.nanmean(twin)), color="k", lw=0.6, label="unshaken twins")
