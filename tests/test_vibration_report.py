@@ -90,3 +90,8 @@ def test_sweep_report_of_a_vibration_sweep_carries_the_section():
     out, summary = build_sweep_report(spec, results, [])
     assert [r.key for r in out] == ["results", "vibration_sweep"]
     assert summary["vibration"][0]["C_ratio"] == pytest.approx(0.5)
+
+
+def test_task_files_without_mean_forces_are_left_out():
+    old = [{k: v for k, v in t.items() if k != "mean_F_drive"} for t in _sweep()]
+    assert cells(old) == []

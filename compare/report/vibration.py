@@ -175,6 +175,8 @@ def cells(tasks: list, sc: VibratedScene = VibratedScene()) -> list:
     twin's mean drive force (fixed under the force drive: every seed's equal)."""
     by = defaultdict(dict)
     for d in tasks:
+        if "mean_F_drive" not in d or "vibration.amplitude" not in d["params"]:
+            continue  # a task file written before the sweep kept its mean forces, or not a vibration sweep's
         p = d["params"]
         by[(p["vibration.frequency"], p["vibration.amplitude"])][d["seed"]] = d
     twins = {}
@@ -198,7 +200,7 @@ def cells(tasks: list, sc: VibratedScene = VibratedScene()) -> list:
              "drive": [d["mean_F_drive"] / t["mean_F_drive"] for d, t in pairs],
              "speed": [d["mean_velocity"] / t["mean_velocity"] for d, t in pairs]}
         row = {"frequency": f, "amplitude": A, "xi": sc.v / (A * 2 * math.pi * f), "seeds": len(pairs),
-               "constant_force": constant_force, "line": float(np.mean([d["line_removed"]["amplitude"][0]
+               "constant_force": constant_force, "line": float(np.mean([d.get("line_removed", {}).get("amplitude", [np.nan])[0]
                                                                        for d, _ in pairs]))}
         for k, x in q.items():
             row[k], row[k + "_ci"] = _mean_ci(x)
