@@ -27,6 +27,8 @@ def _run_scene(spec: SweepSpec, sc, seed: int, extra: dict):
     import engine_sim
 
     tr = engine_sim.run(sc, seed=seed)
+    if tr.metadata.get("partial"):  # stopped by SIGINT/SIGTERM: not a result; the interrupt ends the sweep
+        raise KeyboardInterrupt
     v = sc.steady_velocity
     band = (3 * v / sc.substrate.a, 30 * v / sc.substrate.a)
     if spec.analysis.get("wear"):  # the wear study's per-task statistics
