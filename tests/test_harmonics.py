@@ -63,13 +63,28 @@ def test_no_line_changes_nothing_beyond_one_bin():
 
 
 def test_aliased_harmonics_still_removed():
-    """A line at the Nyquist frequency's half with harmonics that alias onto each other (rank-deficient design):
-    the subtracted sum is the projection, so the record returns to its noise."""
+    """A line at the Nyquist frequency's half with harmonics above the Nyquist frequency: 3 f samples as f, so the
+    fundamental's fit takes it in, and the record returns to its noise."""
     t, noise, _ = _record(1, 4)
     w = np.pi / (2 * DT)  # f = fs / 4: 2 f aliases onto Nyquist, 3 f onto f
     line = 1e-5 * np.sin(w * t + 0.3) + 3e-6 * np.cos(3 * w * t)
     clean, _ = remove_harmonics(t, noise + line, w, harmonics=4, order=1)
     assert np.std(clean - noise) < 1e-3 * np.std(line)
+
+
+def test_harmonics_past_nyquist_left_out_not_splitting_the_line():
+    """A 15.9 um line at fs / 4 fitted with 4 harmonics: 2f, 3f, 4f lie at or above the Nyquist frequency and are
+    left out (NaN), so the fundamental's amplitude is the line's, not split with the 3rd harmonic that samples as
+    it (half each, the minimum-norm answer). Tolerance 1 %: the noise's error sqrt(1.5 P_1 / T) is below 1e-3 of
+    the line here. A line at the Nyquist frequency itself is not removed (its samples cannot show it)."""
+    t, noise, _ = _record(1, 4)
+    w = np.pi / (2 * DT)
+    clean, fit = remove_harmonics(t, noise + 15.9e-6 * np.sin(w * t + 0.3), w, harmonics=4, order=1)
+    assert fit.amplitude[0] == pytest.approx(15.9e-6, rel=0.01) and np.all(np.isnan(fit.amplitude[1:]))
+    assert np.std(clean - noise) < 1e-3 * 15.9e-6
+    y = noise + 1e-5 * np.cos(np.pi / DT * t)
+    same, fit = remove_harmonics(t, y, np.pi / DT, harmonics=4, order=1)
+    assert np.array_equal(same, y) and np.all(np.isnan(fit.amplitude))
 
 
 @pytest.mark.parametrize("kw, field", [({"omega": 0.0}, "omega"), ({"omega": float("nan")}, "omega"),

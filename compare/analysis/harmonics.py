@@ -9,9 +9,10 @@ omega itself), so the fit is made on the series and the regressors differenced `
 linear: the coefficients a_k, b_k are unchanged) and weighted by a Hann taper: the residual leakage then falls as
 the taper's sidelobes, and the amplitudes' error is set by the noise's own density at k omega,
 ``sqrt(P_1(f) / T)`` per coefficient (P_1: the one-sided density of the series in units^2/Hz, T: the record's
-length), the density of a least-squares sinusoid in white noise. Harmonics whose frequency aliases onto another
-(or onto 0 or the Nyquist frequency) make the design rank deficient; ``numpy.linalg.lstsq`` then returns the
-minimum-norm solution, whose fitted sum (what is subtracted) is still the projection onto their span.
+length), the density of a least-squares sinusoid in white noise. Harmonics at or above the Nyquist frequency
+pi / dt are left out of the fit (their amplitude is NaN): sampled, they coincide with a lower line (or with 0 or the
+Nyquist frequency itself) and cannot be told from it, so a harmonic that aliases onto a kept one is fitted as part
+of it, and a line at or above the Nyquist frequency is not removed at all (the record cannot show it).
 """
 from __future__ import annotations
 
@@ -26,7 +27,8 @@ __all__ = ["HarmonicFit", "remove_harmonics"]
 class HarmonicFit:
     """The fitted line: ``omega`` (rad/s), per harmonic k = 1..K the amplitude ``amplitude[k-1]`` =
     sqrt(a_k^2 + b_k^2) (the series' units) and phase ``phase[k-1]`` = atan2(a_k, b_k) (rad, of ``sin(k omega t +
-    phase)``), and ``removed``: the fitted sum that was subtracted (one value per sample)."""
+    phase)``; both NaN for a harmonic at or above the Nyquist frequency, left out), and ``removed``: the fitted sum
+    that was subtracted (one value per sample)."""
 
     omega: float
     amplitude: np.ndarray
@@ -51,7 +53,8 @@ def remove_harmonics(t, y, omega: float, *, harmonics: int = 4, order: int = 2) 
     omega : float
         The line's angular frequency (Units: rad/s), > 0.
     harmonics : int
-        K, the number of harmonics fitted (k omega for k = 1..K), >= 1.
+        K, the number of harmonics fitted (k omega for k = 1..K), >= 1; those at or above the Nyquist frequency
+        pi / dt are left out (amplitude NaN).
     order : int
         Differences taken of the series and the regressors before the fit (0-4): about gamma / 2 for a noise
         C ~ omega^-gamma (2 for a position record whose spectrum falls as omega^-4).
@@ -73,7 +76,13 @@ def remove_harmonics(t, y, omega: float, *, harmonics: int = 4, order: int = 2) 
         raise ValueError(f"order must be an integer in 0-4 (got {order!r})")
     if len(y) < 4 * harmonics + 8 + order:
         raise ValueError(f"only {len(y)} samples for {harmonics} harmonics")
-    k = np.arange(1, harmonics + 1)
+    nyquist = np.pi / float(np.median(np.diff(t)))  # rad/s
+    kept = np.arange(1, harmonics + 1)
+    kept = kept[kept * omega < nyquist * (1 - 1e-9)]
+    amplitude, phase = np.full(harmonics, np.nan), np.full(harmonics, np.nan)
+    if len(kept) == 0:  # the line itself at or above the Nyquist frequency: the record cannot show it
+        return y.copy(), HarmonicFit(omega=float(omega), amplitude=amplitude, phase=phase, removed=np.zeros_like(y))
+    k, harmonics = kept, len(kept)
     ph = np.outer(t - t[0], k * omega)
     X = np.concatenate([np.cos(ph), np.sin(ph)], axis=1)  # a_k then b_k
     # the trend the differences leave (a constant after one, nothing after two), fitted beside the line
@@ -84,5 +93,6 @@ def remove_harmonics(t, y, omega: float, *, harmonics: int = 4, order: int = 2) 
     coef = np.linalg.lstsq(Dd * w[:, None], yd * w, rcond=None)[0]
     a, b = coef[:harmonics], coef[harmonics:2 * harmonics]
     removed = X @ coef[:2 * harmonics]
-    fit = HarmonicFit(omega=float(omega), amplitude=np.hypot(a, b), phase=np.arctan2(a, b), removed=removed)
+    amplitude[k - 1], phase[k - 1] = np.hypot(a, b), np.arctan2(a, b)
+    fit = HarmonicFit(omega=float(omega), amplitude=amplitude, phase=phase, removed=removed)
     return y - removed, fit
