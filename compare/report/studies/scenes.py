@@ -18,7 +18,7 @@ from ..html import esc, paragraphs, span, table
 from ...analysis.spectra import displacement_spectrum, force_series_spectrum
 from ..study import Figure, Study, StudyResult
 from ..verdict import NOT_A_POWER_LAW, fit_text, ratio_verdict
-from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
+from ._common import balances, band_ratios, line_text, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
 
 # relative cost, to hand the longest studies to workers first (CPU seconds per study are printed by
 # benchmarks/bench_report.py: the wear pair, pads_multiscale with both models, and the line-scan and rough-profile
@@ -134,6 +134,8 @@ def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
         + f"Substrate force on the pads: omega^-({fit_text(fit_f)}) (model I: omega^-2). Renewal length "
         f"{1e3 * ex['a']['value']:.3f} mm{a_sub_text}, alpha = {ex['alpha']['value']:.3f}{alpha_text}.",
     ]
+    if line_text(tr):
+        parts.append(line_text(tr))
     if sc.drive_part.extra_mass > 0:  # a drive with a body of its own on a rope (Leonardo's slider)
         parts.append(
             f"Leonardo's slider: model I uses M = block + hanging mass = {ex['M']['value']:.4g} kg (the rope taut). Above "
