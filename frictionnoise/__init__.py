@@ -8,9 +8,9 @@ rad/s; spectra in the two-sided angular convention of eq. (2) of Xu, Zhou & Pers
   :func:`friction_coefficient_spectrum`, :func:`rms_from_spectrum`, :func:`band_average`, :func:`log_bin`,
   :class:`Spectrum`; :func:`fit_power_law` and :class:`PowerLawFit`; the test helpers
   :func:`assert_spectral_slope` and :func:`assert_spectrum_matches`;
-- **the reduced models** I, Ib, II and III: their parameters (:class:`SpringBlockParams`,
-  :class:`MultiscaleParams`, :class:`WearParticleParams`, :class:`AsperityForceParams`; ``.reference()`` is
-  the paper's case), :func:`simulate` and :func:`theory_spectrum` for any of them, :func:`model` and
+- **the reduced models** I, Ib, II and III and their extensions: their parameters (:class:`SpringBlockParams`,
+  :class:`MultiscaleParams`, :class:`WearParticleParams`, :class:`AsperityForceParams`, :class:`AgeingParams`
+  for ageing contacts, :class:`VibratingBlockParams` for a shaken substrate; ``.reference()`` is the paper's case), :func:`simulate` and :func:`theory_spectrum` for any of them, :func:`model` and
   :data:`MODELS` for the modules;
 - **scenes** (the pymunk engine): :func:`shipped_scenarios`, :func:`load_scenario`, :func:`run_scene`,
   :func:`render_scene`, :func:`compare_scene`, :func:`save_trace` and :func:`load_trace`;
@@ -41,6 +41,7 @@ _LAZY = {
     # the reduced models
     "SpringBlockParams": "reduced_models", "MultiscaleParams": "reduced_models",
     "WearParticleParams": "reduced_models", "AsperityForceParams": "reduced_models",
+    "AgeingParams": "reduced_models.ageing", "VibratingBlockParams": "reduced_models.vibrating_block",
     "ModelTrace": "reduced_models", "MODELS": "reduced_models",
     "simulate": "frictionnoise.models", "theory_spectrum": "frictionnoise.models", "model": "frictionnoise.models",
     # scenes

@@ -113,6 +113,13 @@ class AgeingParams:
 
     @classmethod
     def reference(cls) -> "AgeingParams":
+        """The reference case: model I's (paper section 4) with ageing contacts at this class's default A, B, D_c.
+
+        Returns
+        -------
+        AgeingParams
+            The defaults of every field (SI units).
+        """
         return cls()
 
     @property
@@ -136,6 +143,13 @@ class AgeingParams:
         return self.a / self.v
 
     def to_dict(self) -> dict:
+        """The parameters as a JSON-able dict (SI units).
+
+        Returns
+        -------
+        dict
+            Field name -> value.
+        """
         return asdict(self)
 
 

@@ -145,3 +145,23 @@ def test_line_at_omega_v(paired_runs):
     assert amp == pytest.approx(pred, rel=0.10)
     np.testing.assert_allclose(tr.events["substrate"], p.amplitude * np.sin(w * (tr.t + tr.metadata["warmup"])),
                                atol=1e-9 * p.amplitude + 1e-15)
+
+
+def test_reference_case_is_shaken_and_compare_runs_it(tmp_path):
+    # `.reference()` is the paper's case on a shaken substrate (30 um at 3000 rad/s), so `frictionnoise compare
+    # model_Iv` shows the vibration's effect: the closed form's in-band level 0.544 of the unshaken one (eq. A11
+    # with the mean-field slope; the value benchmarks/results/vibration.md measured 0.559 against), and the
+    # simulated run against its closed form within the report's factor 1.25 (measured 0.935-1.078, 200 s)
+    import json
+    from dataclasses import replace
+
+    from compare.cli import main
+
+    r = VibratingBlockParams.reference()
+    assert (r.amplitude, r.omega_v) == (30e-6, 3000.0)
+    w = np.array([10.0, 20.0, 50.0])
+    np.testing.assert_allclose(theory_spectrum(r, w) / theory_spectrum(replace(r, amplitude=0.0), w), 0.544, rtol=2e-3)
+    assert main(["compare", "model_Iv", "-o", str(tmp_path / "c")]) == 0
+    m = json.loads((tmp_path / "c" / "summary.json").read_text())["models"]["model_Iv"]
+    assert m["params"]["amplitude"] == 30e-6
+    assert all(0.8 < b["ratio"] < 1.25 for b in m["band_ratios_vs_closed_form"]), m["band_ratios_vs_closed_form"]

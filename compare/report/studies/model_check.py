@@ -32,7 +32,8 @@ def _ratio_edges(spec, band) -> np.ndarray:
 
 
 def model_result(name: str, seed: int = 0, duration: float | None = None, params=None) -> StudyResult:
-    """The registered model ``name`` (its ``PARAMS()`` defaults unless ``params``) run for ``duration`` seconds
+    """The registered model ``name`` (its ``PARAMS.reference()`` case, or its ``PARAMS()`` defaults where it has
+    none, unless ``params``) run for ``duration`` seconds
     (default: its ``default_duration``) at its ``default_dt_out``, against its closed form ``theory_spectrum``.
 
     Returns a StudyResult under ``models/<name>`` with gamma over the model's fit band (the automatic band when
@@ -43,7 +44,7 @@ def model_result(name: str, seed: int = 0, duration: float | None = None, params
     from .. import plots
 
     model = registered(name)
-    p = params if params is not None else model.PARAMS()
+    p = params if params is not None else getattr(model.PARAMS, "reference", model.PARAMS)()
     dt_out = model.default_dt_out(p)
     T = float(duration if duration is not None else model.default_duration(p))
     tr, wall = timed(model.simulate, p, T, dt_out, seed=seed)
@@ -68,7 +69,7 @@ def model_result(name: str, seed: int = 0, duration: float | None = None, params
     where = f"{span(band[0], band[1])} rad/s (the model's band)" if band else (
         f"{span(fit.band[0], fit.band[1])} rad/s (the automatic band: the model names none)")
     text = paragraphs([
-        f"Model {esc(name)} ({esc(model.__name__)}), its default parameters, {T:g} s simulated at dt_out = "
+        f"Model {esc(name)} ({esc(model.__name__)}), its reference parameters (summary.json: params), {T:g} s simulated at dt_out = "
         f"{dt_out:.3g} s in {wall:.2f} s; response {esc(model.RESPONSE)}.",
         f"gamma = {fit_text(fit, 3)} over {where}. Simulated C_x over the closed form, "
         f"per log band: {ratio_range(ratios)} (worst |ln ratio| {worst:.3f}).",
