@@ -44,10 +44,10 @@ def run_studies(studies, quick: bool, seed: int, workers: int = 1, progress=None
         return out
     from concurrent.futures import as_completed
 
-    from .pool import process_pool
+    from .pool import PRELOAD, process_pool
 
-    with process_pool(workers, on_compile) as pool:  # on Ctrl-C or an error its processes end at once
-        order = sorted(range(len(studies)), key=lambda i: -studies[i].cost)
+    with process_pool(workers, on_compile, PRELOAD) as pool:  # on Ctrl-C or an error its processes end at once
+        order = sorted(range(len(studies)), key=lambda i: -studies[i].cost_in(quick))
         futures = {pool.submit(_run_study, studies[i], quick, seed): i for i in order}
         queue = list(order)
         for i in queue[:workers]:

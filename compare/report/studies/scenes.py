@@ -20,11 +20,14 @@ from ..study import Figure, Study, StudyResult
 from ..verdict import NOT_A_POWER_LAW, fit_text, ratio_verdict
 from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
 
-# relative cost, to hand the longest studies to workers first (CPU seconds per study are printed by
-# benchmarks/bench_report.py: the wear pair, pads_multiscale with both models, and the line-scan and rough-profile
-# substrates, whose pads cost about 1.5 CPU s per simulated second, lead; a friction-patch scene costs about 0.35)
-_COST_HINT = {"pads_with_wear": 18.0, "pads_multiscale": 12.0, "pads_rough_profile": 9.0, "line_scan_example": 9.0,
-              "asperity_field": 7.0}
+# (quick, full) cost of each scene's study in CPU seconds, as benchmarks/bench_report.py measures them, so the
+# report's pool starts the longest first and its workers end together (the wear pair, pads_multiscale with both
+# models, the line-scan and rough-profile substrates, whose pads cost about 1.5 CPU s per simulated second, and the
+# rate_state pads, whose full run keeps the scenario's 60 s, lead; a friction-patch scene costs about 0.35)
+_COST = {"pads_with_wear": (37.4, 71.9), "pads_multiscale": (26.8, 32.9), "line_scan_example": (17.0, 36.2),
+         "pads_rough_profile": (14.4, 28.4), "pads_rate_state": (11.4, 55.0), "asperity_field": (9.6, 9.8),
+         "pads_friction_patches": (6.1, 6.9), "constant_velocity": (4.9, 7.3), "leonardo_slider": (4.8, 6.9),
+         "spring_slider_rate_state": (4.6, 10.0), "tilted_plane": (4.2, 7.8)}
 
 
 def fitting_part(sc):
@@ -204,5 +207,5 @@ def scene_studies() -> list:
     """One study per shipped scenario, in the order engine_sim lists them."""
     from engine_sim import shipped_scenarios
 
-    return [Study(f"scenarios/{name}", f"scene {name}", partial(_run_shipped, name), cost=_COST_HINT.get(name, 1.0))
-            for name in shipped_scenarios()]
+    return [Study(f"scenarios/{name}", f"scene {name}", partial(_run_shipped, name), cost=_COST.get(name, (5.0, 10.0))[1],
+                  quick_cost=_COST.get(name, (5.0, 10.0))[0]) for name in shipped_scenarios()]
