@@ -56,7 +56,8 @@ print(json.dumps({"rc": rc, "wall_in_s": wall, "cpu_s": own.ru_utime + own.ru_st
 
 def whole(quick: bool, seed: int, workers: int) -> dict:
     """The whole `frictionnoise report` as a user runs it, in a fresh process (imports, worker start-up, the
-    studies, the files): {"wall_s": from start to exit, "cpu_s": that process and its workers, user + system}."""
+    studies, the files): {"wall_s": from start to exit, "cpu_s": that process and its workers, user + system,
+    "studies": each study's wall and CPU seconds inside the report (summary.json's study_seconds)}."""
     import sys
     import tempfile
 
@@ -65,10 +66,12 @@ def whole(quick: bool, seed: int, workers: int) -> dict:
         t0 = time.perf_counter()
         r = subprocess.run([sys.executable, "-c", _WHOLE, *args], capture_output=True, text=True)
         wall = time.perf_counter() - t0
-    if r.returncode != 0:
-        raise RuntimeError(f"the report failed: {r.stderr[-2000:]}")
+        if r.returncode != 0:
+            raise RuntimeError(f"the report failed: {r.stderr[-2000:]}")
+        with open(f"{tmp}/report/summary.json") as fh:
+            studies = json.load(fh)["study_seconds"]
     out = json.loads(r.stdout.strip().splitlines()[-1])
-    return {"wall_s": wall, "cpu_s": out["cpu_s"]}
+    return {"wall_s": wall, "cpu_s": out["cpu_s"], "studies": studies}
 
 
 def schedule(costs: list, workers: int) -> float:
@@ -114,8 +117,11 @@ def main(argv=None) -> int:
             w = whole(quick, args.seed, args.workers)
             entry.setdefault("whole", []).append({**w, "load_before": before, "load_after": load()})
             entry.update(whole_s=w["wall_s"], whole_cpu_s=w["cpu_s"], workers=args.workers, load_whole=load())
+            for k, v in sorted(w["studies"].items(), key=lambda kv: -kv[1]["cpu_s"]):
+                print(f"    in the pool: {k:32s} {v['wall_s']:7.1f} s wall {v['cpu_s']:7.1f} s CPU")
             print(f"  whole {mode} report (`frictionnoise report{' --quick' if quick else ''} --workers {args.workers}`, "
-                  f"a fresh process): {w['wall_s']:.1f} s wall, {w['cpu_s']:.1f} s CPU ({entry['load_whole']})", flush=True)
+                  f"a fresh process): {w['wall_s']:.1f} s wall, {w['cpu_s']:.1f} s CPU ({before} -> {entry['load_whole']})",
+                  flush=True)
         out["modes"][mode] = entry
     if args.json:
         with open(args.json, "w") as fh:

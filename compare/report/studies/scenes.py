@@ -24,7 +24,7 @@ from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ra
 # report's pool starts the longest first and its workers end together (the wear pair, pads_multiscale with both
 # models, the line-scan and rough-profile substrates, whose pads cost about 1.5 CPU s per simulated second, and the
 # rate_state pads, whose full run keeps the scenario's 60 s, lead; a friction-patch scene costs about 0.35)
-_COST = {"pads_with_wear": (37.4, 71.9), "pads_multiscale": (26.8, 32.9), "line_scan_example": (17.0, 36.2),
+SCENE_COSTS = {"pads_with_wear": (37.4, 71.9), "pads_multiscale": (26.8, 32.9), "line_scan_example": (17.0, 36.2),
          "pads_rough_profile": (14.4, 28.4), "pads_rate_state": (11.4, 55.0), "asperity_field": (9.6, 9.8),
          "pads_friction_patches": (6.1, 6.9), "constant_velocity": (4.9, 7.3), "leonardo_slider": (4.8, 6.9),
          "spring_slider_rate_state": (4.6, 10.0), "tilted_plane": (4.2, 7.8)}
@@ -207,5 +207,6 @@ def scene_studies() -> list:
     """One study per shipped scenario, in the order engine_sim lists them."""
     from engine_sim import shipped_scenarios
 
-    return [Study(f"scenarios/{name}", f"scene {name}", partial(_run_shipped, name), cost=_COST.get(name, (5.0, 10.0))[1],
-                  quick_cost=_COST.get(name, (5.0, 10.0))[0]) for name in shipped_scenarios()]
+    costs = {name: SCENE_COSTS.get(name, (5.0, 10.0)) for name in shipped_scenarios()}  # (quick, full) CPU s
+    return [Study(f"scenarios/{name}", f"scene {name}", partial(_run_shipped, name), cost=full, quick_cost=quick)
+            for name, (quick, full) in costs.items()]
