@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from compare.analysis.displacement import DisplacementAnalysis, analyze_displacement
 from compare.io.measured import MeasuredData, read_measured
-from compare.report.measured_report import ForceAnalysis, analyze_force
+from compare.analysis.force import ForceAnalysis, analyze_force
 
 __all__ = ["read_measured", "MeasuredData", "analyze_displacement", "DisplacementAnalysis", "analyze_force",
            "ForceAnalysis"]

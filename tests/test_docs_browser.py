@@ -7,37 +7,17 @@ when it names one), and the browser's console holds no error.
 Where the site is not built or no browser is installed the test skips saying what is missing, except under CI
 (CI=true), where it fails: CI installs both and builds the site first.
 """
-import os
 import re
-import shutil
 from pathlib import Path
 from urllib.parse import unquote, urlsplit
 
 import pytest
 
+from tests.browser import headless_chrome, missing
+
 pytestmark = pytest.mark.slow  # a browser started (about 4 s) and some 50 pages loaded
 
 SITE = Path(__file__).resolve().parent.parent / "docs" / "_build" / "html"
-
-
-def _missing(reason: str):
-    if os.environ.get("CI"):
-        pytest.fail(f"{reason} (CI=true: the browser tests must run)")
-    pytest.skip(reason)
-
-
-def browser():
-    """(chromium, chromedriver) paths, or skip (fail under CI) saying what is missing."""
-    try:
-        import selenium  # noqa: F401
-    except ImportError:
-        _missing("selenium is not installed (pip install -e '.[test]')")
-    chrome = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
-    driver = shutil.which("chromedriver")
-    if not chrome or not driver:
-        _missing("no headless browser: install Debian's chromium and chromium-driver (apt-get install -y chromium "
-                 "chromium-driver), as .ci/run does")
-    return chrome, driver
 
 
 def _ids(page: Path) -> set:
@@ -46,26 +26,15 @@ def _ids(page: Path) -> set:
 
 def test_docs_site_reads_in_a_browser(tmp_path):
     if not (SITE / "index.html").exists():
-        _missing(f"the documentation is not built ({SITE / 'index.html'} missing): python -m sphinx -W --keep-going "
-                 "-b html docs docs/_build/html")
-    chrome, driver_path = browser()
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-
+        missing(f"the documentation is not built ({SITE / 'index.html'} missing): python -m sphinx -W --keep-going "
+                "-b html docs docs/_build/html")
     pages = sorted(p for p in SITE.rglob("*.html") if not {"_static", "_sources", "_images"} & set(p.parts))
     # the site holds the four parts and the results, each with its pages (the toctrees' targets)
     names = {p.relative_to(SITE).as_posix() for p in pages}
     for part in ("tutorials", "howto", "reference", "explanation", "results"):
         assert f"{part}/index.html" in names, part
     assert {"tutorials/first_report.html", "reference/cli.html", "reference/api.html"} <= names
-    opts = webdriver.ChromeOptions()
-    opts.binary_location = chrome
-    for flag in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-                 "--disable-component-update", "--disable-sync", "--no-first-run", "--window-size=1280,900",
-                 f"--user-data-dir={tmp_path / 'profile'}"):
-        opts.add_argument(flag)
-    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    drv = webdriver.Chrome(service=Service(driver_path), options=opts)
+    drv = headless_chrome(tmp_path)
     problems, links, n_images = [], {}, 0
     try:
         for page in pages:

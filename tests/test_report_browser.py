@@ -5,39 +5,17 @@ reachable from the table of contents, and a screenshot of the first screen is sa
 The report is a quick one restricted to two real studies (model III and the tilted-plane scene), so the test
 costs well under a minute. Skipped, with the reason, where no browser or driver is installed (.ci/run installs
 them with apt-get); under CI (CI=true) that is a failure."""
-import os
-import shutil
 import time
 
 import pytest
 
 from compare.report.html import write_report
 from compare.report.build import build_report
+from tests.browser import headless_chrome
 
 pytestmark = pytest.mark.slow  # a report built (about 7 s) and a browser started (about 4 s)
 
 FIRST_SCREEN_PX = 900  # a 1280 x 900 browser window: the summary table ends above its bottom edge
-
-
-def _missing(reason: str):
-    """Skip saying what is missing; under CI (CI=true), which installs the browser, fail instead."""
-    if os.environ.get("CI"):
-        pytest.fail(f"{reason} (CI=true: the browser tests must run)")
-    pytest.skip(reason)
-
-
-def _browser():
-    """(chromium, chromedriver) paths, or skip (fail under CI) saying what is missing."""
-    try:
-        import selenium  # noqa: F401
-    except ImportError:
-        _missing("selenium is not installed (pip install -e '.[test]')")
-    chrome = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
-    driver = shutil.which("chromedriver")
-    if not chrome or not driver:
-        _missing("no headless browser: install Debian's chromium and chromium-driver (apt-get install -y chromium "
-                 "chromium-driver), as .ci/run does")
-    return chrome, driver
 
 
 @pytest.fixture(scope="module")
@@ -50,27 +28,12 @@ def small_report(tmp_path_factory):
     return write_report(tmp_path_factory.mktemp("browser") / "report", results, summary), results
 
 
-def _driver(tmp_path):
-    chrome, driver_path = _browser()
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-
-    opts = webdriver.ChromeOptions()
-    opts.binary_location = chrome
-    for flag in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-                 "--disable-component-update", "--disable-sync", "--no-first-run", "--window-size=1280,900",
-                 f"--user-data-dir={tmp_path / 'profile'}"):
-        opts.add_argument(flag)
-    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    return webdriver.Chrome(service=Service(driver_path), options=opts)
-
-
 def test_report_reads_in_a_browser(small_report, tmp_path):
     from selenium.webdriver.common.by import By
 
     out, results = small_report
     t0 = time.perf_counter()
-    drv = _driver(tmp_path)
+    drv = headless_chrome(tmp_path)
     try:
         drv.get((out / "index.html").as_uri())
         # every image decodes (a broken data URI leaves naturalWidth at 0)
@@ -133,7 +96,7 @@ def test_first_screen_holds_the_summary_of_a_full_report(tmp_path):
                                verdicts=(ratio_verdict("x", "C_x / model Ib", [0.95, 1.06], 1.5, "1 (model Ib)"),)))
     assert sum(len(r.verdicts) for r in results) >= 21
     out = write_report(tmp_path / "report", results, {"version": "0.1.0", "seed": 0, "quick": False})
-    drv = _driver(tmp_path)
+    drv = headless_chrome(tmp_path)
     try:
         drv.get((out / "index.html").as_uri())
         bottom, width, inner = drv.execute_script(

@@ -3,6 +3,7 @@ continuation build on them)."""
 import pickle
 
 import numpy as np
+import pytest
 
 import engine_sim
 from engine_sim import Scene, load_scenario, scenario_from_dict
@@ -42,10 +43,11 @@ def test_log_law_run_through_checkpoints_is_bitwise_the_uninterrupted_run():
     assert np.all(np.abs(b.F_drag[1:]) > 0.5 * np.abs(b.F_drag[1]))  # the law acts throughout
 
 
+@pytest.mark.slow  # about 10 s
+@pytest.mark.timing  # a speed: beside a parallel worker at load 10 the ratio fell to 1.94; run alone
 def test_step_costs_taking_turns_rank_the_wear_scene_above_the_patches():
     # engine_sim.timing: scenes measured in turns. The wear scene pays 20 solver iterations and 50 grains against
-    # the patch scene's 2 iterations: 4.9x measured (README); 2x is far below that and far above the noise of
-    # taking turns on a busy machine
+    # the patch scene's 2 iterations: 4.9x measured alone; 2x is far below that
     from engine_sim.timing import step_costs
 
     patches = load_scenario("pads_friction_patches")

@@ -122,7 +122,7 @@ def test_analyze_reports_segments_and_the_exponent(tmp_path, capsys):
     assert len(s["segment_fits"]) == 3
 
 
-def test_resample_on_request_and_force_records_that_break(tmp_path, capsys):
+def test_resample_on_request(tmp_path, capsys):
     t, x = _gamma4_record(2)
     f = tmp_path / "rig.csv"
     _write(f, t, x)
@@ -132,9 +132,4 @@ def test_resample_on_request_and_force_records_that_break(tmp_path, capsys):
     assert "resampled onto a uniform 0.001 s grid" in err and "Butterworth, order 8, at 400 Hz" in err
     s = json.loads((out / "summary.json").read_text())
     assert s["resampled"] and s["dt_s"] == pytest.approx(1e-3) and "segment_fits" not in s
-    # force data whose stamps break: not analysed stroke by stroke yet; one line, exit 2, pointing at --resample
-    g = tmp_path / "force.csv"
-    _write(g, t, x, header="t (s),F (N)")
-    assert main(["analyze", str(g), "--force-col", "F (N)", "-o", str(tmp_path / "f")]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 2 and "give --resample DT" in err[-1]  # the warning line, then the error
+    # force records whose stamps break: tests/test_force_timeline.py

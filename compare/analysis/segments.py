@@ -12,7 +12,7 @@ import numpy as np
 from .estimators import default_nperseg
 from .spectra import Spectrum, series_spectrum
 
-__all__ = ["SegmentSpectra", "segment_spectra", "segment_fits", "resample_record", "line_power_flag", "with_line_flag",
+__all__ = ["SegmentSpectra", "segment_spectra", "piece_spectra", "segment_fits", "resample_record", "line_power_flag", "with_line_flag",
            "LINE_FACTOR", "LINE_SHARE"]
 
 LINE_FACTOR = 10.0  # an ordinate this many times its neighbourhood's median is a spectral line
@@ -40,22 +40,51 @@ def _uniform(t, y, dt):
 
 
 def segment_spectra(t, y, timeline, *, quantity: str, unit: str, detrend: str, name: str = "y") -> SegmentSpectra:
-    """Spectra of each usable segment and their combination.
-
-    Every segment gets the pre-whitening order of the longest one (picked from it, ``prewhiten="auto"``). Combined:
-    each segment at least one window long is estimated with a Hann window of the same duration ``T`` (the default
-    Welch window of the longest segment, in its samples: ``nperseg_i = T / dt_i``), so that all estimates share the
-    frequency grid 2 pi j / T up to the lowest segment's Nyquist frequency; they are averaged weighted by their
-    number of Welch windows, and the degrees of freedom add. A segment's own spectrum uses its default window.
-    """
-    t = np.asarray(t, float)
-    y = np.asarray(y, float)
+    """Spectra of each usable segment of ``timeline`` (compare.analysis.timeline.Timeline) and their combination:
+    :func:`piece_spectra` of its usable segments with the default common window."""
     usable = timeline.usable()
     if not usable:
         raise ValueError(f"no segment has {min(s.n for s in timeline.segments)}+ rows of uniform sampling")
+    return piece_spectra(t, y, usable, quantity=quantity, unit=unit, detrend=detrend, name=name)
+
+
+def piece_spectra(t, y, pieces, *, quantity: str, unit: str, detrend: str, name: str = "y", span: float | None = None,
+                  window: float | None = None, prewhiten="auto") -> SegmentSpectra:
+    """Spectra of uniformly sampled pieces of a record, each on its own and all combined on one common window.
+
+    Parameters
+    ----------
+    t, y : array_like
+        The record's time stamps (s) as written, and its values.
+    pieces : list of compare.analysis.timeline.Segment
+        Row ranges sampled at one step each (a timeline's usable segments, or the strokes cut at its breaks).
+    quantity, unit, detrend, name
+        As in :func:`compare.analysis.spectra.series_spectrum`.
+    span : float, optional
+        The duration (s) a piece must cover to enter the combination with one window: the common window is ``span``
+        less the ``k`` samples of the slowest piece that pre-whitening of order ``k`` takes (one Hann window per
+        stroke, as :func:`compare.analysis.strokes.stroke_spectrum` uses on a uniform record).
+    window : float, optional
+        The common window T (s) itself. Default (neither given): the default Welch window of the longest piece.
+    prewhiten : int or "auto"
+        The pre-whitening order of every piece; "auto" picks it from the longest.
+
+    Returns
+    -------
+    SegmentSpectra
+        Every piece gets the pre-whitening order of the longest and its own spectrum at its default window (None
+        below 64 rows). Combined: each piece at least one window long is estimated with a Hann window of the same
+        duration T (``nperseg_i = T / dt_i``), so that all estimates share the frequency grid 2 pi j / T up to the
+        lowest piece's Nyquist frequency; they are averaged weighted by their number of Welch windows, and the
+        degrees of freedom add. Shorter pieces are named in ``notes``.
+    """
+    from .timeline import MIN_ROWS
+
+    t = np.asarray(t, float)
+    y = np.asarray(y, float)
     notes = []
     series = []
-    for s in usable:
+    for s in pieces:
         ts, ys = t[s.start:s.stop], y[s.start:s.stop]
         if s.spread > 1e-6:
             ts, ys = _uniform(ts, ys, s.dt)
@@ -63,13 +92,18 @@ def segment_spectra(t, y, timeline, *, quantity: str, unit: str, detrend: str, n
                          "resampled onto that step by linear interpolation")
         series.append((s, ts, ys))
     longest = max(series, key=lambda r: r[1][-1] - r[1][0])
-    k = series_spectrum(longest[1], longest[2], quantity=quantity, unit=unit, detrend=detrend,
-                        name=name).provenance["prewhiten_order"]
+    k = prewhiten if prewhiten != "auto" else series_spectrum(
+        longest[1], longest[2], quantity=quantity, unit=unit, detrend=detrend, name=name).provenance["prewhiten_order"]
     per = []
     for s, ts, ys in series:
         per.append((s, series_spectrum(ts, ys, quantity=quantity, unit=unit, detrend=detrend, prewhiten=k, name=name)
-                    if ts.size >= 8 + k else None))
-    T = default_nperseg(longest[1].size) * longest[0].dt
+                    if ts.size >= max(MIN_ROWS, 8 + k) else None))
+    if window is not None:
+        T = float(window)
+    elif span is not None:
+        T = float(span) - k * max(s.dt for s, _, _ in series)
+    else:
+        T = min(default_nperseg(longest[1].size), longest[1].size - k) * longest[0].dt
     parts, used = [], []
     for idx, (s, ts, ys) in enumerate(series):
         nps = int(round(T / s.dt))
@@ -80,6 +114,9 @@ def segment_spectra(t, y, timeline, *, quantity: str, unit: str, detrend: str, n
         parts.append(series_spectrum(ts, ys, quantity=quantity, unit=unit, detrend=detrend, prewhiten=k,
                                      nperseg=nps, name=name))
         used.append(idx)
+    if not parts:
+        raise ValueError(f"no uniform piece covers the common window of {T:.4g} s (the longest: "
+                         f"{longest[1][-1] - longest[1][0]:.4g} s, rows {longest[0].start + 1}-{longest[0].stop})")
     ref = max(parts, key=lambda p: p.provenance["dt"])  # the lowest Nyquist frequency sets the common grid
     w = ref.omega
     acc, weight, exact = np.zeros_like(w), 0.0, True

@@ -148,7 +148,7 @@ def _read_record(path, args):
     except DataFileError as e:
         raise UserError(str(e)) from None
     if data.warning:
-        print(f"frictionnoise: warning: {path}: {data.warning}", file=sys.stderr)
+        print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)  # the warning names the file
     _print_breaks(data.timeline)
     return data
 
@@ -171,11 +171,22 @@ def _fit_text(f: dict) -> str:
             f"{f['band'][1]:.3g} rad/s" + ("" if f["power_law"] else f" [not a power law: {'; '.join(f['flags'])}]"))
 
 
-def _force_lines(summary: dict, index) -> list:
+def _force_lines(summary: dict, index, most: int = 10) -> list:
     st = summary["strokes"]
-    return [f"strokes ({st['method']}): {st['found']} found, {st['used']} used, {len(st['dropped'])} dropped; "
-            f"{st['cut_each_end_s']:.4g} s cut at each end",
-            f"wrote {index}: force exponent {_fit_text(summary['fit_F'])}"]
+    lines = [f"strokes ({st['method']}): {st['found']} found, {st['used']} used, {len(st['dropped'])} dropped; "
+             f"{st['cut_each_end_s']:.4g} s cut at each end"]
+    pieces = summary.get("pieces") or []
+    if pieces:
+        lines.append(f"uniform pieces (strokes cut at the breaks): {len(pieces)}, "
+                     f"{sum(p['in_combined'] for p in pieces)} in the combined spectrum (common window "
+                     f"{summary['piece_window_s']:.4g} s)")
+    for i, p in enumerate(pieces[:most]):
+        lines.append(f"  piece {i + 1}: stroke {p['stroke']}, rows {p['start_row'] + 1}-{p['stop_row']}, t = "
+                     f"{p['t_start_s']:.6g}-{p['t_stop_s']:.6g} s, step {p['dt_s']:.4g} s, "
+                     + ("in the combined spectrum" if p["in_combined"] else "not in the combined spectrum"))
+    if len(pieces) > most:
+        lines.append(f"  ... and {len(pieces) - most} more pieces (all in summary.json)")
+    return lines + [f"wrote {index}: force exponent {_fit_text(summary['fit_F'])}"]
 
 
 def _displacement_lines(summary: dict, index) -> list:
