@@ -87,6 +87,7 @@ class Recorder:
         # scalar channels per sample, columns in reduction.COLS order (one array: numba's dispatch cost grows with
         # the number of arguments, and this kernel runs every output step)
         self.out = np.empty((n_samples, len(COLS) + len(VIB_COLS)))  # the vibration's two columns last
+        self.out[:, len(COLS):] = 0.0  # written per sample only when the scene has a vibration
         self.pad_force = np.empty((n_samples, N))
         self.micro_force = np.empty((n_samples, len(scene.sliders) - N))
         self.n_contact = np.empty(n_samples, dtype=np.int32)
@@ -117,6 +118,8 @@ class Recorder:
                "dt_out": scene.dt * scene.n_sub, "pulled": float(drive.pulled)}
         self._prm = np.array([prm.get(name, 0.0) for name in PRM])
         self._drive_spring = drive.spring
+        sp = drive.spring  # its stiffness, rest length and anchor offset are constant; the anchor body moves
+        self._drive_const = (sp.stiffness, sp.rest_length, sp.anchor_b.x, sp.b)
         self._drive_mass = np.array([b.mass for b in drive.bodies], dtype=float)
         # springs with energy as arrays for vectorised lengths: (slider, anchors, rest length, stiffness, damping);
         # slider-slider springs use both positions; springs without stiffness (pure dampers) store none
@@ -130,7 +133,7 @@ class Recorder:
 
     def __getstate__(self):
         state = self.__dict__.copy()
-        for k in ("_tab", "_bbuf", "_abuf", "_prm", "_drive_spring", "_drive_mass", "_bs", "_pp"):
+        for k in ("_tab", "_bbuf", "_abuf", "_prm", "_drive_spring", "_drive_const", "_drive_mass", "_bs", "_pp"):
             del state[k]  # derived from the scene (pymunk ids change on unpickling; batch buffers do not pickle)
         return state
 
@@ -152,24 +155,26 @@ class Recorder:
         af = np.frombuffer(self._abuf.float_buf())
         if self.x0 is None:
             self.x0 = float(sc.block.position.x)
-        self._prm[0:5] = (*self._drive_state(), self.x0)
+        prm = self._prm
+        prm[0], prm[1], prm[2], prm[3] = self._drive_state()
+        prm[4] = self.x0
         sc.wear.mark_sleeping(self.grain_table)
         self.recycle[k] = sc.wear.recycle_work
         reduce_sample(ids, fl, ai, af, self._tab, self.grain_table, self._bs, self._pp, self._prm, sc.slider_terms,
                       self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact, self.p_state,
                       self.p_force)
         vib = getattr(sc, "vibration", None)
-        self.out[k, len(COLS):] = (0.0, 0.0) if vib is None else vib.record(
-            sc, ids, fl, self._tab, sc.slider_terms, self.grain_table, self._drive_mass)
+        if vib is not None:
+            self.out[k, len(COLS):] = vib.record(sc, ids, fl, self._tab, sc.slider_terms, self.grain_table,
+                                                 self._drive_mass)
         self.t[k] = sc.steps * sc.dt / U.TIME
         self.k += 1
 
     def _drive_state(self):
         """(stiffness, anchor x, rest length, anchor speed) of the drive spring, scene units (its anchor body
         does not rotate, so the anchor point is the body's position plus the fixed offset)."""
-        s = self._drive_spring
-        b = s.b
-        return s.stiffness, b.position.x + s.anchor_b.x, s.rest_length, b.velocity.x
+        k, rest, off, b = self._drive_const
+        return k, b.position.x + off, rest, b.velocity.x
 
     def trace(self, metadata: dict) -> EngineTrace:
         n = self.k

@@ -26,31 +26,39 @@ class StreamedTrack:
         self.generated = 0
         self.removed = 0
 
-    def _link_and_add(self, new: list):
-        """Link consecutive segments with set_neighbors (so pads do not catch on joints) and add them."""
-        prev = self.segments[-1] if self.segments else None
-        for i, s in enumerate(new):
-            a_prev = prev.a if prev is not None else s.a - (s.b - s.a)
-            b_next = new[i + 1].b if i + 1 < len(new) else s.b + (s.b - s.a)
-            s.set_neighbors(a_prev, b_next)
-            self.neighbors.append((a_prev, b_next))
-            prev = s
-        if new:
-            self.space.add(*new)
+    def _link_and_add(self, ends: list, frictions):
+        """Add straight segments ((ax, ay), (bx, by)) with their frictions, each linked with set_neighbors to the
+        one before and the one after (so pads do not catch on joints; a chunk's last segment and a track's first
+        look past their own far end, extrapolated)."""
+        if not ends:
+            return
+        prev = self.segments[-1].a if self.segments else None
+        links = []
+        for i, (a, b) in enumerate(ends):
+            a_prev = prev if prev is not None else (a[0] - (b[0] - a[0]), a[1] - (b[1] - a[1]))
+            b_next = ends[i + 1][1] if i + 1 < len(ends) else (b[0] + (b[0] - a[0]), b[1] + (b[1] - a[1]))
+            links.append((a_prev, b_next))
+            prev = a
+        body, radius, flt = self.space.static_body, self.radius, self.filter
+        new = []
+        for (a, b), mu, (na, nb) in zip(ends, frictions, links):
+            seg = pymunk.Segment(body, a, b, radius)
+            seg.friction = mu
+            seg.filter = flt
+            seg.set_neighbors(na, nb)
+            new.append(seg)
+        self.space.add(*new)
+        self.neighbors.extend(links)
         self.segments.extend(new)
         self.generated += len(new)
 
-    def _add_polyline(self, pts: list):
-        """Straight segments through pts (continuing from the last point added), friction self.mu0, linked."""
+    def _add_polyline(self, xs: list, ys: list):
+        """Straight segments through the points (xs, ys) (continuing from the last point added), friction
+        self.mu0, linked."""
+        pts = list(zip(xs, ys))
         if self._last is not None:
             pts.insert(0, self._last)
-        new = []
-        for p0, p1 in zip(pts[:-1], pts[1:]):
-            s = pymunk.Segment(self.space.static_body, p0, p1, self.radius)
-            s.friction = self.mu0
-            s.filter = self.filter
-            new.append(s)
-        self._link_and_add(new)
+        self._link_and_add(list(zip(pts[:-1], pts[1:])), [self.mu0] * (len(pts) - 1))
         self._last = pts[-1]
 
     def maintain(self, x: float, ahead: float, behind: float):
@@ -64,6 +72,8 @@ class StreamedTrack:
                 self.neighbors.popleft()
         if old:
             self.space.remove(*old)
+            for shape in old:
+                shape.body = None  # off the static body's list of its shapes, which kept every dropped one alive
             self.removed += len(old)
 
     @staticmethod
@@ -104,12 +114,6 @@ class PatchTrack(StreamedTrack):
     def _frontier(self) -> float:
         return self._x_end
 
-    def _segment(self, p0, p1, mu):
-        s = pymunk.Segment(self.space.static_body, p0, p1, self.radius)
-        s.friction = float(mu)
-        s.filter = self.filter
-        return s
-
     def _extend(self):
         j = self._j + 1 + np.arange(_CHUNK)
         bounds = (j + self.rng.random(_CHUNK)) * self.a
@@ -118,22 +122,23 @@ class PatchTrack(StreamedTrack):
             has_pit = self.rng.random(_CHUNK) < self.pit_p
             widths = self.pit_width[0] + self.rng.random(_CHUNK) * (self.pit_width[1] - self.pit_width[0])
             where = self.rng.random(_CHUNK)
-        new = []
+        ends, fr = [], []
         x0 = self._x_end
         y = self.y
-        for c, (x1, mu) in enumerate(zip(bounds, mus)):
+        for c, (x1, mu) in enumerate(zip(bounds.tolist(), mus.tolist())):
             if self.pit_p > 0 and has_pit[c] and x1 - x0 > 2 * widths[c]:
-                w, d = widths[c], self.pit_depth
-                xa = x0 + 0.5 * w + where[c] * (x1 - x0 - 2 * w)
+                w, d = float(widths[c]), self.pit_depth
+                xa = x0 + 0.5 * w + float(where[c]) * (x1 - x0 - 2 * w)
                 xb = xa + w
-                new += [self._segment((x0, y), (xa, y), mu), self._segment((xa, y), (xa, y - d), mu),
-                        self._segment((xa, y - d), (xb, y - d), mu), self._segment((xb, y - d), (xb, y), mu),
-                        self._segment((xb, y), (x1, y), mu)]
+                ends += [((x0, y), (xa, y)), ((xa, y), (xa, y - d)), ((xa, y - d), (xb, y - d)), ((xb, y - d), (xb, y)),
+                         ((xb, y), (x1, y))]
+                fr += [mu] * 5
                 self.pits += 1
             else:
-                new.append(self._segment((x0, y), (x1, y), mu))
+                ends.append(((x0, y), (x1, y)))
+                fr.append(mu)
             x0 = x1
-        self._link_and_add(new)
+        self._link_and_add(ends, fr)
         self._j = int(j[-1])
         self._x_end = float(bounds[-1])
 
@@ -181,7 +186,7 @@ class SelfAffineTrack(StreamedTrack):
         h = np.convolve(w, self.k, mode="valid")  # chunk_points heights
         self._noise = w[-(len(self.k) - 1):]
         xs = self._x_next + self.dx * np.arange(self.chunk)
-        self._add_polyline([(float(a), float(self.y + b)) for a, b in zip(xs, h)])
+        self._add_polyline(xs.tolist(), (self.y + h).tolist())
         self._x_next = float(xs[-1] + self.dx)
 
 
@@ -207,12 +212,13 @@ class BumpTrack(StreamedTrack):
         j = self._j + np.arange(_CHUNK * 8)
         hit = self.rng.random(j.size) < self.p
         heights = self.rng.random(j.size) * self.h_max
+        centres = [((jj + 0.5) * self.cell, self.y + h - self.r) for jj, h in zip(j[hit].tolist(), heights[hit].tolist())]
         new = []
-        for jj, h in zip(j[hit], heights[hit]):
-            c = pymunk.Circle(self.space.static_body, self.r, ((jj + 0.5) * self.cell, self.y + h - self.r))
-            c.friction = self.mu0
-            c.filter = self.filter
-            new.append(c)
+        for c in centres:
+            bump = pymunk.Circle(self.space.static_body, self.r, c)
+            bump.friction = self.mu0
+            bump.filter = self.filter
+            new.append(bump)
         if new:
             self.space.add(*new)
         self.segments.extend(new)
