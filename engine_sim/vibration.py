@@ -132,9 +132,10 @@ class Vibration:
         """n steps, each after setting the step's inertial acceleration (substrate target) or shaker force (block
         target) and the anchor's velocity; the law steps the space (in one loop when it needs no Python inside a
         step, else one step at a time). sin(omega t_n) by the two-term recurrence, re-anchored on math.sin at every
-        call (its rounding over one call of tens of steps is ~1e-15). pymunk's gravity setter wakes every sleeping
-        body: in the substrate's frame a resting grain feels the inertial force, so no grain sleeps while the
-        substrate is shaken."""
+        call (its rounding over one call of tens of steps is ~1e-15). One pymunk setter per step (two with a moving
+        anchor), each loop specialised so a step does no other attribute lookup or branch: the setters are the
+        part's cost (bench_vibration.py). pymunk's gravity setter wakes every sleeping body: in the substrate's
+        frame a resting grain feels the inertial force, so no grain sleeps while the substrate is shaken."""
         if not self.active:
             scene.law.advance(scene, n)
             return
@@ -145,26 +146,36 @@ class Vibration:
         K = self.A * self.wd2  # acceleration amplitude (mm/ms^2)
         space, dt, law = scene.space, self.dt, scene.law
         if self.plain:  # the law needs no Python inside a step: step the space here
-            do, arg = space.step, dt
+            step, arg = space.step, dt
         else:
-            do, arg = (lambda _: law.advance(scene, 1)), None
-        if self.pseudo:
-            gx, gy = self.g0
-            anchor, va, Kv = self.anchor, self.v_anchor, self.A / dt  # the laboratory moves by -s
-            for _ in range(n):
-                s_next = c2 * s_cur - s_prev
-                space.gravity = (gx + K * s_cur, gy) if self.axis == 0 else (gx, gy + K * s_cur)
-                if anchor is not None:  # the anchor's step-mean velocity in the substrate's frame
-                    anchor.velocity = (va - Kv * (s_next - s_cur), 0.0)
-                do(arg)
-                s_prev, s_cur = s_cur, s_next
-            space.gravity = self.g0  # samples and pickles see the plain gravity (the recorder's potential energy)
-        else:
+            step, arg = (lambda _: law.advance(scene, 1)), None
+        if not self.pseudo:
             block, KM = self.block, K * self.M
             for _ in range(n):
                 block.force = (KM * s_cur, 0.0) if self.axis == 0 else (0.0, KM * s_cur)
-                do(arg)
+                step(arg)
                 s_prev, s_cur = s_cur, c2 * s_cur - s_prev
+            return
+        gx, gy = self.g0
+        anchor, va, Kv = self.anchor, self.v_anchor, self.A / dt  # the laboratory moves by -s
+        if anchor is not None:  # parallel only: the anchor's step-mean velocity in the substrate's frame
+            for _ in range(n):
+                s_next = c2 * s_cur - s_prev
+                space.gravity = (gx + K * s_cur, gy)
+                anchor.velocity = (va - Kv * (s_next - s_cur), 0.0)
+                step(arg)
+                s_prev, s_cur = s_cur, s_next
+        elif self.axis == 0:
+            for _ in range(n):
+                space.gravity = (gx + K * s_cur, gy)
+                step(arg)
+                s_prev, s_cur = s_cur, c2 * s_cur - s_prev
+        else:
+            for _ in range(n):
+                space.gravity = (gx, gy + K * s_cur)
+                step(arg)
+                s_prev, s_cur = s_cur, c2 * s_cur - s_prev
+        space.gravity = self.g0  # samples and pickles see the plain gravity (the recorder's potential energy)
 
     def record(self, scene, ids, fl, tab, slider_terms, grain_table, drive_mass) -> tuple[float, float]:
         """(displacement s [mm], power [N mm/ms]) at the present sample, from the recorder's body buffer (ids,

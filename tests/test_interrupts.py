@@ -119,6 +119,31 @@ def test_ctrl_c_during_sweep_keeps_completed_tasks(tmp_path):
     assert 1 <= len(list((out / "tasks").glob("*.json"))) < 8
 
 
+@pytest.mark.slow  # a scene task started in this process, then signalled (about 10 s)
+@pytest.mark.timing  # exit within 3 s of the signal
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
+def test_signal_during_a_serial_scene_sweep_stores_no_partial_task(tmp_path, sig):
+    # engine_sim.run answers SIGINT/SIGTERM by returning its trace so far, marked partial; a sweep task must not
+    # store that as the task's result (a rerun would then skip the task): the sweep ends, exit 130, nothing stored
+    spec = tmp_path / "s.toml"
+    spec.write_text(f'name = "s"\ntarget = "scenario"\nscenario = "{PATCHES}"\n[fixed]\nduration = 60.0\n'
+                    '"run.warmup" = 0.2\n[grid]\nseed = [0, 1]\n')
+    out = tmp_path / "sw"
+    proc = _start(["sweep", spec, "--serial", "-o", out])
+    _wait_for(lambda: (out / "tasks").exists(), proc, timeout=120)
+    time.sleep(3.0)  # into the first task's run (60 s of scene: tens of seconds of wall)
+    assert proc.poll() is None
+    kids = _descendants(proc.pid)
+    t0 = time.perf_counter()
+    proc.send_signal(sig)
+    proc.wait(timeout=60)
+    wall = time.perf_counter() - t0
+    _, err = proc.communicate(timeout=60)
+    _one_line_130(proc, err, wall, 3.0)
+    assert not _alive(kids)
+    assert not list((out / "tasks").glob("*")) and not (out / "index.html").exists(), list(out.rglob("*"))
+
+
 # the fast tier keeps `run` (the same handler in main() serves every subcommand); render and compare wait longer
 @pytest.mark.parametrize("cmd, delay", [(["run", PATCHES, "--duration", "30"], 1.5),  # warm-up or first samples
                                         pytest.param(["render", PATCHES, "--frames", "400"], 2.5,

@@ -16,7 +16,7 @@ from ..analysis.fits import flag_mark
 from ..analysis.spectra import Spectrum, log_bin
 
 __all__ = ["new_figure", "follow_data", "spectrum_figure", "save_figure", "figure_png_bytes", "episode_histogram_figure", "level_figure",
-           "work_precision_figure"]
+           "work_precision_figure", "vibration_figure"]
 
 _SLOPE_NAMES = {"x": r"$\gamma$", "F": r"$C_F$ slope", "mu": r"$C_\mu$ slope"}
 
@@ -240,5 +240,69 @@ def collapse_figure(curves: list):
     ax.set_ylabel(r"$v\,C_x(\omega = q v)$ (m$^3$)")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def vibration_figure(rows: list):
+    """The vibration sweep against xi = v / (A omega_v), one curve per frequency (colour) and drive (marker: o
+    constant force, s constant velocity): in-band C_x over the unshaken twin, gamma, the mean Coulomb part over the
+    twin's, and the mean speed (force drive) or drive force (velocity drive) over the twin's, with 95 % intervals
+    and the rigid (dashed) and compliant (dotted) contact predictions (first panel, dashed: the square of the
+    measured Coulomb part's ratio); a thin vertical line per frequency at the onset of reversal of the linear pads
+    (xi = the pads' slip share, A = A_onset)."""
+    fig = new_figure(10.0, 7.4)
+    axs = fig.subplots(2, 2, sharex=True).ravel()
+    freqs = sorted({r["frequency"] for r in rows})
+    colours = dict(zip(freqs, rcParams["axes.prop_cycle"].by_key()["color"]))
+    panels = (("C_ratio", r"in-band $C_x$ / twin", None), ("gamma", r"$\gamma$ (fit)", None),
+              ("coulomb", "mean Coulomb part / twin", "coulomb"), ("motion", "speed (o) or drive force (s) / twin",
+                                                                    "motion"))
+    for f in freqs:
+        for cf, mk in ((True, "o"), (False, "s")):
+            rr = sorted((r for r in rows if r["frequency"] == f and r["constant_force"] == cf), key=lambda r: r["xi"])
+            if not rr:
+                continue
+            xi = np.array([r["xi"] for r in rr])
+            lab = f"{f:g} Hz, {'force' if cf else 'velocity'}"
+            for ax, (key, _, pred) in zip(axs, panels):
+                k = key if key != "motion" else ("speed" if cf else "drive")
+                y, e = np.array([r[k] for r in rr]), np.array([r[k + "_ci"] for r in rr])
+                ax.errorbar(xi, y, yerr=e, fmt=mk + "-", color=colours[f], ms=4, lw=0.8, capsize=2,
+                            mfc="none" if not cf else colours[f], label=lab)
+                if key == "C_ratio":  # the square of the measured Coulomb part's ratio
+                    ax.plot(xi, [r["coulomb_sq"] for r in rr], "--", color=colours[f], lw=1.0)
+                if pred is not None:
+                    base = {"coulomb": "coulomb", "motion": "speed" if cf else "drive"}[pred]
+                    for suffix, ls in (("_rigid", "--"), ("_compliant", ":"), ("_pads", "-.")):
+                        if base + suffix in rr[0]:
+                            ax.plot(xi, [r[base + suffix] for r in rr], ls, color=colours[f], lw=1.0)
+        onset = [r["pad_share"] for r in rows if r["frequency"] == f]
+        for ax in axs:
+            ax.axvline(onset[0], color=colours[f], lw=0.6, ls=(0, (1, 3)))
+    axs[0].set_yscale("log")
+    axs[0].axhline(1.0, color="k", lw=0.6)
+    measured = [r["C_ratio"] for r in rows if r["C_ratio"] > 0]
+    if measured:  # the measured levels set the axis; the squared Coulomb ratio may run far below them
+        axs[0].set_ylim(min(measured) / 5, max(max(measured), 1.0) * 3)
+    twin = [r["gamma_twin"] for r in rows]
+    if twin:
+        axs[1].axhline(float(np.nanmean(twin)), color="k", lw=0.6, label="unshaken twins")
+    from matplotlib.ticker import NullFormatter
+
+    for ax, (_, ylab, _) in zip(axs, panels):
+        ax.set_xscale("log")
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.set_ylabel(ylab)
+        ax.grid(True, alpha=0.3)
+    for ax in axs[2:]:
+        ax.set_xlabel(r"$\xi = v / (A\,\omega_v)$")
+    h, _ = axs[0].get_legend_handles_labels()
+    axs[0].legend(handles=h + [Line2D([], [], color="k", ls="--", label="(measured Coulomb part / twin)$^2$")],
+                  fontsize=7)
+    axs[2].legend(handles=[Line2D([], [], color="k", ls="--", label="rigid contacts (arcsin, held share)"),
+                           Line2D([], [], color="k", ls=":", label="compliant pads (Jenkins element)"),
+                           Line2D([], [], color="k", ls="-.", label="arcsin with the linear pads' slip share")],
+                   fontsize=7)
     fig.tight_layout()
     return fig

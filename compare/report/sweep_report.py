@@ -45,6 +45,12 @@ def build_sweep_report(spec, results: list, failures: list):
         from .wear_study import study_sections
         sections, summary["wear_study"] = study_sections(spec, results)
         out += sections
+    if "vibration.amplitude" in keys:  # a vibration sweep with its unshaken twins (compare/report/vibration.py)
+        from .vibration import cells, section
+        rows = cells(results)
+        if rows:
+            out.append(section(rows))
+            summary["vibration"] = rows
     vs = sorted({float(r["v"]) for r in results}) if results and all("v" in r for r in results) else []
     if "v" in keys and len(vs) >= 2:
         a = spec.analysis

@@ -6,6 +6,7 @@ format is in :mod:`compare.sweep.spec`; :mod:`compare.sweep.run` schedules the t
 """
 from __future__ import annotations
 
+import math
 import time
 
 from .spec import SCENARIO, SweepSpec, build_point, model_of
@@ -26,12 +27,36 @@ def _run_scene(spec: SweepSpec, sc, seed: int, extra: dict):
     import engine_sim
 
     tr = engine_sim.run(sc, seed=seed)
+    if tr.metadata.get("partial"):  # stopped by SIGINT/SIGTERM: not a result; the interrupt ends the sweep
+        raise KeyboardInterrupt
     v = sc.steady_velocity
     band = (3 * v / sc.substrate.a, 30 * v / sc.substrate.a)
     if spec.analysis.get("wear"):  # the wear study's per-task statistics
         from ..analysis.wear_study import task_stats
         extra["wear"] = task_stats(tr, sc, band)
+    vib = sc.vibration
+    if vib is not None and vib.amplitude > 0:
+        tr = _line_removed(tr, vib, extra)
     return tr, v, band, "x"
+
+
+def _line_removed(tr, vib, extra: dict):
+    """A shaken scene's trace with the line at the vibration's frequency and its first 4 harmonics fitted and
+    removed from the position (:func:`compare.analysis.harmonics.remove_harmonics`, 2 differences: the scene's
+    C_x falls near omega^-4), so the spectrum and fit hold the noise alone; the fitted line goes to ``extra``."""
+    from dataclasses import replace
+
+    from ..analysis.harmonics import remove_harmonics
+
+    x, fit = remove_harmonics(tr.t, tr.x, 2 * math.pi * vib.frequency, harmonics=4, order=2)
+    extra["line_removed"] = fit.to_dict()
+    return replace(tr, x=x)
+
+
+def _mean_forces(tr) -> dict:
+    """Mean forces over the record (N): the drive's, the friction's Coulomb part F_t and viscous part F_drag."""
+    return {"mean_F_drive": float(tr.F_drive.mean()), "mean_F_t": float(tr.F_t.mean()),
+            "mean_F_drag": float(tr.F_drag.mean())}
 
 
 def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
@@ -47,6 +72,7 @@ def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
         obj, run = build_point(spec, params)
         if spec.target == SCENARIO:
             tr, v, band, series = _run_scene(spec, obj, seed, extra)
+            extra.update(_mean_forces(tr))
         else:
             tr, v, band, series = _run_model(spec, obj, run, seed)
         # a wear-study task's spectrum and fit on its own segments (the default ones leave a 3 s run's band unresolved)

@@ -86,11 +86,34 @@ def timing(model: str, run: str, wall, err) -> dict:
 
 
 def run_scene(sc, quick, seed, trace, duration, progress):
-    """The scene's trace (run now unless given), its wall time and duration."""
+    """The scene's trace (run now unless given), its wall time and duration. A shaken scene's line at the
+    vibration's frequency and its harmonics below the output's Nyquist frequency are fitted and removed from x(t)
+    (:func:`compare.analysis.harmonics.remove_harmonics`), the fit kept in ``metadata["line_removed"]``."""
     if trace is None:
         T = duration or (sc.substrate_part.quick_duration if quick else sc.run.duration)
         tr, wall = timed(whole_run, sc.with_run(duration=T), seed=seed, progress=progress)
     else:
         tr, wall = trace, float(trace.metadata.get("wall_s", float("nan")))
         T = float(tr.t[-1])
+    vib = getattr(sc, "vibration", None)
+    if vib is not None and vib.amplitude > 0:
+        from dataclasses import replace
+
+        from ...analysis.harmonics import remove_harmonics
+
+        x, line = remove_harmonics(tr.t, tr.x, 2 * math.pi * vib.frequency, harmonics=4, order=2)
+        tr = replace(tr, x=x, metadata={**tr.metadata, "line_removed": line.to_dict()})
     return tr, wall, T
+
+
+def line_text(tr) -> str:
+    """The sentence that says a shaken scene's line was removed from x(t) before its spectrum ("" if none was)."""
+    line = tr.metadata.get("line_removed")
+    if not line:
+        return ""
+    f = line["omega"] / (2 * math.pi)
+    kept = [f"{1e6 * a:.3g} um at {k + 1} f_v" for k, a in enumerate(line["amplitude"]) if a == a]
+    return (f"The scene is shaken at f_v = {f:g} Hz: the line and its harmonics below the output's Nyquist frequency "
+            f"were fitted and removed from x(t) before the spectrum ({', '.join(kept) or 'none resolved'}); the "
+            "spectra, fits and ratios here hold the noise alone. The in-band effect of the vibration is read against "
+            "the unshaken twin (the same scene with amplitude 0 and the same seed), not against model I.")

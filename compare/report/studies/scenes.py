@@ -18,16 +18,16 @@ from ..html import esc, paragraphs, span, table
 from ...analysis.spectra import displacement_spectrum, force_series_spectrum
 from ..study import Figure, Study, StudyResult
 from ..verdict import NOT_A_POWER_LAW, fit_text, ratio_verdict
-from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
+from ._common import balances, band_ratios, line_text, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
 
-# (quick, full) cost of each scene's study in CPU seconds, as benchmarks/bench_report.py measures them (loaded
-# machine), so the report's pool starts the longest first and its workers end together (the wear pair,
+# (quick, full) cost of each scene's study in CPU seconds, as benchmarks/bench_report.py measures them (load 2-4),
+# so the report's pool starts the longest first and its workers end together (the wear pair,
 # pads_multiscale with both models, the line-scan and rough-profile substrates, whose pads cost about 1.5 CPU s
 # per simulated second, lead; a friction-patch scene costs about 0.35)
-SCENE_COSTS = {"pads_with_wear": (37.4, 95.9), "pads_multiscale": (26.8, 43.8), "line_scan_example": (17.0, 38.9),
-               "pads_rough_profile": (14.4, 37.0), "pads_rate_state": (11.4, 18.3), "asperity_field": (9.6, 9.7),
-               "pads_friction_patches": (6.1, 6.2), "constant_velocity": (4.9, 6.6), "leonardo_slider": (4.8, 7.5),
-               "spring_slider_rate_state": (4.6, 7.5), "tilted_plane": (4.2, 6.7)}
+SCENE_COSTS = {"pads_with_wear": (37.8, 85.9), "pads_multiscale": (25.0, 31.0), "line_scan_example": (14.3, 33.3),
+               "pads_rough_profile": (13.0, 32.6), "pads_rate_state": (10.2, 16.4), "asperity_field": (8.9, 11.8),
+               "pads_friction_patches": (3.9, 5.6), "constant_velocity": (4.9, 5.6), "leonardo_slider": (5.5, 6.1),
+               "spring_slider_rate_state": (4.7, 7.1), "tilted_plane": (4.6, 6.9)}
 
 
 def fitting_part(sc):
@@ -138,6 +138,8 @@ def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
         + f"Substrate force on the pads: omega^-({fit_text(fit_f)}) (model I: omega^-2). Renewal length "
         f"{1e3 * ex['a']['value']:.3f} mm{a_sub_text}, alpha = {ex['alpha']['value']:.3f}{alpha_text}.",
     ]
+    if line_text(tr):
+        parts.append(line_text(tr))
     if sc.drive_part.extra_mass > 0:  # a drive with a body of its own on a rope (Leonardo's slider)
         parts.append(
             f"Leonardo's slider: model I uses M = block + hanging mass = {ex['M']['value']:.4g} kg (the rope taut). Above "
