@@ -1,10 +1,11 @@
-"""Where the report's time goes: each study's wall time, run one after another in this process, with the machine's
-load (``uptime``) before and after, and the whole report's wall time with its worker pool.
+"""Where the report's time goes: each study's wall and CPU time, run one after another in this process, with the
+machine's load (``uptime``) before and after, and the whole report's wall and CPU time with its worker pool.
 
     python -m benchmarks.bench_report [--quick] [--full] [--workers N] [--only KEY ...] [--json out.json]
 
 Each study is seeded on its own, so its time alone is what it costs inside the report; the pool's total is bounded
-below by the longest study and by the sum over the cores. Run it twice: the first run fills numba's disk cache
+below by the longest study and by the sum over the cores. The whole report runs as a user runs it: `frictionnoise
+report` in a fresh process, imports, worker start-up and files included. Run it twice: the first run fills numba's disk cache
 (the report states times with a warm cache). Timings on a loaded machine say so: the load averages are printed.
 """
 from __future__ import annotations
@@ -37,13 +38,62 @@ def per_study(quick: bool, seed: int, only=None) -> list:
     return rows
 
 
-def whole(quick: bool, seed: int, workers: int) -> float:
-    """Wall seconds of the whole report (computation only, no files) with ``workers`` processes."""
-    from compare.report.build import build_report
+_WHOLE = """
+import json, os, resource, sys, time
+t0 = time.perf_counter()
+from compare.cli import main
+rc = main(sys.argv[1:])
+wall = time.perf_counter() - t0
 
-    t0 = time.perf_counter()
-    build_report(quick=quick, seed=seed, workers=workers)
-    return time.perf_counter() - t0
+
+def live_children_cpu():
+    # the workers are the fork server's children, which it has waited for: the CPU of this process's live children
+    # (the fork server, the resource tracker) with their waited children, from /proc (utime, stime, cutime, cstime)
+    tick, me, total = os.sysconf("SC_CLK_TCK"), os.getpid(), 0.0
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{pid}/stat") as fh:
+                f = fh.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(f[1]) == me:
+            total += sum(int(x) for x in f[11:15]) / tick
+    return total
+
+
+own, kids = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+cpu = own.ru_utime + own.ru_stime + kids.ru_utime + kids.ru_stime + live_children_cpu()
+print(json.dumps({"rc": rc, "wall_in_s": wall, "cpu_s": cpu}))
+"""
+
+
+def whole(quick: bool, seed: int, workers: int) -> dict:
+    """The whole `frictionnoise report` as a user runs it, in a fresh process (imports, worker start-up, the
+    studies, the files): {"wall_s": from start to exit, "cpu_s": that process and its workers, user + system,
+    "studies": each study's wall and CPU seconds inside the report (summary.json's study_seconds)}."""
+    import sys
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        args = ["report", "-o", f"{tmp}/report", "--seed", str(seed), "--workers", str(workers)] + (["--quick"] if quick else [])
+        t0 = time.perf_counter()
+        r = subprocess.run([sys.executable, "-c", _WHOLE, *args], capture_output=True, text=True)
+        wall = time.perf_counter() - t0
+        if r.returncode != 0:
+            raise RuntimeError(f"the report failed: {r.stderr[-2000:]}")
+        with open(f"{tmp}/report/summary.json") as fh:
+            studies = json.load(fh)["study_seconds"]
+    out = json.loads(r.stdout.strip().splitlines()[-1])
+    return {"wall_s": wall, "cpu_s": out["cpu_s"], "studies": studies}
+
+
+def schedule(costs: list, workers: int) -> float:
+    """The longest worker's share when the studies go longest first to whichever worker is free (as the report's
+    pool hands them out): the pool's wall time if each study took its CPU seconds."""
+    ends = [0.0] * workers
+    for c in sorted(costs, reverse=True):
+        ends[ends.index(min(ends))] += c
+    return max(ends)
 
 
 def main(argv=None) -> int:
@@ -54,6 +104,7 @@ def main(argv=None) -> int:
     ap.add_argument("--only", nargs="*", help="study keys or labels to time")
     ap.add_argument("--whole-only", action="store_true", help="only the whole report with its worker pool")
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--repeat", type=int, default=1, help="runs of the whole report")
     ap.add_argument("--json", help="write the timings here")
     args = ap.parse_args(argv)
     modes = [m for m, on in (("quick", args.quick), ("full", args.full)) if on] or ["quick", "full"]
@@ -66,11 +117,24 @@ def main(argv=None) -> int:
         entry = {"load_before": before, "studies": {k: {"wall_s": w, "cpu_s": c} for k, w, c in rows},
                  "sum_s": sum(r[1] for r in rows), "sum_cpu_s": sum(r[2] for r in rows), "load_after": load()}
         print(f"  {'sum':32s} {entry['sum_s']:7.1f} s wall {entry['sum_cpu_s']:7.1f} s CPU ({entry['load_after']})")
-        if args.workers and not args.only:
-            entry["whole_s"] = whole(quick, args.seed, args.workers)
-            entry["workers"] = args.workers
-            entry["load_whole"] = load()
-            print(f"  whole {mode} report, {args.workers} workers: {entry['whole_s']:.1f} s ({entry['load_whole']})")
+        if rows and args.workers:
+            from compare.report import studies
+
+            alone = {st.label for st in studies.selected(quick) if st.alone}
+            entry["pool_cpu_bound_s"] = schedule([c for k, _, c in rows if k not in alone], args.workers)
+            entry["alone_cpu_s"] = sum(c for k, _, c in rows if k in alone)
+            print(f"  longest first on {args.workers} workers, the busiest ends after {entry['pool_cpu_bound_s']:.1f} CPU s"
+                  + (f"; then {entry['alone_cpu_s']:.1f} CPU s alone" if alone else ""))
+        for _ in range(args.repeat if args.workers and not args.only else 0):
+            before = load()
+            w = whole(quick, args.seed, args.workers)
+            entry.setdefault("whole", []).append({**w, "load_before": before, "load_after": load()})
+            entry.update(whole_s=w["wall_s"], whole_cpu_s=w["cpu_s"], workers=args.workers, load_whole=load())
+            for k, v in sorted(w["studies"].items(), key=lambda kv: -kv[1]["cpu_s"]):
+                print(f"    in the pool: {k:32s} {v['wall_s']:7.1f} s wall {v['cpu_s']:7.1f} s CPU")
+            print(f"  whole {mode} report (`frictionnoise report{' --quick' if quick else ''} --workers {args.workers}`, "
+                  f"a fresh process): {w['wall_s']:.1f} s wall, {w['cpu_s']:.1f} s CPU ({before} -> {entry['load_whole']})",
+                  flush=True)
         out["modes"][mode] = entry
     if args.json:
         with open(args.json, "w") as fh:

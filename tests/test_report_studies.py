@@ -79,6 +79,21 @@ def test_build_report_with_stub_study_writes_every_file(tmp_path):
     assert json.loads((out / "summary.json").read_text())["scenarios"]["stub_b"] == {"y": [1, 2]}
 
 
+def test_the_pool_starts_the_costliest_study_of_each_report_first():
+    # on two workers a long study started last leaves the other worker idle for most of it: the pool starts the
+    # studies by their cost in the report being built (quick or full), in measured CPU seconds
+    from engine_sim import shipped_scenarios
+
+    from compare.report.build import pool_order
+    from compare.report.studies.scenes import SCENE_COSTS
+
+    a, b, c = (Study("a", "a", None, cost=50.0, quick_cost=2.0), Study("b", "b", None, cost=5.0, quick_cost=20.0),
+               Study("c", "c", None))  # c: cost 1, the same in both reports
+    assert pool_order([a, b, c], quick=True) == [1, 0, 2] and pool_order([a, b, c], quick=False) == [0, 1, 2]
+    assert set(SCENE_COSTS) == set(shipped_scenarios())  # a scene without a measured cost would start at random
+    assert all(s.cost_in(q) > 0 for q in (True, False) for s in studies.selected(q) if s.key != "scenes_method")
+
+
 def test_studies_marked_alone_run_last_after_the_speed_table():
     order = []
 

@@ -416,17 +416,20 @@ def cmd_compare(args) -> int:
 
 
 def cmd_report(args) -> int:
-
-    from ..report import studies
-    from ..report.html import write_report
-    from .progress import StageProgress
-    from ..report.build import build_report
-
     out = output_dir(args.output, "frictionnoise-report", "index.html, summary.json and figures/")
     check_seed(args.seed)
     if args.workers is not None and args.workers < 1:
         raise UserError(f"--workers must be at least 1 (got {args.workers})")
     workers = args.workers or usable_cores(cap=4)
+    if workers > 1:  # the workers' fork server imports the studies while this process does (compare.report.pool)
+        from ..report.pool import PRELOAD, start_server
+
+        start_server(PRELOAD)
+    from ..report import studies
+    from ..report.html import write_report
+    from .progress import StageProgress
+    from ..report.build import build_report
+
     chosen = studies.selected(args.quick)
     from .compile_notice import announcer, compile_notice
 

@@ -13,41 +13,52 @@ from frictionnoise import package_version
 from .html import paragraphs, summary_of, table
 from .study import StudyResult
 
-__all__ = ["build_report", "build_scene_report", "build_model_report", "run_studies"]
+__all__ = ["build_report", "build_scene_report", "build_model_report", "run_studies", "pool_order"]
 
 CONVENTIONS = "C(omega) two-sided in angular frequency, eq. (2); gamma_err = 95 % half-width"
 
 
 def _run_study(study, quick: bool, seed: int):
-    """(results, wall seconds) of one study. Module-level, so a worker process can run it: every study draws
-    its own seeded random numbers, so where it runs does not change it."""
-    t0 = time.perf_counter()
+    """(results, wall seconds, CPU seconds) of one study. Module-level, so a worker process can run it: every study
+    draws its own seeded random numbers, so where it runs does not change it."""
+    t0, c0 = time.perf_counter(), time.process_time()
     out = study.run(quick, seed)
-    return (list(out) if isinstance(out, (list, tuple)) else [out]), time.perf_counter() - t0
+    return (list(out) if isinstance(out, (list, tuple)) else [out]), time.perf_counter() - t0, time.process_time() - c0
 
 
-def run_studies(studies, quick: bool, seed: int, workers: int = 1, progress=None, on_compile=None) -> list:
+def pool_order(studies, quick: bool) -> list:
+    """Indices of ``studies`` in the order the pool starts them: the costliest first (``Study.cost_in``, CPU s in the
+    quick or full report), so that on two workers the longest runs do not start last and the workers end together."""
+    return sorted(range(len(studies)), key=lambda i: -studies[i].cost_in(quick))
+
+
+def run_studies(studies, quick: bool, seed: int, workers: int = 1, progress=None, on_compile=None,
+                seconds=None) -> list:
     """Results of each study (a list of StudyResult per study), in the given order.
 
-    With workers > 1 they run in that many spawned processes, longest first. ``progress(label, event, wall)`` is
-    called with event "start" when a study starts (in a pool: when a worker takes it, from the pool's first-in
-    first-out order) and "done" when it has finished (wall: its own seconds; None at "start"). ``on_compile()`` is
-    called once when numba first compiles in a worker process (see :func:`compare.report.pool.process_pool`)."""
+    With workers > 1 they run in that many worker processes (:func:`compare.report.pool.process_pool`), the
+    costliest first (``Study.cost_in``). ``progress(label, event, wall)`` is called with event "start" when a study
+    starts (in a pool: when a worker takes it, from the pool's first-in first-out order) and "done" when it has
+    finished (wall: its own seconds; None at "start"). ``on_compile()`` is called once when numba first compiles
+    in a worker process. ``seconds``, a dict, receives {label: {"wall_s", "cpu_s"}} of each study (CPU: its own
+    process's, user + system)."""
     progress = progress or (lambda label, event, wall=None: None)
+    seconds = {} if seconds is None else seconds
     if workers <= 1 or len(studies) <= 1:
         out = []
         for st in studies:
             progress(st.label, "start", None)
-            res, wall = _run_study(st, quick, seed)
+            res, wall, cpu = _run_study(st, quick, seed)
             out.append(res)
+            seconds[st.label] = {"wall_s": wall, "cpu_s": cpu}
             progress(st.label, "done", wall)
         return out
     from concurrent.futures import as_completed
 
-    from .pool import process_pool
+    from .pool import PRELOAD, process_pool
 
-    with process_pool(workers, on_compile) as pool:  # on Ctrl-C or an error its processes end at once
-        order = sorted(range(len(studies)), key=lambda i: -studies[i].cost)
+    with process_pool(workers, on_compile, PRELOAD) as pool:  # on Ctrl-C or an error its processes end at once
+        order = pool_order(studies, quick)
         futures = {pool.submit(_run_study, studies[i], quick, seed): i for i in order}
         queue = list(order)
         for i in queue[:workers]:
@@ -56,7 +67,8 @@ def run_studies(studies, quick: bool, seed: int, workers: int = 1, progress=None
         out = [None] * len(studies)
         for fut in as_completed(futures):
             i = futures[fut]
-            out[i], wall = fut.result()
+            out[i], wall, cpu = fut.result()
+            seconds[studies[i].label] = {"wall_s": wall, "cpu_s": cpu}
             progress(studies[i].label, "done", wall)
             if started < len(queue):
                 progress(studies[queue[started]].label, "start", None)
@@ -92,17 +104,19 @@ def build_report(quick: bool = False, seed: int = 0, progress=None, workers: int
     t0 = time.perf_counter()
     pooled = [s for s in studies if not s.alone]
     alone = [s for s in studies if s.alone]
-    results = [r for rs in run_studies(pooled, quick, seed, workers, progress, on_compile) for r in rs]
+    seconds: dict = {}
+    results = [r for rs in run_studies(pooled, quick, seed, workers, progress, on_compile, seconds) for r in rs]
     speed = _speed([t for r in results for t in r.timings], "Speed against error",
         "Wall time of each run in this report (after JIT warm-up) and its band-averaged |ln(simulation / exact "
         "theory)|, which for the exact reduced-model simulators is sampling noise; for the scenes it is the "
         "distance to model I built from the scene's measured parameters. The explicit baseline for model I, the "
         "engine's loop overhead and the work-precision tables are in benchmarks/ (see the README)."
         + (f" The runs ran {workers} at a time, each in its own process." if workers > 1 else ""))
-    alone_results = [r for rs in run_studies(alone, quick, seed, 1, progress) for r in rs]
+    alone_results = [r for rs in run_studies(alone, quick, seed, 1, progress, seconds=seconds) for r in rs]
     # page: the studies, the speed table, then the studies that ran alone; summary.json: the speed table last
     summary = summary_of(results + alone_results + [speed], header)
     summary["total_wall_s"] = time.perf_counter() - t0
+    summary["study_seconds"] = seconds  # where the time went: each study's wall and CPU seconds
     return results + [speed] + alone_results, summary
 
 

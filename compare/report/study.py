@@ -64,7 +64,9 @@ class Study:
         depend on which process runs it or what runs beside it.
     quick : part of the quick report (``--quick``).
     alone : measures speed, so it runs after the others, in the report's own process, with nothing beside it.
-    cost : relative wall time, to hand the longest studies to workers first.
+    cost : its cost in the full report, in CPU seconds as benchmarks/bench_report.py measures them, so the pool
+        hands the longest studies to its workers first and they end together.
+    quick_cost : the same in the quick report (default: ``cost``).
     """
     key: str
     label: str
@@ -72,3 +74,8 @@ class Study:
     quick: bool = True
     alone: bool = False
     cost: float = 1.0
+    quick_cost: float | None = None
+
+    def cost_in(self, quick: bool) -> float:
+        """Its cost (CPU s) in the quick or full report."""
+        return self.quick_cost if quick and self.quick_cost is not None else self.cost

@@ -116,4 +116,4 @@ def run(quick: bool, seed: int) -> list:
     return [_reference(p, seed), _variations(p, quick, seed)]
 
 
-STUDY = Study("model_I", "model I", run, cost=2.0)
+STUDY = Study("model_I", "model I", run, cost=3.3, quick_cost=2.4)  # CPU s (benchmarks/bench_report.py)

@@ -83,4 +83,4 @@ def run(quick: bool, seed: int) -> StudyResult:
                         ratio_verdict("model_II", "C_F / (B2), exact closure", ratios, 1.25, "1 (eq. B2)")))
 
 
-STUDY = Study("model_II", "model II", run, cost=1.5)
+STUDY = Study("model_II", "model II", run, cost=9.8, quick_cost=3.8)  # CPU s (benchmarks/bench_report.py)

@@ -70,4 +70,4 @@ def run(quick: bool, seed: int) -> list:
             StudyResult("model_III_N300", "", numbers["model_III_N300"])]
 
 
-STUDY = Study("model_III", "model III", run)
+STUDY = Study("model_III", "model III", run, cost=1.6, quick_cost=1.2)  # CPU s (benchmarks/bench_report.py)

@@ -12,4 +12,5 @@ def _run(quick: bool, seed: int):
     return model_result("model_ageing", seed=seed, duration=300.0 if quick else 900.0)
 
 
-STUDY = Study("models/model_ageing", "model I with ageing contacts", _run, quick=True, cost=1.0)
+STUDY = Study("models/model_ageing", "model I with ageing contacts", _run, quick=True, cost=2.0,
+              quick_cost=1.0)  # CPU s (benchmarks/bench_report.py)

@@ -310,7 +310,7 @@ def run(quick: bool, seed: int) -> StudyResult:
                        numbers=numbers, figures=figs, html="\n".join(parts), verdicts=verdicts)
 
 
-STUDY = Study(key="model_Ib", label="model Ib (multiscale)", run=run, cost=5.0)
+STUDY = Study(key="model_Ib", label="model Ib (multiscale)", run=run, cost=12.2, quick_cost=5.0)  # CPU s (bench_report)
 
 
 def _png_bytes(fig) -> bytes:

@@ -20,11 +20,14 @@ from ..study import Figure, Study, StudyResult
 from ..verdict import NOT_A_POWER_LAW, fit_text, ratio_verdict
 from ._common import balances, band_ratios, line_text, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
 
-# relative cost, to hand the longest studies to workers first (CPU seconds per study are printed by
-# benchmarks/bench_report.py: the wear pair, pads_multiscale with both models, and the line-scan and rough-profile
-# substrates, whose pads cost about 1.5 CPU s per simulated second, lead; a friction-patch scene costs about 0.35)
-_COST_HINT = {"pads_with_wear": 18.0, "pads_multiscale": 12.0, "pads_rough_profile": 9.0, "line_scan_example": 9.0,
-              "asperity_field": 7.0}
+# (quick, full) cost of each scene's study in CPU seconds, as benchmarks/bench_report.py measures them (load 2-4),
+# so the report's pool starts the longest first and its workers end together (the wear pair,
+# pads_multiscale with both models, the line-scan and rough-profile substrates, whose pads cost about 1.5 CPU s
+# per simulated second, lead; a friction-patch scene costs about 0.35)
+SCENE_COSTS = {"pads_with_wear": (37.8, 85.9), "pads_multiscale": (25.0, 31.0), "line_scan_example": (14.3, 33.3),
+               "pads_rough_profile": (13.0, 32.6), "pads_rate_state": (10.2, 16.4), "asperity_field": (8.9, 11.8),
+               "pads_friction_patches": (3.9, 5.6), "constant_velocity": (4.9, 5.6), "leonardo_slider": (5.5, 6.1),
+               "spring_slider_rate_state": (4.7, 7.1), "tilted_plane": (4.6, 6.9)}
 
 
 def fitting_part(sc):
@@ -37,9 +40,10 @@ def fitting_part(sc):
 # Recorded seconds of a scene in the full report (the quick one takes each part's ``quick_duration``, 8-16 s;
 # ``frictionnoise compare`` the scenario's own duration). 20 s resolve 3-30 v/a with 4 s Welch segments, so
 # gamma's 95 % half-width is about 0.13 (0.20 at 12 s; see benchmarks/results/report_speed.md), and every
-# per-band ratio averages at least 9 segments.
+# per-band ratio averages at least 9 segments. pads_rate_state against model I with ageing contacts: 0.67-1.31 per
+# band at 20 s, 0.72-1.19 at 60 s (both within the factor 1.5), gamma 4.32 +- 0.16 against 4.44 +- 0.09.
 FULL_DURATION = 20.0
-SHORTENED = ("model_I", "model_II", "model_III")
+SHORTENED = ("model_I", "model_II", "model_III", "model_ageing")
 
 # each reduced model's comparison with a scene: (module of this package, function), looked up when called
 COMPARISONS = {"model_I": ("scenes", "_model_I_result"), "model_II": ("scene_wear", "wear_result"),
@@ -206,5 +210,6 @@ def scene_studies() -> list:
     """One study per shipped scenario, in the order engine_sim lists them."""
     from engine_sim import shipped_scenarios
 
-    return [Study(f"scenarios/{name}", f"scene {name}", partial(_run_shipped, name), cost=_COST_HINT.get(name, 1.0))
-            for name in shipped_scenarios()]
+    costs = {name: SCENE_COSTS.get(name, (5.0, 10.0)) for name in shipped_scenarios()}  # (quick, full) CPU s
+    return [Study(f"scenarios/{name}", f"scene {name}", partial(_run_shipped, name), cost=full, quick_cost=quick)
+            for name, (quick, full) in costs.items()]
