@@ -421,10 +421,6 @@ def cmd_report(args) -> int:
     if args.workers is not None and args.workers < 1:
         raise UserError(f"--workers must be at least 1 (got {args.workers})")
     workers = args.workers or usable_cores(cap=4)
-    if workers > 1:  # the workers' fork server imports the studies while this process does (compare.report.pool)
-        from ..report.pool import PRELOAD, start_server
-
-        start_server(PRELOAD)
     from ..report import studies
     from ..report.html import write_report
     from .progress import StageProgress

@@ -55,9 +55,9 @@ def run_studies(studies, quick: bool, seed: int, workers: int = 1, progress=None
         return out
     from concurrent.futures import as_completed
 
-    from .pool import PRELOAD, process_pool
+    from .pool import process_pool
 
-    with process_pool(workers, on_compile, PRELOAD) as pool:  # on Ctrl-C or an error its processes end at once
+    with process_pool(workers, on_compile) as pool:  # on Ctrl-C or an error its processes end at once
         order = pool_order(studies, quick)
         futures = {pool.submit(_run_study, studies[i], quick, seed): i for i in order}
         queue = list(order)

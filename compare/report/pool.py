@@ -1,51 +1,13 @@
 """Worker processes that stop when asked: a process pool whose workers leave Ctrl-C to the parent, and which the
 parent ends at once (terminate, then kill) when it is interrupted or fails, instead of waiting for the running
 tasks at exit (which would print the workers' tracebacks). The workers can tell the parent when numba first
-compiles in one of them (numba's "numba:compile" event), so the command line can say why the first run is slow.
-
-Where the platform has it (Linux), the workers are forked from a fork server (``multiprocessing``'s forkserver
-start method) that has imported the modules named in ``preload`` once: a worker starts with them imported instead
-of importing them itself (the report's modules, scipy, numba, pymunk and matplotlib: about 2-3 CPU s per process).
-The server is a fresh single-threaded interpreter, so forking it copies no lock held by a thread of the parent (a
-progress bar's monitor), which is why the workers are not forked from the parent itself."""
+compiles in one of them (numba's "numba:compile" event), so the command line can say why the first run is slow."""
 from __future__ import annotations
 
 import signal
 from contextlib import contextmanager
 
-__all__ = ["process_pool", "start_server", "PRELOAD"]
-
-# what the report's workers import before their first study: its studies (numpy, scipy, numba, pymunk, the models,
-# the engine) and its figures (matplotlib)
-PRELOAD = ("compare.report.studies", "compare.report.plots")
-
-
-def _context(preload=()):
-    """The workers' start method: forkserver (preloading ``preload``) where the platform has it, else spawn."""
-    import multiprocessing
-    import sys
-
-    # the pool's semaphores, left to multiprocessing's resource tracker when Ctrl-C ends the workers and the CLI
-    # exits at once, are cleaned up by it with a warning printed under our one line: the tracker (started with this
-    # process's -W options, as is the fork server) stays quiet (as the sweep's LocalCluster does)
-    if "ignore:resource_tracker:UserWarning" not in sys.warnoptions:
-        sys.warnoptions.append("ignore:resource_tracker:UserWarning")
-    if "forkserver" not in multiprocessing.get_all_start_methods():
-        return multiprocessing.get_context("spawn")
-    ctx = multiprocessing.get_context("forkserver")
-    ctx.set_forkserver_preload(list(preload))  # takes effect when the server starts (once per process)
-    return ctx
-
-
-def start_server(preload=()):
-    """Start the fork server now, so that it imports ``preload`` while this process goes on with its own work (on
-    2 cores the server's imports and this process's overlap). Nothing where the workers are spawned; once per
-    process (a running server keeps the modules it preloaded)."""
-    ctx = _context(preload)
-    if ctx.get_start_method() == "forkserver":
-        from multiprocessing import forkserver
-
-        forkserver.ensure_running()
+__all__ = ["process_pool"]
 
 
 def _start_worker(compiled=None):
@@ -107,19 +69,24 @@ def _end(pool, others: set, grace: float = 1.0):
 
 
 @contextmanager
-def process_pool(workers: int, on_compile=None, preload=()):
-    """A ProcessPoolExecutor of ``workers`` processes forked from a fork server that has imported ``preload`` (or
-    spawned where there is no fork server; never forked from this process, which may hold threads, e.g. a progress
-    bar's monitor, whose locks a fork would copy held). On any exception, KeyboardInterrupt included, queued tasks
-    are cancelled and the worker processes ended before the exception goes on. ``on_compile()`` is called once, in
-    this process, when numba first compiles a kernel in a worker (not on a disk-cache hit)."""
+def process_pool(workers: int, on_compile=None):
+    """A ProcessPoolExecutor of ``workers`` spawned processes (spawn, not fork: the parent may hold threads, e.g.
+    a progress bar's monitor, whose locks a fork would copy held). On any exception, KeyboardInterrupt included,
+    queued tasks are cancelled and the worker processes ended before the exception goes on. ``on_compile()`` is
+    called once, in this process, when numba first compiles a kernel in a worker (not on a disk-cache hit)."""
     from contextlib import nullcontext
 
     import multiprocessing
+    import sys
     from concurrent.futures import ProcessPoolExecutor
 
+    # the pool's semaphores, left to multiprocessing's resource tracker when Ctrl-C ends the workers and the CLI
+    # exits at once, are cleaned up by it with a warning printed under our one line: the tracker (started with this
+    # process's -W options) stays quiet (as the sweep's LocalCluster does)
+    if "ignore:resource_tracker:UserWarning" not in sys.warnoptions:
+        sys.warnoptions.append("ignore:resource_tracker:UserWarning")
     others = set(multiprocessing.active_children())  # children that are not the pool's, left alone by _end
-    ctx = _context(preload)
+    ctx = multiprocessing.get_context("spawn")
     flag = ctx.Event() if on_compile is not None else None
     pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_start_worker, initargs=(flag,))
     with _watch(flag, on_compile) if flag is not None else nullcontext():
