@@ -5,11 +5,18 @@
 that holds the block (its guide rides with them: a guided block keeps its height above the tracks); the drive's
 anchor stays in the laboratory. The scene is solved in the substrate's frame, where the tracks stay the static
 segments they are: every body then feels the uniform inertial acceleration ``-s''(t)``, applied as a modulation of
-the space's gravity (one call per step, no constraint, no shape moved), and the drive's anchor moves by ``-s(t)``
-(the velocity drive's kinematic anchor gets the step's mean velocity, so its position is exact at every step).
+the space's gravity (one call per step, no shape moved), and the drive's anchor moves by ``-s(t)``: the velocity
+drive's anchor rides that field itself, a dynamic body of mass ``ANCHOR_MASS`` held on its line by a groove joint
+to the static body (the field's normal part would pull it down), so the step sets nothing on it. The drive
+spring's pull moves it by at most ``F T^2 / (2 ANCHOR_MASS)``: 1e-13 m for 2 N over 100 s. Its kinetic energy
+and its share of the inertial force stay out of the energy balance (the recorder's body table holds the block,
+the sliding bodies, the grains and the drive's own bodies, not the drive's anchor); its velocity after a step is
+the step's mean, the anchor speed the drive's work is read from.
 The gravity of step n is ``A omega_d^2 sin(omega t_n)`` with ``omega_d = 2 sin(omega dt / 2) / dt``, the second
-difference of ``s`` over the step: a body left to it follows ``-s(t_n)`` exactly at every step (pymunk's
-semi-implicit Euler), so the laboratory's motion in the substrate's frame carries no discretisation drift.
+difference of ``s`` over the step: a body left to it follows ``-s(t_{n-1}) - s(dt)`` exactly (pymunk moves a body
+with the velocity of its previous step, then updates the velocity: the motion runs one step, a phase omega dt,
+behind the field, and the drive's riding anchor with it), so the laboratory's motion in the substrate's frame
+carries no discretisation drift.
 
 ``target = "block"``: a shaker on the block: the harmonic force ``M A omega_d^2 sin(omega t)`` along
 ``direction``, the force that would move the free block by ``A`` (normal: only for a block free vertically,
@@ -33,9 +40,14 @@ import pymunk
 
 from . import units as U
 
-__all__ = ["VibrationSpec", "Vibration", "MIN_STEPS_PER_PERIOD", "VIB_COLS"]
+__all__ = ["VibrationSpec", "Vibration", "MIN_STEPS_PER_PERIOD", "VIB_COLS", "ANCHOR_MASS"]
 
 MIN_STEPS_PER_PERIOD = 20  # pymunk steps per vibration period the loader demands
+# g (scene units; 1e17 kg): the velocity drive's anchor under a shaken substrate, a dynamic body that follows the
+# inertial field; a drive force F over a run of T shifts it by F T^2 / (2 ANCHOR_MASS) (2 N, 100 s: 1e-13 m, 1e-6 of
+# the smallest amplitude swept); pymunk applies gravity whatever the mass, so the mass sets only that feedback
+ANCHOR_MASS = 1e20
+_FAR = 1e9  # mm: the anchor's groove reaches this far either way
 VIB_COLS = ("vib_disp", "vib_power")  # the recorder's columns after reduction.COLS, written by Vibration.record
 
 
@@ -91,8 +103,9 @@ class Vibration:
 
     # ------------------------------------------------------------------ scene side (scene units)
     def build(self, scene) -> None:
-        """Scene-unit constants; for the substrate target, every body's velocity shifted by the substrate's at
-        t = 0 (so the laboratory's motion starts as -s(t)) and the velocity drive's anchor set moving."""
+        """Scene-unit constants; for the substrate target, the velocity drive's moving anchor made a body that rides
+        the inertial field (:func:`_ride_the_field`) and every body's velocity, the anchor's too, shifted by the
+        substrate's at t = 0 (so the laboratory's motion starts as -s(t))."""
         if not self.active:
             return
         s = self.spec
@@ -106,19 +119,20 @@ class Vibration:
         self.pseudo = s.target == "substrate"
         self.block = scene.block
         self.M = scene.block.mass
-        self.anchor, self.v_anchor = None, 0.0
+        self.anchor, self.v_anchor, self.groove = None, 0.0, None
         self.plain = type(scene.law).advance is _plain_advance()
         if self.pseudo:
-            u0 = self._s(1) / dt  # mean substrate velocity over the first step
-            for b in scene.space.bodies:
-                if b.body_type == pymunk.Body.DYNAMIC:
-                    v = list(b.velocity)
-                    v[self.axis] -= u0
-                    b.velocity = tuple(v)
             anchor = scene.drive.spring.b if scene.drive.spring is not None else None
             if self.axis == 0 and anchor is not None and anchor.body_type == pymunk.Body.KINEMATIC \
                     and anchor.velocity.x != 0.0:  # a moving anchor (velocity drive): it stays in the laboratory
                 self.anchor, self.v_anchor = anchor, anchor.velocity.x
+                self.groove = _ride_the_field(scene.space, anchor)
+            u0 = self._s(1) / dt  # mean substrate velocity over the first step
+            for b in scene.space.bodies:  # the riding anchor among them
+                if b.body_type == pymunk.Body.DYNAMIC:
+                    v = list(b.velocity)
+                    v[self.axis] -= u0
+                    b.velocity = tuple(v)
 
     def _s(self, n) -> float:
         """Displacement of the shaken part after n steps (mm)."""
@@ -130,11 +144,11 @@ class Vibration:
 
     def advance(self, scene, n: int) -> None:
         """n steps, each after setting the step's inertial acceleration (substrate target) or shaker force (block
-        target) and the anchor's velocity; the law steps the space (in one loop when it needs no Python inside a
-        step, else one step at a time). sin(omega t_n) by the two-term recurrence, re-anchored on math.sin at every
-        call (its rounding over one call of tens of steps is ~1e-15). One pymunk setter per step (two with a moving
-        anchor), each loop specialised so a step does no other attribute lookup or branch: the setters are the
-        part's cost (bench_vibration.py). pymunk's gravity setter wakes every sleeping body: in the substrate's
+        target); the law steps the space (in one loop when it needs no Python inside a step, else one step at a
+        time). sin(omega t_n) by the two-term recurrence, re-anchored on math.sin at every call (its rounding over
+        one call of tens of steps is ~1e-15). One pymunk setter per step (the velocity drive's anchor rides the
+        field, :func:`_ride_the_field`), each loop specialised so a step does no other attribute lookup or branch:
+        the setter is the part's cost (bench_vibration.py). pymunk's gravity setter wakes every sleeping body: in the substrate's
         frame a resting grain feels the inertial force, so no grain sleeps while the substrate is shaken."""
         if not self.active:
             scene.law.advance(scene, n)
@@ -157,15 +171,7 @@ class Vibration:
                 s_prev, s_cur = s_cur, c2 * s_cur - s_prev
             return
         gx, gy = self.g0
-        anchor, va, Kv = self.anchor, self.v_anchor, self.A / dt  # the laboratory moves by -s
-        if anchor is not None:  # parallel only: the anchor's step-mean velocity in the substrate's frame
-            for _ in range(n):
-                s_next = c2 * s_cur - s_prev
-                space.gravity = (gx + K * s_cur, gy)
-                anchor.velocity = (va - Kv * (s_next - s_cur), 0.0)
-                step(arg)
-                s_prev, s_cur = s_cur, s_next
-        elif self.axis == 0:
+        if self.axis == 0:
             for _ in range(n):
                 space.gravity = (gx + K * s_cur, gy)
                 step(arg)
@@ -211,6 +217,18 @@ class Vibration:
             "vib_caption": ("caption", f"{what} {s.direction} {s.amplitude * 1e6:.3g} um at {s.frequency:.4g} Hz: "
                                        f"s = {self._s(scene.steps) * 1e3:+.1f} um", {}),
         }
+
+
+def _ride_the_field(space, anchor):
+    """Make the kinematic ``anchor`` a dynamic body of mass ``ANCHOR_MASS`` that follows the space's gravity (the
+    inertial field of the shaken substrate) by itself, with its velocity kept, on a groove joint along x to the
+    static body that carries the field's normal part; the joint, returned."""
+    anchor.body_type = pymunk.Body.DYNAMIC
+    anchor.mass, anchor.moment = ANCHOR_MASS, float("inf")
+    y = anchor.position.y
+    groove = pymunk.GrooveJoint(space.static_body, anchor, (-_FAR, y), (_FAR, y), (0, 0))
+    space.add(groove)
+    return groove
 
 
 def _plain_advance():
