@@ -15,6 +15,7 @@ import time
 import types
 import tomllib
 
+import numba
 import numpy as np
 import pymunk
 
@@ -61,6 +62,23 @@ def paired(sc_a, sc_b, chunks: int, chunk: int = 16):
     return [(float(np.min(t)), float(np.median(t))) for t in times]
 
 
+def loop_cost(sc, chunks: int = 100, chunk: int = 16) -> float:
+    """us per step (CPU, minimum over ``chunks`` chunks of ``chunk`` output steps) of the project's loop on a scene:
+    the step cost a part's own work is set against (the minimum: the least disturbed, so the largest share)."""
+    s = Scene(sc)
+    s.advance(2000)
+    rec = Recorder(s, chunks * chunk + 1)
+    best = math.inf
+    for _ in range(chunks):
+        s.maintain()
+        t0 = time.process_time()
+        for _ in range(chunk):
+            s.advance(s.n_sub)
+            rec.sample()
+        best = min(best, (time.process_time() - t0) / (chunk * s.n_sub) * 1e6)
+    return best
+
+
 def own_work(name: str, vib: dict, reps: int = 300):
     """The part's own stepping work per pymunk step (us, CPU, minimum over ``reps`` output steps, ``space.step`` a
     no-op), (without vibration, before, after), measured in alternation. The riding anchor's cost (one more body
@@ -81,14 +99,15 @@ def own_work(name: str, vib: dict, reps: int = 300):
 def overhead(sc_vib, sc_base, reps: int = 300):
     """The vibration's own work per pymunk step (us, CPU, minimum over ``reps``): its stepping loop and the
     recorder's extra channel, with ``space.step`` replaced by a no-op, so the figure carries none of the solver's
-    noise. Returns (advance with, advance without, sample with, sample without), the samples per output step."""
+    noise. Returns (advance with, advance without, sample with, sample without, the separate momentum kernel the
+    recorder called before the main kernel summed the momentum), the samples per output step."""
     out = []
     for sc in (sc_vib, sc_base):
         scene = Scene(sc)
         scene.advance(100)
         rec = Recorder(scene, reps + 1)
         scene.space.step = lambda dt: None
-        ta, ts = [], []
+        ta, ts, tk = [], [], []
         for _ in range(reps):
             t0 = time.process_time()
             scene.advance(scene.n_sub)
@@ -96,9 +115,36 @@ def overhead(sc_vib, sc_base, reps: int = 300):
             t0 = time.process_time()
             rec.sample()
             ts.append((time.process_time() - t0) * 1e6)
-        out.append((min(ta), min(ts), scene.n_sub))
-    (a1, s1, n), (a0, s0, _) = out
-    return a1, a0, s1, s0, n
+            ids, fl = np.frombuffer(rec._bbuf.int_buf(), dtype=np.int64), np.frombuffer(rec._bbuf.float_buf())
+            t0 = time.process_time()
+            _momentum_before(ids, fl, rec._tab, scene.M, scene.slider_terms, rec.grain_table, rec._drive_mass, 0)
+            tk.append((time.process_time() - t0) * 1e6)
+        out.append((min(ta), min(ts), min(tk), scene.n_sub))
+    (a1, s1, k1, n), (a0, s0, _, _) = out
+    return a1, a0, s1, s0, k1, n
+
+
+@numba.njit(cache=True)
+def _momentum_before(ids, fl, tab, M, slider_terms, part, drive_mass, axis):
+    """The momentum sum as the part called it at each sample before :func:`engine_sim.reduction.momentum` joined the
+    recorder's main kernel (its cost is mostly numba's dispatch of eight arguments)."""
+    tab_ids = tab[:, 0]
+    P = 0.0
+    for r in range(ids.shape[0]):
+        t = np.searchsorted(tab_ids, ids[r])
+        if t >= tab.shape[0] or tab_ids[t] != ids[r]:
+            continue
+        kind, i = tab[t, 1], tab[t, 2]
+        v = fl[5 * r + 2 + axis]
+        if kind == 0:
+            P += M * v
+        elif kind == 1:
+            P += slider_terms[i, 0] * v
+        elif kind == 2:
+            P += part[i, 0] * v
+        else:
+            P += drive_mass[i] * v
+    return P
 
 
 def before_scene(sc):
@@ -141,9 +187,12 @@ def advance_before(self, scene, n: int) -> None:
 
 
 def before_after(name: str, vib: dict, chunks: int, chunk: int = 16):
-    """us per step (CPU, minimum and median over alternating chunks) of the whole loop on three scenes of
-    ``name``: without vibration, with it as before (:func:`before_scene`), with it as
-    :class:`engine_sim.vibration.Vibration` builds and steps it; the three share the machine chunk by chunk."""
+    """us per step (CPU) of the whole loop on three scenes of ``name``: without vibration, with it as before
+    (:func:`before_scene`), with it as :class:`engine_sim.vibration.Vibration` builds and steps it; the three
+    share the machine chunk by chunk, their order turning from chunk to chunk. Returns each scene's minimum over
+    the chunks and, for before and after, the median over the chunks of the ratio to the unshaken scene's chunk
+    of the same turn (a burst of load hits the three chunks of a turn alike, so the paired ratio scatters less
+    than the minima do)."""
     scenes = [Scene(scenario(name, None)), before_scene(scenario(name, vib)), Scene(scenario(name, vib))]
     recs = []
     for s in scenes:
@@ -151,15 +200,17 @@ def before_after(name: str, vib: dict, chunks: int, chunk: int = 16):
         recs.append(Recorder(s, chunks * chunk + 1))
         recs[-1].sample()
     times = [[], [], []]
-    for _ in range(chunks):
-        for i, (s, r) in enumerate(zip(scenes, recs)):
+    for c in range(chunks):
+        for i in (c % 3, (c + 1) % 3, (c + 2) % 3):
+            s, r = scenes[i], recs[i]
             s.maintain()
             t0 = time.process_time()
             for _ in range(chunk):
                 s.advance(s.n_sub)
                 r.sample()
             times[i].append((time.process_time() - t0) / (chunk * s.n_sub) * 1e6)
-    return [(float(np.min(t)), float(np.median(t))) for t in times]
+    t = np.array(times)
+    return [float(x) for x in t.min(axis=1)], float(np.median(t[1] / t[0])), float(np.median(t[2] / t[0]))
 
 
 def engine(rounds: int, steps: int = 50_000):
@@ -183,7 +234,7 @@ def engine(rounds: int, steps: int = 50_000):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__)
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--chunks", type=int, default=200)
     ap.add_argument("--before-after", action="store_true",
                     help="only the part before and after the velocity drive's anchor rode the inertial field, "
@@ -201,13 +252,15 @@ def main(argv=None):
         return
     if a.before_after:
         print(f"load average before: {os.getloadavg()[0]:.2f} (2 cores)")
-        print("| scenario | vibration | without | before | after | before / without | after / without |")
-        print("|---|---|---|---|---|---|---|")
+        print("| scenario | vibration | without | before | after | before / without | after / without | "
+              "paired: before / without | paired: after / without |")
+        print("|---|---|---|---|---|---|---|---|---|")
         for name in ("pads_friction_patches", "constant_velocity"):
             for label, vib in (("substrate parallel, 1e-12 m", SILENT), ("substrate parallel", VIBRATIONS[
                     "substrate parallel"]), ("substrate normal", VIBRATIONS["substrate normal"])):
-                (b, _), (f0, _), (f1, _) = before_after(name, vib, a.chunks)
-                print(f"| {name} | {label} | {b:.2f} | {f0:.2f} | {f1:.2f} | {f0 / b:.3f} | {f1 / b:.3f} |")
+                (b, f0, f1), r0, r1 = before_after(name, vib, a.chunks)
+                print(f"| {name} | {label} | {b:.2f} | {f0:.2f} | {f1:.2f} | {f0 / b:.3f} | {f1 / b:.3f} | "
+                      f"{r0:.3f} | {r1:.3f} |", flush=True)
         print("\nThe stepping loop's own work (space.step a no-op; CPU us per step, minimum of 300):\n")
         print("| scenario | vibration | without | before | after |")
         print("|---|---|---|---|---|")
@@ -225,12 +278,14 @@ def main(argv=None):
             (b0, b1), (f0, f1) = paired(scenario(name, None), scenario(name, vib), a.chunks)
             print(f"| {name} | {label} | {b0:.2f}, {b1:.2f} | {f0:.2f}, {f1:.2f} | {f0 / b0:.3f} | {f1 / b1:.3f} |")
     print("\nThe part's own work (space.step a no-op; CPU us, minimum of 300):\n")
-    print("| scenario | vibration | stepping loop per step, with / without | sample, with / without | extra per step |")
-    print("|---|---|---|---|---|")
+    print("| scenario | vibration | stepping loop per step, with / without | sample, with / without | "
+          "the former momentum kernel per sample | extra per step |")
+    print("|---|---|---|---|---|---|")
     for name in ("pads_friction_patches", "constant_velocity"):
         for label, vib in VIBRATIONS.items():
-            a1, a0, s1, s0, n = overhead(scenario(name, vib), scenario(name, None))
-            print(f"| {name} | {label} | {a1:.2f} / {a0:.2f} | {s1:.1f} / {s0:.1f} | {a1 - a0 + (s1 - s0) / n:.2f} |")
+            a1, a0, s1, s0, k1, n = overhead(scenario(name, vib), scenario(name, None))
+            print(f"| {name} | {label} | {a1:.2f} / {a0:.2f} | {s1:.1f} / {s0:.1f} | {k1:.2f} | "
+                  f"{a1 - a0 + (s1 - s0) / n:.2f} |")
     print(f"load average after: {os.getloadavg()[0]:.2f}")
 
 

@@ -34,7 +34,6 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-import numba
 import numpy as np
 import pymunk
 
@@ -183,19 +182,18 @@ class Vibration:
                 s_prev, s_cur = s_cur, c2 * s_cur - s_prev
         space.gravity = self.g0  # samples and pickles see the plain gravity (the recorder's potential energy)
 
-    def record(self, scene, ids, fl, tab, slider_terms, grain_table, drive_mass) -> tuple[float, float]:
-        """(displacement s [mm], power [N mm/ms]) at the present sample, from the recorder's body buffer (ids,
-        [px, py, vx, vy, w] per body) and body table (kind, index: 0 block, 1 slider, 2 particle, 3 drive body)."""
+    def record(self, scene, px: float, py: float) -> tuple[float, float]:
+        """(displacement s [mm], power [N mm/ms]) at the present sample; ``px``, ``py``: the momentum of the bodies
+        the recorder keeps the energy of (the block, the sliding bodies, the grains, the drive's own bodies; not the
+        drive's anchor), which the substrate's inertial force works on."""
         if not self.active:
             return 0.0, 0.0
-        n = scene.steps
-        s = self._s(n)
-        a = self.A * self.wd2 * math.sin(self.w * n * self.dt)
+        sn = math.sin(self.w * scene.steps * self.dt)
+        a = self.A * self.wd2 * sn
         if self.pseudo:
-            P = _momentum(ids, fl, tab, self.M, slider_terms, grain_table, drive_mass, self.axis)
-            return s, a * P
+            return self.A * sn, a * (px if self.axis == 0 else py)
         v = self.block.velocity
-        return s, self.M * a * (v.x if self.axis == 0 else v.y)
+        return self.A * sn, self.M * a * (v.x if self.axis == 0 else v.y)
 
     # ------------------------------------------------------------------ drawing (scene units)
     def draw(self, scene, lo: float, hi: float) -> dict:
@@ -234,27 +232,3 @@ def _ride_the_field(space, anchor):
 def _plain_advance():
     from .laws import Law
     return Law.advance
-
-
-@numba.njit(cache=True)
-def _momentum(ids, fl, tab, M, slider_terms, part, drive_mass, axis):
-    """Total momentum along ``axis`` of the bodies in the recorder's table (scene units); masses: the block's M,
-    column 0 of the sliders' terms and of the particles' table, the drive's bodies'. Bodies absent from the
-    buffer are asleep (at rest)."""
-    tab_ids = tab[:, 0]
-    P = 0.0
-    for r in range(ids.shape[0]):
-        t = np.searchsorted(tab_ids, ids[r])
-        if t >= tab.shape[0] or tab_ids[t] != ids[r]:
-            continue
-        kind, i = tab[t, 1], tab[t, 2]
-        v = fl[5 * r + 2 + axis]
-        if kind == 0:
-            P += M * v
-        elif kind == 1:
-            P += slider_terms[i, 0] * v
-        elif kind == 2:
-            P += part[i, 0] * v
-        else:
-            P += drive_mass[i] * v
-    return P
