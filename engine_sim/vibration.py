@@ -185,11 +185,19 @@ class Vibration:
     def record(self, scene, px: float, py: float) -> tuple[float, float]:
         """(displacement s [mm], power [N mm/ms]) at the present sample; ``px``, ``py``: the momentum of the bodies
         the recorder keeps the energy of (the block, the sliding bodies, the grains, the drive's own bodies; not the
-        drive's anchor), which the substrate's inertial force works on."""
+        drive's anchor), which the substrate's inertial force works on.
+
+        The acceleration paired with the sampled velocities is the mean of the field of the step just taken and of
+        the step to come, a sin(omega (t_n - dt/2)) cos(omega dt/2): a body that only follows the field (velocity
+        ~ cos(omega (t_n - dt/2))) then takes no mean power. Paired with the field of the step to come alone it
+        took a mean of about m A^2 omega^4 dt / 4: at 1 kHz, dt 2.5e-5 s and A = 2.7 um, with the 0.13 kg of block
+        and pads that ride with the substrate, 0.8 of the drive's power."""
         if not self.active:
             return 0.0, 0.0
-        sn = math.sin(self.w * scene.steps * self.dt)
-        a = self.A * self.wd2 * sn
+        th = self.w * self.dt
+        n = scene.steps
+        sn = math.sin(th * n)
+        a = self.A * self.wd2 * 0.5 * (sn + math.sin(th * (n - 1)))
         if self.pseudo:
             return self.A * sn, a * (px if self.axis == 0 else py)
         v = self.block.velocity
