@@ -10,8 +10,8 @@ drive's anchor rides that field itself, a dynamic body of mass ``ANCHOR_MASS`` h
 to the static body (the field's normal part would pull it down), so the step sets nothing on it. The drive
 spring's pull moves it by at most ``F T^2 / (2 ANCHOR_MASS)``: 1e-13 m for 2 N over 100 s. Its kinetic energy
 and its share of the inertial force stay out of the energy balance (the recorder's body table holds the block,
-the sliding bodies, the grains and the drive's own bodies, not the drive's anchor); its velocity after a step is
-the step's mean, the anchor speed the drive's work is read from.
+the sliding bodies, the grains and the drive's own bodies, not the drive's anchor); its velocity at a sample, like
+every body's, is the one that moves it over the next step, the anchor speed the drive's work is read from.
 The gravity of step n is ``A omega_d^2 sin(omega t_n)`` with ``omega_d = 2 sin(omega dt / 2) / dt``, the second
 difference of ``s`` over the step: a body left to it follows ``-s(t_{n-1}) - s(dt)`` exactly (pymunk moves a body
 with the velocity of its previous step, then updates the velocity: the motion runs one step, a phase omega dt,
@@ -147,8 +147,9 @@ class Vibration:
         time). sin(omega t_n) by the two-term recurrence, re-anchored on math.sin at every call (its rounding over
         one call of tens of steps is ~1e-15). One pymunk setter per step (the velocity drive's anchor rides the
         field, :func:`_ride_the_field`), each loop specialised so a step does no other attribute lookup or branch:
-        the setter is the part's cost (bench_vibration.py). pymunk's gravity setter wakes every sleeping body: in the substrate's
-        frame a resting grain feels the inertial force, so no grain sleeps while the substrate is shaken."""
+        the setter is the part's cost (bench_vibration.py). pymunk's gravity setter wakes every sleeping body: in
+        the substrate's frame a resting grain feels the inertial force, so no grain sleeps while the substrate is
+        shaken."""
         if not self.active:
             scene.law.advance(scene, n)
             return
