@@ -165,9 +165,11 @@ def test_normal_vibration_below_and_past_lift_off():
     assert np.mean(above.n_contact < 30) > 0.05  # pads off their tracks in part of the samples
 
 
-def test_renderer_draws_the_vibration():
-    sc = _patches({"amplitude": 2e-4, "frequency": 10.0})
-    scene = Scene(sc, 0)
+@pytest.mark.parametrize("name", ["pads_friction_patches", "constant_velocity"])  # the second: the riding anchor
+def test_renderer_draws_the_vibration(name):
+    d = tomllib.loads(shipped_scenarios()[name].read_text())
+    d["vibration"] = {"target": "substrate", "direction": "parallel", "amplitude": 2e-4, "frequency": 10.0}
+    scene = Scene(scenario_from_dict(d), 0)
     scene.advance(37)
     r = SceneRenderer(scene)
     img = r.frame()
