@@ -2,7 +2,11 @@
 pads_friction_patches and constant_velocity without and with each kind of vibration, microseconds per step,
 alternating chunks on the two scenes, minimum and median. Target: at most 5 % (one run; say the load).
 
-    python -m benchmarks.bench_vibration [--chunks N] [--before-after]
+    python -m benchmarks.bench_vibration [--chunks N] [--before-after] [--engine [--rounds R]]
+
+``--engine``: bench_engine's measure (its ``loop_ratio``: the project's loop against a bare ``space.step`` loop on
+the same scene, chunk by chunk, the thread's CPU clock) on each scene without and with the vibration, the scenes
+in turn over ``R`` rounds; the part's share of the step is the shaken scene's loop / bare less the unshaken one's.
 """
 import argparse
 import math
@@ -11,7 +15,9 @@ import time
 import types
 import tomllib
 
+import numba
 import numpy as np
+import pymunk
 
 from engine_sim import Scene, scenario_from_dict, shipped_scenarios
 from engine_sim.record import Recorder
@@ -56,11 +62,28 @@ def paired(sc_a, sc_b, chunks: int, chunk: int = 16):
     return [(float(np.min(t)), float(np.median(t))) for t in times]
 
 
+def loop_cost(sc, chunks: int = 100, chunk: int = 16) -> float:
+    """us per step (CPU, minimum over ``chunks`` chunks of ``chunk`` output steps) of the project's loop on a scene:
+    the step cost a part's own work is set against (the minimum: the least disturbed, so the largest share)."""
+    s = Scene(sc)
+    s.advance(2000)
+    rec = Recorder(s, chunks * chunk + 1)
+    best = math.inf
+    for _ in range(chunks):
+        s.maintain()
+        t0 = time.process_time()
+        for _ in range(chunk):
+            s.advance(s.n_sub)
+            rec.sample()
+        best = min(best, (time.process_time() - t0) / (chunk * s.n_sub) * 1e6)
+    return best
+
+
 def own_work(name: str, vib: dict, reps: int = 300):
     """The part's own stepping work per pymunk step (us, CPU, minimum over ``reps`` output steps, ``space.step`` a
-    no-op), (without vibration, before, after), measured in alternation."""
-    scenes = [Scene(scenario(name, None)), Scene(scenario(name, vib)), Scene(scenario(name, vib))]
-    scenes[1].vibration.advance = types.MethodType(advance_before, scenes[1].vibration)
+    no-op), (without vibration, before, after), measured in alternation. The riding anchor's cost (one more body
+    and a groove joint) is inside ``space.step`` and so not in these figures: the whole loop's are the ones to read."""
+    scenes = [Scene(scenario(name, None)), before_scene(scenario(name, vib)), Scene(scenario(name, vib))]
     best = [math.inf] * 3
     for s in scenes:
         s.advance(100)
@@ -76,14 +99,15 @@ def own_work(name: str, vib: dict, reps: int = 300):
 def overhead(sc_vib, sc_base, reps: int = 300):
     """The vibration's own work per pymunk step (us, CPU, minimum over ``reps``): its stepping loop and the
     recorder's extra channel, with ``space.step`` replaced by a no-op, so the figure carries none of the solver's
-    noise. Returns (advance with, advance without, sample with, sample without), the samples per output step."""
+    noise. Returns (advance with, advance without, sample with, sample without, the separate momentum kernel the
+    recorder called before the main kernel summed the momentum), the samples per output step."""
     out = []
     for sc in (sc_vib, sc_base):
         scene = Scene(sc)
         scene.advance(100)
         rec = Recorder(scene, reps + 1)
         scene.space.step = lambda dt: None
-        ta, ts = [], []
+        ta, ts, tk = [], [], []
         for _ in range(reps):
             t0 = time.process_time()
             scene.advance(scene.n_sub)
@@ -91,17 +115,56 @@ def overhead(sc_vib, sc_base, reps: int = 300):
             t0 = time.process_time()
             rec.sample()
             ts.append((time.process_time() - t0) * 1e6)
-        out.append((min(ta), min(ts), scene.n_sub))
-    (a1, s1, n), (a0, s0, _) = out
-    return a1, a0, s1, s0, n
+            ids, fl = np.frombuffer(rec._bbuf.int_buf(), dtype=np.int64), np.frombuffer(rec._bbuf.float_buf())
+            t0 = time.process_time()
+            _momentum_before(ids, fl, rec._tab, scene.M, scene.slider_terms, rec.grain_table, rec._drive_mass, 0)
+            tk.append((time.process_time() - t0) * 1e6)
+        out.append((min(ta), min(ts), min(tk), scene.n_sub))
+    (a1, s1, k1, n), (a0, s0, _, _) = out
+    return a1, a0, s1, s0, k1, n
+
+
+@numba.njit(cache=True)
+def _momentum_before(ids, fl, tab, M, slider_terms, part, drive_mass, axis):
+    """The momentum sum as the part called it at each sample before :func:`engine_sim.reduction.momentum` joined the
+    recorder's main kernel (its cost is mostly numba's dispatch of eight arguments)."""
+    tab_ids = tab[:, 0]
+    P = 0.0
+    for r in range(ids.shape[0]):
+        t = np.searchsorted(tab_ids, ids[r])
+        if t >= tab.shape[0] or tab_ids[t] != ids[r]:
+            continue
+        kind, i = tab[t, 1], tab[t, 2]
+        v = fl[5 * r + 2 + axis]
+        if kind == 0:
+            P += M * v
+        elif kind == 1:
+            P += slider_terms[i, 0] * v
+        elif kind == 2:
+            P += part[i, 0] * v
+        else:
+            P += drive_mass[i] * v
+    return P
+
+
+def before_scene(sc):
+    """A scene as the part built and stepped it before the velocity drive's anchor rode the inertial field: that
+    anchor kinematic, given each step's mean velocity by a second setter in the loop (:func:`advance_before`). For
+    a scene without a moving anchor the part is unchanged and so is the scene."""
+    scene = Scene(sc)
+    vib = scene.vibration
+    if vib is not None and vib.active and vib.anchor is not None:
+        scene.space.remove(vib.groove)
+        vib.groove = None
+        vib.anchor.body_type = pymunk.Body.KINEMATIC  # pymunk zeroes a non-dynamic body's velocity
+        vib.anchor.velocity = (vib.v_anchor - vib._s(1) / vib.dt, 0.0)
+        vib.advance = types.MethodType(advance_before, vib)
+    return scene
 
 
 def advance_before(self, scene, n: int) -> None:
-    """The part's stepping loop as it was before its loops were specialised (one loop for every case, the axis
-    and the anchor tested and ``self`` read at each step), kept here as the baseline of ``--before-after``."""
-    if not self.active:
-        scene.law.advance(scene, n)
-        return
+    """The part's stepping loop with a kinematic anchor (two setters per step: gravity and the anchor's velocity),
+    as it was before the anchor rode the field, kept here as the baseline of ``--before-after``."""
     k0 = scene.steps
     th = self.w * self.dt
     c2 = 2.0 * math.cos(th)
@@ -109,66 +172,95 @@ def advance_before(self, scene, n: int) -> None:
     K = self.A * self.wd2
     space, dt, law = scene.space, self.dt, scene.law
     if self.plain:
-        do, arg = space.step, dt
+        step, arg = space.step, dt
     else:
-        do, arg = (lambda _: law.advance(scene, 1)), None
-    if self.pseudo:
-        gx, gy = self.g0
-        anchor, va, Kv = self.anchor, self.v_anchor, self.A / dt
-        for _ in range(n):
-            s_next = c2 * s_cur - s_prev
-            space.gravity = (gx + K * s_cur, gy) if self.axis == 0 else (gx, gy + K * s_cur)
-            if anchor is not None:
-                anchor.velocity = (va - Kv * (s_next - s_cur), 0.0)
-            do(arg)
-            s_prev, s_cur = s_cur, s_next
-        space.gravity = self.g0
-    else:
-        block, KM = self.block, K * self.M
-        for _ in range(n):
-            block.force = (KM * s_cur, 0.0) if self.axis == 0 else (0.0, KM * s_cur)
-            do(arg)
-            s_prev, s_cur = s_cur, c2 * s_cur - s_prev
+        step, arg = (lambda _: law.advance(scene, 1)), None
+    gx, gy = self.g0
+    anchor, va, Kv = self.anchor, self.v_anchor, self.A / dt
+    for _ in range(n):
+        s_next = c2 * s_cur - s_prev
+        space.gravity = (gx + K * s_cur, gy)
+        anchor.velocity = (va - Kv * (s_next - s_cur), 0.0)
+        step(arg)
+        s_prev, s_cur = s_cur, s_next
+    space.gravity = self.g0
 
 
 def before_after(name: str, vib: dict, chunks: int, chunk: int = 16):
-    """us per step (CPU, minimum and median over alternating chunks) of the whole loop on three scenes of
-    ``name`` built alike: without vibration, with it stepped by :func:`advance_before`, with it stepped by
-    :meth:`engine_sim.vibration.Vibration.advance`; the three share the machine chunk by chunk."""
-    scenes = [Scene(scenario(name, None)), Scene(scenario(name, vib)), Scene(scenario(name, vib))]
-    scenes[1].vibration.advance = types.MethodType(advance_before, scenes[1].vibration)
+    """us per step (CPU) of the whole loop on three scenes of ``name``: without vibration, with it as before
+    (:func:`before_scene`), with it as :class:`engine_sim.vibration.Vibration` builds and steps it; the three
+    share the machine chunk by chunk, their order turning from chunk to chunk. Returns each scene's minimum over
+    the chunks and, for before and after, the median over the chunks of the ratio to the unshaken scene's chunk
+    of the same turn (a burst of load hits the three chunks of a turn alike, so the paired ratio scatters less
+    than the minima do)."""
+    scenes = [Scene(scenario(name, None)), before_scene(scenario(name, vib)), Scene(scenario(name, vib))]
     recs = []
     for s in scenes:
         s.advance(2000)
         recs.append(Recorder(s, chunks * chunk + 1))
         recs[-1].sample()
     times = [[], [], []]
-    for _ in range(chunks):
-        for i, (s, r) in enumerate(zip(scenes, recs)):
+    for c in range(chunks):
+        for i in (c % 3, (c + 1) % 3, (c + 2) % 3):
+            s, r = scenes[i], recs[i]
             s.maintain()
             t0 = time.process_time()
             for _ in range(chunk):
                 s.advance(s.n_sub)
                 r.sample()
             times[i].append((time.process_time() - t0) / (chunk * s.n_sub) * 1e6)
-    return [(float(np.min(t)), float(np.median(t))) for t in times]
+    t = np.array(times)
+    return [float(x) for x in t.min(axis=1)], float(np.median(t[1] / t[0])), float(np.median(t[2] / t[0]))
+
+
+def engine(rounds: int, steps: int = 50_000):
+    """Rows (scenario, vibration, unshaken loop / bare, shaken loop / bare, difference) of bench_engine's
+    ``loop_ratio``, the median over ``rounds`` rounds in which the scenes take turns."""
+    from benchmarks.bench_engine import loop_ratio
+
+    rows = []
+    for name in ("pads_friction_patches", "constant_velocity"):
+        cases = [("none", None), ("substrate parallel, 1e-12 m", SILENT)] + list(VIBRATIONS.items())
+        cases = [(label, vib) for label, vib in cases if label != "block parallel"]
+        ratios = {label: [] for label, _ in cases}
+        for _ in range(rounds):
+            for label, vib in cases:
+                ratios[label].append(loop_ratio(scenario(name, vib), steps, ratio=True)[2])
+        r0 = float(np.median(ratios["none"]))
+        for label, _ in cases[1:]:
+            r = float(np.median(ratios[label]))
+            rows.append((name, label, r0, r, r - r0))
+    return rows
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__)
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--chunks", type=int, default=200)
     ap.add_argument("--before-after", action="store_true",
-                    help="only the loop before and after its specialisation, beside the unshaken scene")
+                    help="only the part before and after the velocity drive's anchor rode the inertial field, "
+                         "beside the unshaken scene")
+    ap.add_argument("--engine", action="store_true", help="bench_engine's loop / bare ratio with and without")
+    ap.add_argument("--rounds", type=int, default=5)
     a = ap.parse_args(argv)
+    if a.engine:
+        print(f"load average before: {os.getloadavg()[0]:.2f} (2 cores)")
+        print("| scenario | vibration | loop / bare, unshaken | loop / bare, shaken | shaken less unshaken |")
+        print("|---|---|---|---|---|")
+        for name, label, r0, r, d in engine(a.rounds):
+            print(f"| {name} | {label} | {r0:.3f} | {r:.3f} | {d:+.3f} |", flush=True)
+        print(f"load average after: {os.getloadavg()[0]:.2f}")
+        return
     if a.before_after:
         print(f"load average before: {os.getloadavg()[0]:.2f} (2 cores)")
-        print("| scenario | vibration | without | before | after | before / without | after / without |")
-        print("|---|---|---|---|---|---|---|")
+        print("| scenario | vibration | without | before | after | before / without | after / without | "
+              "paired: before / without | paired: after / without |")
+        print("|---|---|---|---|---|---|---|---|---|")
         for name in ("pads_friction_patches", "constant_velocity"):
             for label, vib in (("substrate parallel, 1e-12 m", SILENT), ("substrate parallel", VIBRATIONS[
                     "substrate parallel"]), ("substrate normal", VIBRATIONS["substrate normal"])):
-                (b, _), (f0, _), (f1, _) = before_after(name, vib, a.chunks)
-                print(f"| {name} | {label} | {b:.2f} | {f0:.2f} | {f1:.2f} | {f0 / b:.3f} | {f1 / b:.3f} |")
+                (b, f0, f1), r0, r1 = before_after(name, vib, a.chunks)
+                print(f"| {name} | {label} | {b:.2f} | {f0:.2f} | {f1:.2f} | {f0 / b:.3f} | {f1 / b:.3f} | "
+                      f"{r0:.3f} | {r1:.3f} |", flush=True)
         print("\nThe stepping loop's own work (space.step a no-op; CPU us per step, minimum of 300):\n")
         print("| scenario | vibration | without | before | after |")
         print("|---|---|---|---|---|")
@@ -186,12 +278,14 @@ def main(argv=None):
             (b0, b1), (f0, f1) = paired(scenario(name, None), scenario(name, vib), a.chunks)
             print(f"| {name} | {label} | {b0:.2f}, {b1:.2f} | {f0:.2f}, {f1:.2f} | {f0 / b0:.3f} | {f1 / b1:.3f} |")
     print("\nThe part's own work (space.step a no-op; CPU us, minimum of 300):\n")
-    print("| scenario | vibration | stepping loop per step, with / without | sample, with / without | extra per step |")
-    print("|---|---|---|---|---|")
+    print("| scenario | vibration | stepping loop per step, with / without | sample, with / without | "
+          "the former momentum kernel per sample | extra per step |")
+    print("|---|---|---|---|---|---|")
     for name in ("pads_friction_patches", "constant_velocity"):
         for label, vib in VIBRATIONS.items():
-            a1, a0, s1, s0, n = overhead(scenario(name, vib), scenario(name, None))
-            print(f"| {name} | {label} | {a1:.2f} / {a0:.2f} | {s1:.1f} / {s0:.1f} | {a1 - a0 + (s1 - s0) / n:.2f} |")
+            a1, a0, s1, s0, k1, n = overhead(scenario(name, vib), scenario(name, None))
+            print(f"| {name} | {label} | {a1:.2f} / {a0:.2f} | {s1:.1f} / {s0:.1f} | {k1:.2f} | "
+                  f"{a1 - a0 + (s1 - s0) / n:.2f} |")
     print(f"load average after: {os.getloadavg()[0]:.2f}")
 
 

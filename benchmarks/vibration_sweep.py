@@ -7,7 +7,13 @@ spectrum), written as markdown and a PNG.
     python -m benchmarks.vibration_sweep --force DIR/force_* --velocity DIR/velocity_* \\
         [--png benchmarks/results/vibration_sweep.png]
 
-The twins (amplitude 0) are in the 1000 Hz files; each drive's folders are read together.
+The twins (amplitude 0) are in the 1000 Hz files; each drive's folders are read together. The tasks' results of
+the committed table are kept under benchmarks/results/vibration_sweep_tasks/ (one folder per sweep file), so
+
+    python -m benchmarks.vibration_sweep --force benchmarks/results/vibration_sweep_tasks/force_* \
+        --velocity benchmarks/results/vibration_sweep_tasks/velocity_*
+
+rebuilds it without running a scene (tests/test_vibration_report.py holds the two equal).
 """
 import argparse
 from pathlib import Path

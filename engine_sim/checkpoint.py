@@ -17,8 +17,9 @@ from .record import Recorder
 __all__ = ["CheckpointError", "Checkpoint", "recorder_state", "restore", "round_trip", "checkpoint_interval"]
 
 _REC_ARRAYS = ("t", "out", "pad_force", "n_contact", "p_state", "p_force", "recycle", "micro_force")
-# the layout of a checkpoint file: the scene always holds a grains part, the recorder its micro-pad forces
-_FORMAT = "frictionnoise-checkpoint-5"
+# the layout of a checkpoint file: the scene always holds a grains part, the recorder its micro-pad forces and the
+# momentum columns; a shaken velocity drive's anchor is a dynamic body riding the inertial field
+_FORMAT = "frictionnoise-checkpoint-6"
 _WHAT = "delete it (or write to another -o folder) and run again"
 
 

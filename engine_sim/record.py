@@ -165,8 +165,8 @@ class Recorder:
                       self.p_force)
         vib = getattr(sc, "vibration", None)
         if vib is not None:
-            self.out[k, len(COLS):] = vib.record(sc, ids, fl, self._tab, sc.slider_terms, self.grain_table,
-                                                 self._drive_mass)
+            out, c = self.out, len(COLS)
+            out[k, c], out[k, c + 1] = vib.record(sc, out[k, R.MOM_X], out[k, R.MOM_Y])
         self.t[k] = sc.steps * sc.dt / U.TIME
         self.k += 1
 

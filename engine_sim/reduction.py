@@ -5,7 +5,8 @@
 recorder's buffers. It is a sequence of small kernels, each one job: the bodies' states (:func:`read_bodies`), the
 contact forces and the friction power at the contacts (:func:`contacts`), the sliding bodies' forces, drag and
 energies (:func:`sliders`), the grains' states and energies (:func:`grains`), the springs' energy and damping
-(:func:`springs`) and the drive (:func:`drive`). The running sums (kinetic and potential energy, dissipated power)
+(:func:`springs`), the drive (:func:`drive`) and the momentum of the bodies with energy (:func:`momentum`, which a
+shaken substrate's inertial force works on). The running sums (kinetic and potential energy, dissipated power)
 are handed from kernel to kernel, so every sum is taken in one fixed order. Columns and parameters are read by the
 names below (numba freezes module-level integers as constants).
 """
@@ -14,12 +15,12 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-__all__ = ["COLS", "PRM", "reduce_sample"]
+__all__ = ["COLS", "PRM", "MOM_X", "MOM_Y", "reduce_sample"]
 
 # columns of the recorder's scalar buffer, one row per sample
 COLS = ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "penetration", "power_in", "power_out", "mech", "pairs", "p_pen",
-        "stale")
-X, V, F_T, F_N, F_DRAG, F_DRIVE, PEN, POWER_IN, POWER_OUT, MECH, PAIRS, P_PEN, STALE = range(len(COLS))
+        "stale", "momentum_x", "momentum_y")
+X, V, F_T, F_N, F_DRAG, F_DRIVE, PEN, POWER_IN, POWER_OUT, MECH, PAIRS, P_PEN, STALE, MOM_X, MOM_Y = range(len(COLS))
 # the scalar parameters of a sample (Recorder._prm), scene units; pulled: index of the body the drive spring pulls among
 # the drive's bodies (-1: the block)
 PRM = ("drive_k", "anchor_x", "drive_rest", "anchor_v", "x0", "dt", "M", "g", "v_trap", "dt_out", "pulled")
@@ -48,12 +49,12 @@ def body_of(tab, body_id):
 @numba.njit(cache=True)
 def read_bodies(ids, fl, tab, grain, n_sl, n_d):
     """The bodies' states from the body buffer: block (x, y, vx, vy), sliders P (x, y, vx, vy), the drive's bodies D
-    (x, vx) and grains Q (x, y, vx, vy, w). Bodies absent from the buffer are asleep, at rest: sliders read zero,
+    (x, vx, vy) and grains Q (x, y, vx, vy, w). Bodies absent from the buffer are asleep, at rest: sliders read zero,
     grains their last known place. A grain flagged asleep reads at rest; its place is remembered in ``grain``."""
     n_p = grain.shape[0]
     blk = np.zeros(4)
     P = np.zeros((n_sl, 4))
-    D = np.zeros((n_d, 2))
+    D = np.zeros((n_d, 3))
     Q = np.zeros((n_p, 5))
     for j in range(n_p):
         Q[j, 0], Q[j, 1] = grain[j, G_X], grain[j, G_Y]
@@ -73,7 +74,7 @@ def read_bodies(ids, fl, tab, grain, n_sl, n_d):
                 Q[i, 2] = Q[i, 3] = Q[i, 4] = 0.0
             grain[i, G_X], grain[i, G_Y] = f[0], f[1]
         elif kind == DRIVE_BODY:
-            D[i, 0], D[i, 1] = f[0], f[2]
+            D[i, 0], D[i, 1], D[i, 2] = f[0], f[2], f[3]
     return blk, P, D, Q
 
 
@@ -252,6 +253,23 @@ def drive(prm, hx, hvx, pe):
 
 
 @numba.njit(cache=True)
+def momentum(M, blk, P, sl, Q, grain, D, dm):
+    """Total momentum (x, y) of the block, the sliding bodies, the grains and the drive's own bodies (masses: M,
+    column 0 of ``sl``, of the grain table and ``dm``); bodies absent from the buffer are asleep, at rest."""
+    px, py = M * blk[2], M * blk[3]
+    for i in range(sl.shape[0]):
+        px += sl[i, 0] * P[i, 2]
+        py += sl[i, 0] * P[i, 3]
+    for j in range(grain.shape[0]):
+        px += grain[j, G_MASS] * Q[j, 2]
+        py += grain[j, G_MASS] * Q[j, 3]
+    for j in range(dm.shape[0]):
+        px += dm[j] * D[j, 1]
+        py += dm[j] * D[j, 2]
+    return px, py
+
+
+@numba.njit(cache=True)
 def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, dm, k, out, pad_force, micro_force, n_contact,
                   p_state, p_force):
     """Row ``k`` of the recorder's buffers from the raw batch buffers (module docstring); ``grain``: the grain
@@ -286,6 +304,7 @@ def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, dm, k, out, pad_
     out[k, PAIRS] = pairs
     out[k, P_PEN] = max(p_pen, 0.0)
     out[k, STALE] = n_stale
+    out[k, MOM_X], out[k, MOM_Y] = momentum(prm[MASS], blk, P, sl, Q, grain, D, dm)
     n_contact[k] = nc
 
 

@@ -95,3 +95,29 @@ def test_sweep_report_of_a_vibration_sweep_carries_the_section():
 def test_task_files_without_mean_forces_are_left_out():
     old = [{k: v for k, v in t.items() if k != "mean_F_drive"} for t in _sweep()]
     assert cells(old) == []
+
+
+def test_stored_sweep_rebuilds_the_committed_table():
+    # benchmarks/results/vibration_sweep_tasks holds every task of the vibration sweep (84 JSON files): the table of
+    # benchmarks/results/vibration_sweep.md rebuilds from them row by row, the 1000 Hz grid holds the 7 values of
+    # xi from 0.05 to 10 under both drives, and xi = 4.14 and 10 (A / A_onset 0.12, 0.05: no contact reverses)
+    # leave the in-band level at the twin's within their intervals (measured 1 +- 5e-4)
+    from pathlib import Path
+
+    from benchmarks.vibration_sweep import markdown
+    from compare.report.vibration import load_tasks
+
+    root = Path(__file__).resolve().parent.parent / "benchmarks" / "results"
+    sc = VibratedScene()
+    rows = [r for drive in ("force", "velocity")
+            for r in cells(load_tasks(sorted((root / "vibration_sweep_tasks").glob(f"{drive}_*"))), sc)]
+    committed = [line for line in (root / "vibration_sweep.md").read_text().splitlines()
+                 if line.startswith(("| 20 |", "| 1000 |", "| 2000 |"))]
+    assert markdown(rows, sc).splitlines()[2:] == committed
+    for cf in (True, False):
+        k = sorted(round(r["xi"], 2) for r in rows if r["frequency"] == 1000.0 and r["constant_force"] == cf)
+        assert k == [0.05, 0.12, 0.29, 0.7, 1.71, 4.14, 10.0] and all(r["seeds"] == 3 for r in rows)
+    for r in rows:
+        if r["xi"] > 4:
+            assert abs(r["C_ratio"] - 1) <= max(r["C_ratio_ci"], 1e-3) and r["gamma"] == pytest.approx(
+                r["gamma_twin"], abs=0.01)

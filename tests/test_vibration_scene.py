@@ -4,6 +4,7 @@ import math
 import tomllib
 
 import numpy as np
+import pymunk
 import pytest
 
 import engine_sim
@@ -103,16 +104,23 @@ def test_zero_amplitude_is_the_unshaken_twin_bit_for_bit():
     assert np.all(b.vibration == 0) and np.all(b.work_vibration == 0)
 
 
-@pytest.mark.parametrize("target,direction,A,f", [
-    ("substrate", "parallel", 2e-4, 10.0), ("block", "parallel", 2e-4, 10.0), ("substrate", "normal", 2e-5, 50.0)])
-def test_energy_balance_and_recorded_displacement(target, direction, A, f):
-    # pads_friction_patches shaken (A omega = 12.6 and 6.3 mm/s): drive + vibration work = dissipation +
-    # mechanical energy within 1e-3 of the drive's work (measured 2.7e-5, 1.4e-5, 1.3e-7 in 2 s runs); the
-    # recorded s(t) is A sin(omega t) at the samples' absolute times (the warm-up's included). Epochs of 0.25 s:
-    # the scene passes through 3 pickle round trips (the phase is the step count; the gravity written back after
-    # every advance)
-    sc = _patches({"target": target, "direction": direction, "amplitude": A, "frequency": f}, duration=1.0,
-                  warmup=0.5)
+@pytest.mark.parametrize("name,target,direction,A,f", [
+    ("pads_friction_patches", "substrate", "parallel", 2e-4, 10.0),
+    ("pads_friction_patches", "block", "parallel", 2e-4, 10.0),
+    ("pads_friction_patches", "substrate", "normal", 2e-5, 50.0),
+    ("constant_velocity", "substrate", "parallel", 2e-4, 10.0),
+    ("constant_velocity", "substrate", "normal", 2e-5, 50.0)])
+def test_energy_balance_and_recorded_displacement(name, target, direction, A, f):
+    # pads_friction_patches and constant_velocity shaken (A omega = 12.6 and 6.3 mm/s): drive + vibration work =
+    # dissipation + mechanical energy within 1e-3 of the drive's work (measured 1.8e-5, -1.7e-5, -1.5e-5 on the
+    # first; -5.7e-5 and -6.4e-6 on the velocity drive, whose anchor rides the inertial field and stays out of
+    # the balance); the recorded s(t) is A sin(omega t) at the samples' absolute times (the
+    # warm-up's included). Epochs of 0.25 s: the scene passes through 3 pickle round trips (the phase is the step
+    # count; the gravity written back after every advance; the riding anchor and its groove pickled with the space)
+    d = tomllib.loads(shipped_scenarios()[name].read_text())
+    d["run"] = {**d["run"], "duration": 1.0, "warmup": 0.5}
+    d["vibration"] = {"target": target, "direction": direction, "amplitude": A, "frequency": f}
+    sc = scenario_from_dict(d)
     tr = engine_sim.run(sc, epoch=0.25)
     W = tr.work_drive[-1]
     resid = W + tr.work_vibration[-1] + tr.work_recycle[-1] - tr.dissipated[-1] - tr.mech_energy[-1]
@@ -157,9 +165,11 @@ def test_normal_vibration_below_and_past_lift_off():
     assert np.mean(above.n_contact < 30) > 0.05  # pads off their tracks in part of the samples
 
 
-def test_renderer_draws_the_vibration():
-    sc = _patches({"amplitude": 2e-4, "frequency": 10.0})
-    scene = Scene(sc, 0)
+@pytest.mark.parametrize("name", ["pads_friction_patches", "constant_velocity"])  # the second: the riding anchor
+def test_renderer_draws_the_vibration(name):
+    d = tomllib.loads(shipped_scenarios()[name].read_text())
+    d["vibration"] = {"target": "substrate", "direction": "parallel", "amplitude": 2e-4, "frequency": 10.0}
+    scene = Scene(scenario_from_dict(d), 0)
     scene.advance(37)
     r = SceneRenderer(scene)
     img = r.frame()
@@ -206,3 +216,67 @@ def test_compare_of_a_shaken_trace_removes_the_line_and_says_so(tmp_path):
     s = json.loads((tmp_path / "cmp" / "summary.json").read_text())
     ratios = [b["ratio"] for b in s["scenarios"]["pads_friction_patches"]["band_ratios_vs_model_I"]]
     assert max(ratios) < 1e3, ratios
+
+
+def test_velocity_drive_anchor_rides_the_inertial_field():
+    # under a shaken substrate the velocity drive's anchor is a dynamic body of ANCHOR_MASS on a groove joint: it
+    # follows the field like every free body, x0 + v t - s(t - dt) - s(dt) (pymunk moves a body with its previous
+    # step's velocity), so the drive spring sees no phase error between it and the block; its height stays; the
+    # drive spring's pull (about 1.6 N) moves it by F t^2 / (2 ANCHOR_MASS) ~ 1e-17 mm here, so 1e-9 mm is rounding
+    from engine_sim.vibration import ANCHOR_MASS
+
+    d = tomllib.loads(shipped_scenarios()["constant_velocity"].read_text())
+    d["vibration"] = {"target": "substrate", "direction": "parallel", "amplitude": 2e-4, "frequency": 10.0}
+    scene = Scene(scenario_from_dict(d))
+    vib, anchor = scene.vibration, scene.drive.spring.b
+    assert vib.anchor is anchor and anchor.body_type == pymunk.Body.DYNAMIC and anchor.mass == ANCHOR_MASS
+    x0, y0 = anchor.position
+    for _ in range(150):
+        scene.advance(scene.n_sub)
+        n = scene.steps
+        free = x0 + vib.v_anchor * n * scene.dt - vib._s(n - 1) - vib._s(1)
+        assert anchor.position.x == pytest.approx(free, abs=1e-9)
+        assert anchor.position.y == pytest.approx(y0, abs=1e-9)
+    # the recorder leaves the anchor's kinetic energy (1e17 kg at 5 mm/s) out: the balance is of the scene's bodies
+    sc = scenario_from_dict({**d, "run": {**d["run"], "duration": 0.2, "warmup": 0.1}})
+    tr = engine_sim.run(sc)
+    assert np.all(np.abs(tr.mech_energy) < 1.0) and np.all(np.isfinite(tr.work_drive))
+
+
+@pytest.mark.slow  # about 10 s of interleaved timing
+@pytest.mark.timing  # the part's own work against the unshaken scene's step
+@pytest.mark.parametrize("name", ["pads_friction_patches", "constant_velocity"])
+def test_vibration_adds_at_most_5_percent_to_a_step(name):
+    # The issue's budget: at most 5 % of a scene's step cost. The part's own work per step (its stepping loop with
+    # space.step a no-op, and the recorder's extra per sample spread over the output step's steps; minima of 300,
+    # CPU time, which other processes do not advance) against the unshaken scene's loop (minimum over 100 chunks,
+    # so the smallest step and the largest share). Measured 0.6 us on 16-19 us (3-4 %) under both drives at load
+    # 2-4; with the velocity drive's anchor set by a second setter each step and the momentum summed by a kernel
+    # of its own it was 1.7 us (9-10 %) (benchmarks/results/vibration.md). The riding anchor's own cost lies
+    # inside space.step (one body and a groove joint): bench_vibration --before-after measures the whole loop.
+    from benchmarks.bench_vibration import VIBRATIONS, loop_cost, overhead, scenario
+
+    vib = VIBRATIONS["substrate parallel"]
+    a1, a0, s1, s0, _, n = overhead(scenario(name, vib), scenario(name, None))
+    extra = a1 - a0 + (s1 - s0) / n
+    step = loop_cost(scenario(name, None))
+    assert extra / step <= 0.05, (extra, step)
+
+
+@pytest.mark.parametrize("scenario", ["vibrated_velocity.toml", "vibrated_patches.toml"])
+def test_energy_balance_at_40_steps_per_period(scenario):
+    # the sweep's scenes shaken at 1 kHz (40 steps per period, 4 samples): the vibration's power pairs the
+    # sampled momentum with the mean of the fields of the steps either side of the sample. Paired with the next
+    # step's field alone, the block and pads that ride with the substrate took a spurious mean power m A^2 w^4 dt / 4:
+    # the balance was off by 0.12 of the drive's work at 1.13 um (0.71 at 2.72 um). Measured now 9.6e-4 and 9.7e-4 at
+    # 1.13 um (below the onset of reversal); past the onset (2.72 um) 8e-3 and 4e-3, the contacts' reversals at 40
+    # steps per period being what the sampled powers then miss (benchmarks/results/vibration.md)
+    from engine_sim.scenario import SCENARIO_DIR
+
+    d = tomllib.loads((SCENARIO_DIR / "sweeps" / scenario).read_text())
+    d["run"] = {**d["run"], "duration": 0.5, "warmup": 0.25}
+    d["vibration"] = {**d["vibration"], "amplitude": 1.13e-6, "frequency": 1000.0}
+    tr = engine_sim.run(scenario_from_dict(d), epoch=0.25)
+    W = tr.work_drive[-1]
+    resid = W + tr.work_vibration[-1] + tr.work_recycle[-1] - tr.dissipated[-1] - tr.mech_energy[-1]
+    assert abs(resid / W) < 2e-3
