@@ -259,7 +259,10 @@ class Recorder:
         o = {c: self.out[:n, i] for i, c in enumerate(COLS)}
         dt_s = np.diff(t) * U.TIME
         cum = lambda p: np.concatenate([[0.0], np.cumsum(0.5 * (p[1:n] + p[: n - 1]) * dt_s)]) / U.ENERGY
-        metadata = {**metadata, **self.scene.wear.trace_metadata(int(o["stale"].sum()))}
+        metadata = {**metadata, **self.scene.wear.trace_metadata(int(o["stale"].sum())), "forces": self.forces,
+                    "force_channels": FORCE_CHANNELS if self.forces == "mean" else {
+                        c: "point: the contact force of the last pymunk step before the sample (aliases)"
+                        for c in FORCE_CHANNELS}}
         return EngineTrace(
             t=t - t[0], x=(o["x"] - o["x"][0]) / U.LENGTH, v=o["v"] / U.VELOCITY, F_t=o["F_t"].copy(),
             F_n=o["F_n"].copy(), F_drag=o["F_drag"].copy(), F_drive=o["F_drive"].copy(),
