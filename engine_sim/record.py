@@ -1,15 +1,19 @@
 """Recording a scene at the output rate, in bulk (pymunk.batch), and the trace it produces (SI units).
 
 Per output sample: the block's position and velocity; per sliding body (the pads, and the micro-pads they may
-carry; ``Scene.sliders``), the tangential and normal contact force
-(arbiter impulse of the last step / dt) and whether it touches its track; the drive's work and the power
-dissipated by the friction law (Coulomb part -f_t v and viscous part c v^2), integrated by trapezoids, and
-the mechanical energy, for the energy balance W_drive (+ W_recycle) = dissipated + change of mechanical energy.
-Dissipation is measured, not inferred: at every contact the friction power -F_t (v_A(p) - v_B(p))_t (tangential
-force times slip at the contact point p, rotation included), plus the friction law's drag and the springs' damping. With the
-log law the velocity part b N_pad ln(1 + v/v_c) enters the drag force and its power. With wear particles: per
-particle and sample its state (0 idle: not touching its pad; 1 trapped: touching and slower than the trapped
-threshold; 2 moving) and the tangential force it exerts on its pad.
+carry; ``Scene.sliders``), the tangential and normal contact force and whether it touches its track; the drive's
+work and the power dissipated by the friction law (Coulomb part -f_t v and viscous part c v^2), integrated by
+trapezoids, and the mechanical energy, for the energy balance W_drive (+ W_recycle) = dissipated + change of
+mechanical energy. Dissipation is measured, not inferred: at every contact the friction power -F_t (v_A(p) -
+v_B(p))_t (tangential force times slip at the contact point p, rotation included), plus the friction law's drag and
+the springs' damping. With the log law the velocity part b N_pad ln(1 + v/v_c) enters the drag force and its power.
+With wear particles: per particle and sample its state (0 idle: not touching its pad; 1 trapped: touching and slower
+than the trapped threshold; 2 moving) and the tangential force it exerts on its pad.
+
+The forces are means over the output step that ends at the sample (``run.forces = "mean"``, the default): from the
+momenta and places read at the samples (``reduction.means``; :data:`FORCE_CHANNELS` says how each is made), so
+nothing is read between samples. ``run.forces = "point"`` records the contact forces of the last pymunk step
+instead (arbiter impulse / dt), which alias. The powers and the grains' forces are read at the sample.
 """
 from __future__ import annotations
 
@@ -66,7 +70,9 @@ def step_weights(n: int) -> np.ndarray:
 @dataclass(frozen=True)
 class EngineTrace:
     """A recorded scene run (SI units). ``t`` [s], ``x`` [m] (block position from its start), ``v`` [m/s];
-    ``F_t``, ``F_n`` [N]: summed tangential and normal contact force on the sliding bodies (pads and any micro-pads;
+    the forces are means over the output step ending at each sample, but ``p_force`` (a point sample; see
+    :data:`FORCE_CHANNELS` and ``metadata["forces"]``); ``F_t``, ``F_n`` [N]: summed tangential and normal contact
+    force on the sliding bodies (pads and any micro-pads;
     tangential positive against the sliding direction, i.e. the Coulomb part of the friction law); ``F_drag`` [N]:
     the velocity part of the law summed over them (c v, plus b N_pad ln(1 + v/v_c) for the log law), so F_t + F_drag
     is the whole friction force; ``F_drive`` [N]: the drive's force (for Leonardo's slider the hanging weight); ``pad_force`` [N] (samples x pads), tangential (the N pads only); ``n_contact``: pads
