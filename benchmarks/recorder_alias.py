@@ -1,7 +1,7 @@
 """The recorded forces against their exact means over the output step, per channel and log band.
 
 The recorder (engine_sim/record.py) writes each force as its mean over the output step T by default
-(``run.forces = "mean"``), from momenta read at the step's two ends (engine_sim/reduction.py, ``means``). This
+(``run.forces = "mean"``), from momenta read at the step's two ends (engine_sim/means.py). This
 measures it on a shipped scene: one scene, one path, three recorders read it in the same loop,
 
 - the default recording, every output step (what a run delivers);

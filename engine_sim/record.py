@@ -11,7 +11,7 @@ With wear particles: per particle and sample its state (0 idle: not touching its
 than the trapped threshold; 2 moving) and the tangential force it exerts on its pad.
 
 The forces are means over the output step that ends at the sample (``run.forces = "mean"``, the default): from the
-momenta and places read at the samples (``reduction.means``; :data:`FORCE_CHANNELS` says how each is made), so
+momenta and places read at the samples (``engine_sim.means``; :data:`FORCE_CHANNELS` says how each is made), so
 nothing is read between samples. ``run.forces = "point"`` records the contact forces of the last pymunk step
 instead (arbiter impulse / dt), which alias. The powers and the grains' forces are read at the sample.
 """
@@ -23,6 +23,7 @@ import numpy as np
 import pymunk.batch as B
 
 from . import reduction as R, units as U
+from .means import means
 from .reduction import COLS, MS_COLS, PRM, reduce_sample
 from .vibration import VIB_COLS
 
@@ -141,7 +142,7 @@ class Recorder:
         # per grain (reduction.G_*): mass, moment, radius, asleep, last place; carried across epochs (checkpoint.py)
         self.grain_table = scene.wear.recorder_table()
         self.x0 = None
-        # the means' state from sample to sample (reduction.means): momenta, places and spring forces, spring lengths
+        # the means' state from sample to sample (engine_sim.means): momenta, places and spring forces, spring lengths
         self.means_state = np.zeros((1 + len(scene.sliders), MS_COLS))
         self.spring_lengths = np.zeros(len(scene.block_springs) + len(scene.slider_springs))
         self.last_steps = None  # the scene's step count at the previous sample
@@ -227,9 +228,11 @@ class Recorder:
         self.last_impulses = tot.copy()
         sc.wear.mark_sleeping(self.grain_table)
         self.recycle[k] = sc.wear.recycle_work
-        reduce_sample(ids, fl, ai, af, self._tab, self.grain_table, self._bs, self._pp, self._prm, sc.slider_terms,
-                      self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact, self.p_state,
-                      self.p_force, self._sp, self.means_state, self.spring_lengths, lj)
+        blk, P, D = reduce_sample(ids, fl, ai, af, self._tab, self.grain_table, self._bs, self._pp, self._prm,
+                                  sc.slider_terms, self._drive_mass, k, self.out, self.pad_force, self.micro_force,
+                                  self.n_contact, self.p_state, self.p_force)
+        means(blk, P, D, self._sp, self._prm, sc.slider_terms, self._drive_mass, self.means_state, self.spring_lengths,
+              lj, k, self.out, self.pad_force, self.micro_force)
         vib = getattr(sc, "vibration", None)
         if vib is not None:
             self.out[k, len(COLS):] = vib.record(sc, ids, fl, self._tab, sc.slider_terms, self.grain_table,

@@ -1,4 +1,4 @@
-"""Recorded forces as means over the output step (engine_sim.reduction.means): against the block average of the
+"""Recorded forces as means over the output step (engine_sim.means): against the block average of the
 same path recorded at every pymunk step, on cases where that average is the truth, and on a case whose contact force
 is zero by construction."""
 import numpy as np
