@@ -1,6 +1,6 @@
 """Forces as means over the output step, from the momenta and places read at its two ends (scene units).
 
-:func:`means` runs after :func:`engine_sim.reduction.reduce_sample` on the bodies' states it read and overwrites the
+:func:`means` ends :func:`engine_sim.reduction.reduce_sample`, on the bodies' states it read, and overwrites the
 forces of that row (F_t, F_n, F_drag, F_drive, the pads' and micro-pads' forces) with their means over the pymunk steps
 since the previous sample, then keeps this sample's state for the next. pymunk steps by semi-implicit Euler (it moves
 a body with its velocity, then updates the velocity by the step's impulses), so over the output step each body's
@@ -24,31 +24,35 @@ def drive_force(dk, rest, ax, hx):
 
 
 @numba.njit(cache=True)
-def spring_forces(sp, blk, P, s, F, L):
-    """The springs' elastic forces on the sliders added to ``F`` (n_sl x 2), at the places ``s`` = 0 (the sample's)
-    or one step on (s = dt: X + V dt, where pymunk's next step puts every body before it evaluates a spring), and each
-    spring's length there in ``L``. ``sp`` rows: body a (-1: the block), body b (a slider), anchors on a and b, rest
+def spring_forces(sp, blk, P, dt, F0, F1, L0, L1):
+    """The springs' elastic forces on the sliders added to ``F0`` (n_sl x 2) at the sample's places and to ``F1`` one
+    step on (X + V dt, where pymunk's next step puts every body before it evaluates a spring), and each spring's
+    length there in ``L0``, ``L1``. ``sp`` rows: body a (-1: the block), body b (a slider), anchors on a and b, rest
     length, stiffness, damping (DampedSpring's order: the force pushes b away from a when compressed)."""
     for r in range(sp.shape[0]):
         a, b = int(sp[r, 0]), int(sp[r, 1])
         if a < 0:
-            ax, ay = blk[0] + s * blk[2], blk[1] + s * blk[3]
+            ax, ay, avx, avy = blk[0], blk[1], blk[2], blk[3]
         else:
-            ax, ay = P[a, 0] + s * P[a, 2], P[a, 1] + s * P[a, 3]
-        dx = P[b, 0] + s * P[b, 2] + sp[r, 4] - (ax + sp[r, 2])
-        dy = P[b, 1] + s * P[b, 3] + sp[r, 5] - (ay + sp[r, 3])
-        ln = np.sqrt(dx * dx + dy * dy)
-        L[r] = ln
-        f = sp[r, 7] * (sp[r, 6] - ln) / ln
-        F[b, 0] += f * dx
-        F[b, 1] += f * dy
-        if a >= 0:
-            F[a, 0] -= f * dx
-            F[a, 1] -= f * dy
+            ax, ay, avx, avy = P[a, 0], P[a, 1], P[a, 2], P[a, 3]
+        dx = P[b, 0] + sp[r, 4] - (ax + sp[r, 2])
+        dy = P[b, 1] + sp[r, 5] - (ay + sp[r, 3])
+        ex = dx + dt * (P[b, 2] - avx)
+        ey = dy + dt * (P[b, 3] - avy)
+        k, rest = sp[r, 7], sp[r, 6]
+        for F, L, ux, uy in ((F0, L0, dx, dy), (F1, L1, ex, ey)):
+            ln = np.sqrt(ux * ux + uy * uy)
+            L[r] = ln
+            f = k * (rest - ln) / ln
+            F[b, 0] += f * ux
+            F[b, 1] += f * uy
+            if a >= 0:
+                F[a, 0] -= f * ux
+                F[a, 1] -= f * uy
 
 
 @numba.njit(cache=True)
-def means(blk, P, D, sp, prm, sl, dm, ms, ls, lj, k, out, pad_force, micro_force):
+def means(blk, P, D, sp, prm, sl, dm, ms, ls, lt, k, out, pad_force, micro_force):
     """The forces of row ``k`` as means over the output step since the previous sample, from the momenta read at its
     two ends (no per-step reads); then this sample's state into ``ms``, ``ls`` for the next (module docstring).
 
@@ -56,7 +60,8 @@ def means(blk, P, D, sp, prm, sl, dm, ms, ls, lj, k, out, pad_force, micro_force
     bodies) feels, besides its contact forces: the drive spring (a smooth function of two places: integrated with the
     weights w0..w3 from its values at both ends and one step after each, exact for a cubic in the step index); the
     law's dampers c v (pymunk applies a damper's impulse last in a step, as -c dt v with v the step's final velocity,
-    so over the steps it sums to -c (dx + dv dt) exactly); a law's per-step impulses ``lj`` (accumulated by the law);
+    so over the steps it sums to -c (dx + dv dt) exactly); a law's per-step impulses (``lt``: the law's running totals per slider, less those at the previous sample,
+    kept in ``ms``);
     gravity; a vibration's known impulses (``prm``). Its internal springs cancel, so the total tangential contact
     force F_t is exact, and the normal F_n too when the block is free vertically; a guided block's guide adds an
     unknown vertical impulse, so then F_n is the sum over the sliders of the per-slider balance. A slider's own
@@ -64,12 +69,15 @@ def means(blk, P, D, sp, prm, sl, dm, ms, ls, lj, k, out, pad_force, micro_force
     the spring's length one step on, along the spring: exact for a damper applied last in a step, as above)."""
     n_sl = P.shape[0]
     dt = prm[DT]
+    lj = np.empty(n_sl)  # the law's impulses on each slider over the output step
+    for i in range(n_sl):
+        lj[i] = lt[i] - ms[1 + i, 8]
+        ms[1 + i, 8] = lt[i]
     F0 = np.zeros((n_sl, 2))
     F1 = np.zeros((n_sl, 2))
     L0 = np.empty(sp.shape[0])
     L1 = np.empty(sp.shape[0])
-    spring_forces(sp, blk, P, 0.0, F0, L0)
-    spring_forces(sp, blk, P, dt, F1, L1)
+    spring_forces(sp, blk, P, dt, F0, F1, L0, L1)
     pulled = int(prm[PULLED])
     hx, hvx = (blk[0], blk[2]) if pulled < 0 else (D[pulled, 0], D[pulled, 1])
     dk, rest, ax, av = prm[DRIVE_K], prm[DRIVE_REST], prm[ANCHOR_X], prm[ANCHOR_V]

@@ -23,7 +23,6 @@ import numpy as np
 import pymunk.batch as B
 
 from . import reduction as R, units as U
-from .means import means
 from .reduction import COLS, MS_COLS, PRM, reduce_sample
 from .vibration import VIB_COLS
 
@@ -48,7 +47,7 @@ FORCE_CHANNELS = {
 }
 
 
-_P = {name: i for i, name in enumerate(PRM)}
+_STEPS, _VIB = PRM.index("steps"), PRM.index("vib_x")  # steps, then w0..w3; vib_x, vib_y, vib_bx, vib_by
 
 
 def step_weights(n: int) -> np.ndarray:
@@ -146,7 +145,6 @@ class Recorder:
         self.means_state = np.zeros((1 + len(scene.sliders), MS_COLS))
         self.spring_lengths = np.zeros(len(scene.block_springs) + len(scene.slider_springs))
         self.last_steps = None  # the scene's step count at the previous sample
-        self.last_impulses = scene.law.impulse_totals(scene).copy()  # the law's impulse totals then
         self._tables()
 
     def _tables(self):
@@ -193,11 +191,13 @@ class Recorder:
                        np.expm1(x) / (K * scene.dt)))
         self._sp = np.array(sp, dtype=float).reshape(-1, 9)
         self._weights = {}
+        self._law_totals = scene.law.impulse_totals(scene)  # the law's, updated in place as it steps
+        self._n_last = -1  # the step count whose weights prm holds
 
     def __getstate__(self):
         state = self.__dict__.copy()
         for k in ("_tab", "_bbuf", "_abuf", "_prm", "_drive_spring", "_drive_const", "_drive_mass", "_bs", "_pp",
-                  "_sp", "_weights"):
+                  "_sp", "_weights", "_law_totals", "_n_last"):
             del state[k]  # derived from the scene (pymunk ids change on unpickling; batch buffers do not pickle)
         return state
 
@@ -223,16 +223,11 @@ class Recorder:
         prm[0], prm[1], prm[2], prm[3] = self._drive_state()
         prm[4] = self.x0
         self._interval(prm)
-        tot = sc.law.impulse_totals(sc)
-        lj = tot - self.last_impulses
-        self.last_impulses = tot.copy()
         sc.wear.mark_sleeping(self.grain_table)
         self.recycle[k] = sc.wear.recycle_work
-        blk, P, D = reduce_sample(ids, fl, ai, af, self._tab, self.grain_table, self._bs, self._pp, self._prm,
-                                  sc.slider_terms, self._drive_mass, k, self.out, self.pad_force, self.micro_force,
-                                  self.n_contact, self.p_state, self.p_force)
-        means(blk, P, D, self._sp, self._prm, sc.slider_terms, self._drive_mass, self.means_state, self.spring_lengths,
-              lj, k, self.out, self.pad_force, self.micro_force)
+        reduce_sample(ids, fl, ai, af, self._tab, self.grain_table, self._bs, self._pp, self._prm, sc.slider_terms,
+                      self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact, self.p_state,
+                      self.p_force, self._sp, self.means_state, self.spring_lengths, self._law_totals)
         vib = getattr(sc, "vibration", None)
         if vib is not None:
             self.out[k, len(COLS):] = vib.record(sc, ids, fl, self._tab, sc.slider_terms, self.grain_table,
@@ -245,15 +240,17 @@ class Recorder:
         quadrature weights (:func:`step_weights`) and a vibration's known impulses over it."""
         sc = self.scene
         n = 0 if self.last_steps is None else sc.steps - self.last_steps
-        w = self._weights.get(n)
-        if w is None and n > 0:
-            w = self._weights[n] = step_weights(n)
-        prm[_P["steps"]] = n
+        prm[_STEPS] = n
         if n > 0:
-            prm[_P["w0"]:_P["w3"] + 1] = w
-            vib = getattr(sc, "vibration", None)
-            jv = (0.0, 0.0, 0.0, 0.0) if vib is None else vib.impulses(self.last_steps, sc.steps)
-            prm[_P["vib_x"]:_P["vib_by"] + 1] = jv
+            if n != self._n_last:
+                w = self._weights.get(n)
+                if w is None:
+                    w = self._weights[n] = step_weights(n)
+                prm[_STEPS + 1:_STEPS + 5] = w
+                self._n_last = n
+            vib = sc.vibration
+            if vib is not None:
+                prm[_VIB:_VIB + 4] = vib.impulses(self.last_steps, sc.steps)
         self.last_steps = sc.steps
 
     def _drive_state(self):

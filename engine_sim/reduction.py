@@ -33,8 +33,8 @@ PRM = ("drive_k", "anchor_x", "drive_rest", "anchor_v", "x0", "dt", "M", "g", "v
  GUIDED, VIB_X, VIB_Y, VIB_BX, VIB_BY, LAW_AFTER) = range(len(PRM))
 # the means' state carried from sample to sample (engine_sim/means.py; rows: 0 the sliding system, 1 + i slider i):
 # system row [P_x, P_y, drive force, drive force one step ahead]; slider rows [x, y, vx, vy, spring force x, y, one step
-# ahead x, y]
-MS_COLS = 8
+# ahead x, y, the law's impulse total]
+MS_COLS = 9
 # body kinds in the body table (rows: id, kind, index within its kind); STATIC: a body not in the table
 BLOCK, SLIDER, GRAIN, DRIVE_BODY, STATIC = 0, 1, 2, 3, -1
 # floats per arbiter in the batch buffer and their order: impulse, normal, point A 1, point B 1, distance 1
@@ -264,12 +264,12 @@ def drive(prm, hx, hvx, pe):
 
 @numba.njit(cache=True)
 def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, dm, k, out, pad_force, micro_force, n_contact,
-                  p_state, p_force):
+                  p_state, p_force, sp, ms, ls, lt):
     """Row ``k`` of the recorder's buffers from the raw batch buffers (module docstring); ``grain``: the grain
     table (its places are updated), ``bs``, ``pp``: the springs (:func:`springs`), ``sl``: the sliders' law terms
     (:func:`sliders`), ``dm``: masses of the drive's bodies. One array per output keeps the argument list short
-    enough for numba's dispatch, which runs every output step. Returns the block's, the sliders' and the drive's
-    bodies' states (:func:`read_bodies`) for the means (:func:`engine_sim.means.means`)."""
+    enough for numba's dispatch, which runs every output step. Then the forces as means over the output step
+    (:func:`engine_sim.means.means`; ``sp``, ``ms``, ``ls``, ``lt``: its springs, state and the law's impulse totals)."""
     g = prm[GRAV]
     prev = grain[:, G_X:G_Y + 1].copy()  # places at the previous sample: a grain's state is judged on its mean speed
     blk, P, D, Q = read_bodies(ids, fl, tab, grain, sl.shape[0], dm.shape[0])
@@ -299,7 +299,7 @@ def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, dm, k, out, pad_
     out[k, P_PEN] = max(p_pen, 0.0)
     out[k, STALE] = n_stale
     n_contact[k] = nc
-    return blk, P, D
+    means(blk, P, D, sp, prm, sl, dm, ms, ls, lt, k, out, pad_force, micro_force)
 
 
 @numba.njit(cache=True)
@@ -355,3 +355,6 @@ def arbiter_order(ai, af, tab):
             j -= 1
         order[j + 1] = r
     return order
+
+
+from .means import means  # noqa: E402  (means reads this module's constants)

@@ -69,7 +69,9 @@ class Law:
     def build(self, scene, body, c: float) -> None:
         """Add the velocity part of the law on ``body`` (scene units) to ``scene.space``."""
 
-    # the law's impulses act after pymunk's step (written as velocities), not inside it as forces
+    # the law applies impulses per step outside pymunk's constraints (impulse_totals), and they act after pymunk's
+    # step (written as velocities), not inside it as forces
+    per_step_impulses: ClassVar[bool] = False
     impulses_after_step: ClassVar[bool] = False
 
     def impulse_totals(self, scene) -> np.ndarray:

@@ -31,6 +31,7 @@ class Log(Linear):
 
     name = "log"
     Spec = LogSpec
+    per_step_impulses = True
     positive = frozenset({"v_c"})
     non_negative = frozenset({"mu0", "c", "b"})
 

@@ -88,6 +88,7 @@ class RateState(Linear):
     name = "rate_state"
     Spec = RateStateSpec
     impulses_after_step = True
+    per_step_impulses = True
     positive = frozenset({"A", "D_c", "V0", "theta0"})
     non_negative = frozenset({"mu0", "c", "B", "mu_ref"})
     choices = {"state_law": tuple(STATE_LAWS)}
