@@ -40,15 +40,19 @@ def spring_forces(sp, blk, P, dt, F0, F1, L0, L1):
         ex = dx + dt * (P[b, 2] - avx)
         ey = dy + dt * (P[b, 3] - avy)
         k, rest = sp[r, 7], sp[r, 6]
-        for F, L, ux, uy in ((F0, L0, dx, dy), (F1, L1, ex, ey)):
-            ln = np.sqrt(ux * ux + uy * uy)
-            L[r] = ln
-            f = k * (rest - ln) / ln
-            F[b, 0] += f * ux
-            F[b, 1] += f * uy
-            if a >= 0:
-                F[a, 0] -= f * ux
-                F[a, 1] -= f * uy
+        l0 = np.sqrt(dx * dx + dy * dy)
+        l1 = np.sqrt(ex * ex + ey * ey)
+        L0[r], L1[r] = l0, l1
+        f0, f1 = k * (rest - l0) / l0, k * (rest - l1) / l1
+        F0[b, 0] += f0 * dx
+        F0[b, 1] += f0 * dy
+        F1[b, 0] += f1 * ex
+        F1[b, 1] += f1 * ey
+        if a >= 0:
+            F0[a, 0] -= f0 * dx
+            F0[a, 1] -= f0 * dy
+            F1[a, 0] -= f1 * ex
+            F1[a, 1] -= f1 * ey
 
 
 @numba.njit(cache=True)
