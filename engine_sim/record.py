@@ -29,16 +29,18 @@ from .vibration import VIB_COLS
 __all__ = ["EngineTrace", "Recorder", "step_weights", "FORCE_CHANNELS"]
 
 # How each recorded force is made in the default recording (run.forces = "mean"), by trace field: "exact" (the mean
-# over the output step from momenta and known impulses: exact up to rounding), "quadrature" (a smooth spring force
-# integrated from the step's two ends, measured within 2 % per band up to half the output Nyquist frequency on every
-# shipped scene: benchmarks/results/recorder_alias.md) or "point" (the last pymunk step's contact force at the
-# sample). The first sample of a recording has no output step before it: its forces are point samples.
+# over the output step from momenta and known impulses), "quadrature" (a smooth spring force integrated from the
+# step's two ends) or "point" (the last pymunk step's contact force at the sample). Measured against the exact means
+# on every shipped scene in benchmarks/results/recorder_alias.md. The first sample of a recording has no output step
+# before it: its forces are point samples.
 FORCE_CHANNELS = {
     "F_t": "exact: the sliders' total tangential contact force, from the sliding system's momentum (its springs "
-           "cancel) less the drive's and the law's impulses",
-    "F_drag": "exact: the law's dampers (-c (dx + dv dt) summed over the step) and its per-step impulses",
-    "F_drive": "quadrature for a velocity drive (its spring, from both ends of the step); exact within 1e-9 for a "
-               "constant force (its far spring)",
+           "cancel) less the drive's and the law's impulses; but where contacts overlap on slanted surfaces pymunk's "
+           "position correction moves the sliders without momentum, which the dampers' part reads as drag",
+    "F_drag": "exact: the law's dampers (-c (dx + dv dt) summed over the step; see F_t for the position correction) "
+              "and its per-step impulses",
+    "F_drive": "quadrature for a velocity drive (its spring, from both ends of the step); a constant force is constant "
+               "to 1e-9",
     "F_n": "exact for a block free vertically (its momentum); else quadrature: the sum of the sliders' own balances",
     "pad_force": "quadrature: the pad's momentum change less its springs' impulses (elastic part by quadrature, "
                  "damping part from the change of the spring's length), the law's and gravity's",

@@ -1,6 +1,8 @@
 """Recorded forces as means over the output step (engine_sim.means): against the block average of the
 same path recorded at every pymunk step, on cases where that average is the truth, and on a case whose contact force
 is zero by construction."""
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -72,3 +74,19 @@ def test_point_mode_is_the_last_steps_contact_force():
     a, b = engine_sim.run(sc.with_run(forces="point")), engine_sim.run(sc)
     assert np.allclose(a.F_t[1:], b.F_t[1:], rtol=0, atol=1e-10)
     assert np.allclose(a.pad_force[1:], b.pad_force[1:], rtol=0, atol=1e-10)
+
+
+@pytest.mark.parametrize("target,direction", [("substrate", "parallel"), ("substrate", "normal"), ("block", "parallel")])
+def test_means_take_a_vibrations_impulses_in_closed_form(target, direction):
+    # A shaken scene: every body feels the substrate frame's inertial force (or the block the shaker's), which the
+    # means add in closed form over each output step; on flat tracks F_t must still equal the block average of the
+    # every-step contact forces to rounding (measured 2e-13 N against a 0.14-0.31 N rms).
+    from dataclasses import replace
+    path = Path(__file__).resolve().parents[1] / "scenarios" / "sweeps" / "vibrated_patches.toml"
+    sc = load_scenario(path).with_run(duration=0.05, warmup=0.02)
+    sc = replace(sc, vibration=replace(sc.vibration, amplitude=1e-5, frequency=200.0, target=target,
+                                       direction=direction))
+    fine = engine_sim.run(sc.with_run(dt_out=sc.run.dt, forces="point"))
+    tr = engine_sim.run(sc)
+    m, n = int(round(sc.run.dt_out / sc.run.dt)), len(tr.t) - 1
+    assert np.abs(tr.F_t[1:n + 1] - _block(fine.F_t, m, n)).max() < 1e-9 * np.std(fine.F_t)
