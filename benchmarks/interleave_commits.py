@@ -28,6 +28,19 @@ print(json.dumps(out))
 """
 
 
+def take_turns(child: str, args: list, base: str, new: str, repeats: int) -> dict:
+    """{"base": [...], "new": [...]}: the JSON that ``child`` (Python source run with ``args``, cwd = the tree) prints
+    last, per turn; turns alternate base, new, base, new, ..."""
+    runs = {"base": [], "new": []}
+    for r in range(repeats):
+        for label, tree in (("base", base), ("new", new)):
+            p = subprocess.run([sys.executable, "-c", child, *args], cwd=tree, capture_output=True, text=True,
+                               check=True)
+            runs[label].append(json.loads(p.stdout.strip().splitlines()[-1]))
+            print(f"turn {r + 1} {label} done", file=sys.stderr, flush=True)
+    return runs
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("base")
@@ -37,13 +50,7 @@ def main(argv=None):
     ap.add_argument("--out", default=None)
     ap.add_argument("--scenes", default="", help="comma-separated scene names (default: all)")
     a = ap.parse_args(argv)
-    runs = {"base": [], "new": []}
-    for r in range(a.repeats):
-        for label, tree in (("base", a.base), ("new", a.new)):
-            p = subprocess.run([sys.executable, "-c", _CHILD, str(a.steps), a.scenes], cwd=tree, capture_output=True, text=True,
-                               check=True)
-            runs[label].append(json.loads(p.stdout.strip().splitlines()[-1]))
-            print(f"turn {r + 1} {label} done", file=sys.stderr, flush=True)
+    runs = take_turns(_CHILD, [str(a.steps), a.scenes], a.base, a.new, a.repeats)
     names = sorted(set(runs["base"][0]) | set(runs["new"][0]))
     lines = [f"| scene | base loop/bare ({a.repeats} turns) | new loop/bare ({a.repeats} turns) | base us/step (loop, best) | new us/step (loop, best) |",
              "|---|---|---|---|---|"]

@@ -1,15 +1,19 @@
 """Recording a scene at the output rate, in bulk (pymunk.batch), and the trace it produces (SI units).
 
 Per output sample: the block's position and velocity; per sliding body (the pads, and the micro-pads they may
-carry; ``Scene.sliders``), the tangential and normal contact force
-(arbiter impulse of the last step / dt) and whether it touches its track; the drive's work and the power
-dissipated by the friction law (Coulomb part -f_t v and viscous part c v^2), integrated by trapezoids, and
-the mechanical energy, for the energy balance W_drive (+ W_recycle) = dissipated + change of mechanical energy.
-Dissipation is measured, not inferred: at every contact the friction power -F_t (v_A(p) - v_B(p))_t (tangential
-force times slip at the contact point p, rotation included), plus the friction law's drag and the springs' damping. With the
-log law the velocity part b N_pad ln(1 + v/v_c) enters the drag force and its power. With wear particles: per
-particle and sample its state (0 idle: not touching its pad; 1 trapped: touching and slower than the trapped
-threshold; 2 moving) and the tangential force it exerts on its pad.
+carry; ``Scene.sliders``), the tangential and normal contact force and whether it touches its track; the drive's
+work and the power dissipated by the friction law (Coulomb part -f_t v and viscous part c v^2), integrated by
+trapezoids, and the mechanical energy, for the energy balance W_drive (+ W_recycle) = dissipated + change of
+mechanical energy. Dissipation is measured, not inferred: at every contact the friction power -F_t (v_A(p) -
+v_B(p))_t (tangential force times slip at the contact point p, rotation included), plus the friction law's drag and
+the springs' damping. With the log law the velocity part b N_pad ln(1 + v/v_c) enters the drag force and its power.
+With wear particles: per particle and sample its state (0 idle: not touching its pad; 1 trapped: touching and slower
+than the trapped threshold; 2 moving) and the tangential force it exerts on its pad.
+
+The forces are means over the output step that ends at the sample (``run.forces = "mean"``, the default): from the
+momenta and places read at the samples (``engine_sim.means``; :data:`FORCE_CHANNELS` says how each is made), so
+nothing is read between samples. ``run.forces = "point"`` records the contact forces of the last pymunk step
+instead (arbiter impulse / dt), which alias. The powers and the grains' forces are read at the sample.
 """
 from __future__ import annotations
 
@@ -19,17 +23,58 @@ import numpy as np
 import pymunk.batch as B
 
 from . import reduction as R, units as U
-from .reduction import COLS, PRM, reduce_sample
+from .reduction import COLS, MS_COLS, PRM, reduce_sample
 from .vibration import VIB_COLS
 
-__all__ = ["EngineTrace", "Recorder"]
+__all__ = ["EngineTrace", "Recorder", "step_weights", "FORCE_CHANNELS"]
+
+# How each recorded force is made in the default recording (run.forces = "mean"), by trace field: "exact" (the mean
+# over the output step from momenta and known impulses), "quadrature" (a smooth spring force integrated from the
+# step's two ends) or "point" (the last pymunk step's contact force at the sample). Measured against the exact means
+# on every shipped scene in benchmarks/results/recorder_alias.md. The first sample of a recording has no output step
+# before it: its forces are point samples.
+FORCE_CHANNELS = {
+    "F_t": "exact: the sliders' total tangential contact force, from the sliding system's momentum (its springs "
+           "cancel) less the drive's and the law's impulses; but where contacts overlap on slanted surfaces pymunk's "
+           "position correction moves the sliders without momentum, which the dampers' part reads as drag",
+    "F_drag": "exact: the law's dampers (-c (dx + dv dt) summed over the step; see F_t for the position correction) "
+              "and its per-step impulses",
+    "F_drive": "quadrature for a velocity drive (its spring, from both ends of the step); a constant force is constant "
+               "to 1e-9",
+    "F_n": "exact for a block free vertically (its momentum); else quadrature: the sum of the sliders' own balances",
+    "pad_force": "quadrature: the pad's momentum change less its springs' impulses (elastic part by quadrature, "
+                 "damping part from the change of the spring's length), the law's and gravity's",
+    "micro_force": "quadrature: as pad_force, per micro-pad",
+    "p_force": "point: a grain touches its pad and its track at once, so momenta cannot separate its force on the pad",
+}
+
+
+_STEPS, _VIB = PRM.index("steps"), PRM.index("vib_x")  # steps, then w0..w3; vib_x, vib_y, vib_bx, vib_by
+
+
+def step_weights(n: int) -> np.ndarray:
+    """Weights (w0, w1, w2, w3) of the mean over n pymunk steps of a force f that is a smooth function of the
+    bodies' places: mean_{j=1..n} f_j = w0 f_0 + w1 f_1 + w2 f_n + w3 f_(n+1), with f_j the force at the places of
+    step j (pymunk evaluates a spring after moving the bodies, so step j sees the places after j steps; f_0 and f_n
+    are the values at the two samples, f_1 and f_(n+1) one step on, X + V dt, which the samples also know). Exact for
+    f a cubic in j; for f = e^(i omega t), its error at omega T = pi/2 (half the output Nyquist frequency, T = n dt) is
+    0.9 % in amplitude, 1.7 % in power (0.1 % at pi/4); the trapezoid's is 38 % in power there."""
+    if n == 1:
+        return np.array([0.0, 0.0, 1.0, 0.0])
+    nodes = np.array([0.0, 1.0, n, n + 1.0])
+    j = np.arange(1, n + 1, dtype=float)
+    A = np.vstack([nodes ** p for p in range(4)])
+    b = np.array([np.sum(j ** p) for p in range(4)])
+    return np.linalg.solve(A, b) / n
 
 
 
 @dataclass(frozen=True)
 class EngineTrace:
     """A recorded scene run (SI units). ``t`` [s], ``x`` [m] (block position from its start), ``v`` [m/s];
-    ``F_t``, ``F_n`` [N]: summed tangential and normal contact force on the sliding bodies (pads and any micro-pads;
+    the forces are means over the output step ending at each sample, but ``p_force`` (a point sample; see
+    :data:`FORCE_CHANNELS` and ``metadata["forces"]``); ``F_t``, ``F_n`` [N]: summed tangential and normal contact
+    force on the sliding bodies (pads and any micro-pads;
     tangential positive against the sliding direction, i.e. the Coulomb part of the friction law); ``F_drag`` [N]:
     the velocity part of the law summed over them (c v, plus b N_pad ln(1 + v/v_c) for the log law), so F_t + F_drag
     is the whole friction force; ``F_drive`` [N]: the drive's force (for Leonardo's slider the hanging weight); ``pad_force`` [N] (samples x pads), tangential (the N pads only); ``n_contact``: pads
@@ -78,8 +123,9 @@ class Recorder:
             | B.ArbiterFields.TOTAL_IMPULSE | B.ArbiterFields.NORMAL | B.ArbiterFields.POINT_A_1
             | B.ArbiterFields.POINT_B_1 | B.ArbiterFields.DISTANCE_1)
 
-    def __init__(self, scene, n_samples: int):
+    def __init__(self, scene, n_samples: int, forces: str | None = None):
         self.scene = scene
+        self.forces = scene.sc.run.forces if forces is None else forces  # "mean" or "point" (RunSpec)
         N = len(scene.pads)
         n_p = scene.wear.count
         self.k = 0
@@ -97,6 +143,10 @@ class Recorder:
         # per grain (reduction.G_*): mass, moment, radius, asleep, last place; carried across epochs (checkpoint.py)
         self.grain_table = scene.wear.recorder_table()
         self.x0 = None
+        # the means' state from sample to sample (engine_sim.means): momenta, places and spring forces, spring lengths
+        self.means_state = np.zeros((1 + len(scene.sliders), MS_COLS))
+        self.spring_lengths = np.zeros(len(scene.block_springs) + len(scene.slider_springs))
+        self.last_steps = None  # the scene's step count at the previous sample
         self._tables()
 
     def _tables(self):
@@ -115,7 +165,9 @@ class Recorder:
         self._abuf = B.Buffer()
         # scalars for the kernel, in reduction.PRM order (the drive's state and x0 are set per sample)
         prm = {"dt": scene.dt, "M": scene.M, "g": -scene.space.gravity.y, "v_trap": scene.v_trap,
-               "dt_out": scene.dt * scene.n_sub, "pulled": float(drive.pulled)}
+               "dt_out": scene.dt * scene.n_sub, "pulled": float(drive.pulled),
+               "means": float(self.forces == "mean"), "guided": float(scene.arrangement.guided),
+               "law_after": float(scene.law.impulses_after_step)}
         self._prm = np.array([prm.get(name, 0.0) for name in PRM])
         self._drive_spring = drive.spring
         sp = drive.spring  # its stiffness, rest length and anchor offset are constant; the anchor body moves
@@ -130,10 +182,24 @@ class Recorder:
               for c in scene.slider_springs if c.stiffness > 0]
         self._bs = np.array(bs).reshape(-1, 8)
         self._pp = np.array(pp).reshape(-1, 9)
+        # every spring for the means (body a: -1 the block, else a slider; body b; anchors; rest; stiffness; the
+        # damping pymunk applies per step, c_eff = (e^x - 1) / (K dt), x = c K dt, K = 1/m_a + 1/m_b)
+        sp = []
+        for c in list(scene.block_springs) + list(scene.slider_springs):
+            a = -1 if c.a is scene.block else index[c.a]
+            K = 1.0 / c.a.mass + 1.0 / c.b.mass
+            x = c.damping * K * scene.dt
+            sp.append((a, index[c.b], *c.anchor_a, *c.anchor_b, c.rest_length, c.stiffness,
+                       np.expm1(x) / (K * scene.dt)))
+        self._sp = np.array(sp, dtype=float).reshape(-1, 9)
+        self._weights = {}
+        self._law_totals = scene.law.impulse_totals(scene)  # the law's, updated in place as it steps
+        self._n_last = -1  # the step count whose weights prm holds
 
     def __getstate__(self):
         state = self.__dict__.copy()
-        for k in ("_tab", "_bbuf", "_abuf", "_prm", "_drive_spring", "_drive_const", "_drive_mass", "_bs", "_pp"):
+        for k in ("_tab", "_bbuf", "_abuf", "_prm", "_drive_spring", "_drive_const", "_drive_mass", "_bs", "_pp",
+                  "_sp", "_weights", "_law_totals", "_n_last"):
             del state[k]  # derived from the scene (pymunk ids change on unpickling; batch buffers do not pickle)
         return state
 
@@ -158,17 +224,36 @@ class Recorder:
         prm = self._prm
         prm[0], prm[1], prm[2], prm[3] = self._drive_state()
         prm[4] = self.x0
+        self._interval(prm)
         sc.wear.mark_sleeping(self.grain_table)
         self.recycle[k] = sc.wear.recycle_work
         reduce_sample(ids, fl, ai, af, self._tab, self.grain_table, self._bs, self._pp, self._prm, sc.slider_terms,
                       self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact, self.p_state,
-                      self.p_force)
+                      self.p_force, self._sp, self.means_state, self.spring_lengths, self._law_totals)
         vib = getattr(sc, "vibration", None)
         if vib is not None:
             out, c = self.out, len(COLS)
             out[k, c], out[k, c + 1] = vib.record(sc, out[k, R.MOM_X], out[k, R.MOM_Y])
         self.t[k] = sc.steps * sc.dt / U.TIME
         self.k += 1
+
+    def _interval(self, prm):
+        """The output step since the previous sample into ``prm``: its pymunk steps (0 at the first sample), the
+        quadrature weights (:func:`step_weights`) and a vibration's known impulses over it."""
+        sc = self.scene
+        n = 0 if self.last_steps is None else sc.steps - self.last_steps
+        prm[_STEPS] = n
+        if n > 0:
+            if n != self._n_last:
+                w = self._weights.get(n)
+                if w is None:
+                    w = self._weights[n] = step_weights(n)
+                prm[_STEPS + 1:_STEPS + 5] = w
+                self._n_last = n
+            vib = sc.vibration
+            if vib is not None:
+                prm[_VIB:_VIB + 4] = vib.impulses(self.last_steps, sc.steps)
+        self.last_steps = sc.steps
 
     def _drive_state(self):
         """(stiffness, anchor x, rest length, anchor speed) of the drive spring, scene units (its anchor body
@@ -182,7 +267,10 @@ class Recorder:
         o = {c: self.out[:n, i] for i, c in enumerate(COLS)}
         dt_s = np.diff(t) * U.TIME
         cum = lambda p: np.concatenate([[0.0], np.cumsum(0.5 * (p[1:n] + p[: n - 1]) * dt_s)]) / U.ENERGY
-        metadata = {**metadata, **self.scene.wear.trace_metadata(int(o["stale"].sum()))}
+        metadata = {**metadata, **self.scene.wear.trace_metadata(int(o["stale"].sum())), "forces": self.forces,
+                    "force_channels": FORCE_CHANNELS if self.forces == "mean" else {
+                        c: "point: the contact force of the last pymunk step before the sample (aliases)"
+                        for c in FORCE_CHANNELS}}
         return EngineTrace(
             t=t - t[0], x=(o["x"] - o["x"][0]) / U.LENGTH, v=o["v"] / U.VELOCITY, F_t=o["F_t"].copy(),
             F_n=o["F_n"].copy(), F_drag=o["F_drag"].copy(), F_drive=o["F_drive"].copy(),

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-__all__ = ["COLS", "PRM", "MOM_X", "MOM_Y", "reduce_sample"]
+__all__ = ["COLS", "PRM", "MOM_X", "MOM_Y", "MS_COLS", "reduce_sample"]
 
 # columns of the recorder's scalar buffer, one row per sample
 COLS = ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "penetration", "power_in", "power_out", "mech", "pairs", "p_pen",
@@ -23,8 +23,19 @@ COLS = ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "penetration", "power_in", 
 X, V, F_T, F_N, F_DRAG, F_DRIVE, PEN, POWER_IN, POWER_OUT, MECH, PAIRS, P_PEN, STALE, MOM_X, MOM_Y = range(len(COLS))
 # the scalar parameters of a sample (Recorder._prm), scene units; pulled: index of the body the drive spring pulls among
 # the drive's bodies (-1: the block)
-PRM = ("drive_k", "anchor_x", "drive_rest", "anchor_v", "x0", "dt", "M", "g", "v_trap", "dt_out", "pulled")
-DRIVE_K, ANCHOR_X, DRIVE_REST, ANCHOR_V, X0, DT, MASS, GRAV, V_TRAP, DT_OUT, PULLED = range(len(PRM))
+# means: 1 to record the forces as means over the output step (:func:`means`), 0 for point samples; steps: pymunk
+# steps since the previous sample (0 at the first); w0..w3: the quadrature weights of a smooth force over those steps
+# (:func:`engine_sim.record.step_weights`); guided: 1 if a guide holds the block's height; vib_x, vib_y: a vibration's
+# impulse per unit mass on every body over those steps, vib_bx, vib_by: its impulse on the block alone; law_after: 1 if
+# the law's per-step impulses act after pymunk's step (engine_sim.laws.Law.impulses_after_step)
+PRM = ("drive_k", "anchor_x", "drive_rest", "anchor_v", "x0", "dt", "M", "g", "v_trap", "dt_out", "pulled", "means",
+       "steps", "w0", "w1", "w2", "w3", "guided", "vib_x", "vib_y", "vib_bx", "vib_by", "law_after")
+(DRIVE_K, ANCHOR_X, DRIVE_REST, ANCHOR_V, X0, DT, MASS, GRAV, V_TRAP, DT_OUT, PULLED, MEANS, STEPS, W0, W1, W2, W3,
+ GUIDED, VIB_X, VIB_Y, VIB_BX, VIB_BY, LAW_AFTER) = range(len(PRM))
+# the means' state carried from sample to sample (engine_sim/means.py; rows: 0 the sliding system, 1 + i slider i):
+# system row [P_x, P_y, drive force, drive force one step ahead]; slider rows [x, y, vx, vy, spring force x, y, one step
+# ahead x, y, the law's impulse total]
+MS_COLS = 9
 # body kinds in the body table (rows: id, kind, index within its kind); STATIC: a body not in the table
 BLOCK, SLIDER, GRAIN, DRIVE_BODY, STATIC = 0, 1, 2, 3, -1
 # floats per arbiter in the batch buffer and their order: impulse, normal, point A 1, point B 1, distance 1
@@ -271,11 +282,12 @@ def momentum(M, blk, P, sl, Q, grain, D, dm):
 
 @numba.njit(cache=True)
 def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, dm, k, out, pad_force, micro_force, n_contact,
-                  p_state, p_force):
+                  p_state, p_force, sp, ms, ls, lt):
     """Row ``k`` of the recorder's buffers from the raw batch buffers (module docstring); ``grain``: the grain
     table (its places are updated), ``bs``, ``pp``: the springs (:func:`springs`), ``sl``: the sliders' law terms
     (:func:`sliders`), ``dm``: masses of the drive's bodies. One array per output keeps the argument list short
-    enough for numba's dispatch, which runs every output step."""
+    enough for numba's dispatch, which runs every output step. Then the forces as means over the output step
+    (:func:`engine_sim.means.means`; ``sp``, ``ms``, ``ls``, ``lt``: its springs, state and the law's impulse totals)."""
     g = prm[GRAV]
     prev = grain[:, G_X:G_Y + 1].copy()  # places at the previous sample: a grain's state is judged on its mean speed
     blk, P, D, Q = read_bodies(ids, fl, tab, grain, sl.shape[0], dm.shape[0])
@@ -306,6 +318,7 @@ def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, dm, k, out, pad_
     out[k, STALE] = n_stale
     out[k, MOM_X], out[k, MOM_Y] = momentum(prm[MASS], blk, P, sl, Q, grain, D, dm)
     n_contact[k] = nc
+    means(blk, P, D, sp, prm, sl, dm, ms, ls, lt, k, out, pad_force, micro_force)
 
 
 @numba.njit(cache=True)
@@ -361,3 +374,6 @@ def arbiter_order(ai, af, tab):
             j -= 1
         order[j + 1] = r
     return order
+
+
+from .means import means  # noqa: E402  (means reads this module's constants)

@@ -47,7 +47,10 @@ class BlockSpec:
 @dataclass(frozen=True)
 class RunSpec:
     """dt: pymunk step (s); dt_out: output step (s), a multiple of dt; duration and warmup (s, the warm-up is
-    simulated and discarded); iterations: pymunk solver iterations; seed."""
+    simulated and discarded); iterations: pymunk solver iterations; seed; forces: "mean" (each recorded force is its
+    mean over the output step, as a force sensor behind an anti-alias filter reports it) or "point" (the contact
+    forces of the last pymunk step before each sample: point samples, which alias; the reference a study of that
+    needs, recorded at every step)."""
 
     dt: float = 1e-4
     dt_out: float = 1e-3
@@ -55,6 +58,7 @@ class RunSpec:
     warmup: float = 1.0
     iterations: int = 10
     seed: int = 0
+    forces: str = "mean"
 
 
 @dataclass(frozen=True)
@@ -215,7 +219,8 @@ class Scenario:
 _SECTIONS = {"block": BlockSpec, "pads": PadSpec, "friction": FrictionSpec, "substrate": SubstrateSpec,
              "drive": DriveSpec, "wear": WearSpec, "run": RunSpec, "vibration": VibrationSpec}
 _OPTIONAL = {"vibration"}  # sections that are None when absent
-_CHOICES = {("wear", "distribution"): ("lognormal", "power"), ("wear", "rotation"): ("locked", "free")}
+_CHOICES = {("wear", "distribution"): ("lognormal", "power"), ("wear", "rotation"): ("locked", "free"),
+            ("run", "forces"): ("mean", "point")}
 _POSITIVE = {("block", "M"), ("run", "dt"), ("run", "dt_out"), ("run", "duration"), ("run", "iterations"),
              ("wear", "r_min"), ("wear", "r_max"), ("wear", "r_median"), ("wear", "sigma"), ("wear", "density"),
              ("wear", "trapped_speed"), ("wear", "ahead"), ("wear", "behind")}

@@ -137,6 +137,20 @@ class Vibration:
         """Displacement of the shaken part after n steps (mm)."""
         return self.A * math.sin(self.w * n * self.dt)
 
+    def impulses(self, n0: int, n1: int) -> tuple[float, float, float, float]:
+        """The vibration's impulses over steps n0 .. n1 - 1 (scene units; step n feels the acceleration
+        A omega_d^2 sin(omega t_n), see :meth:`advance`): (x, y) per unit mass on every body (substrate target),
+        then (x, y) on the block alone (block target)."""
+        if not self.active or n1 <= n0:
+            return 0.0, 0.0, 0.0, 0.0
+        th = self.w * self.dt
+        n = np.arange(n0, n1)
+        j = self.A * self.wd2 * self.dt * float(np.sum(np.sin(th * n)))
+        if self.pseudo:
+            return (j, 0.0, 0.0, 0.0) if self.axis == 0 else (0.0, j, 0.0, 0.0)
+        j *= self.M
+        return (0.0, 0.0, j, 0.0) if self.axis == 0 else (0.0, 0.0, 0.0, j)
+
     def displacement(self, steps: int) -> float:
         """s(t) at the scene's step count (m)."""
         return self._s(steps) / U.LENGTH if self.active else 0.0

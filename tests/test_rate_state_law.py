@@ -30,7 +30,7 @@ def test_state_update_is_exact_at_constant_speed(law):
     th = np.array([th0])
     for _ in range(3000):
         vel, vp = np.array([V * U.VELOCITY, 0.0]), np.array([V * U.VELOCITY])
-        rs_step(vel, np.array([1e-30]), np.array([1.0]), th, vp, _prm(law), DT * U.TIME)
+        rs_step(vel, np.array([1e-30]), np.array([1.0]), th, vp, _prm(law), DT * U.TIME, np.zeros(1))
     t = 3000 * DT
     if law == 0:
         exact = Dc / V + (th0 - Dc / V) * math.exp(-V * t / Dc)
@@ -42,7 +42,7 @@ def test_state_update_is_exact_at_constant_speed(law):
 def test_ageing_state_grows_as_time_at_rest():
     th = np.array([0.1])
     for _ in range(1000):
-        rs_step(np.zeros(2), np.array([1e-3]), np.array([1.0]), th, np.zeros(1), _prm(0), DT * U.TIME)
+        rs_step(np.zeros(2), np.array([1e-3]), np.array([1.0]), th, np.zeros(1), _prm(0), DT * U.TIME, np.zeros(1))
     assert th[0] == pytest.approx(0.1 + 1000 * DT, rel=1e-12)  # d theta/dt = 1 at V = 0, exact
 
 
@@ -66,7 +66,7 @@ def test_friction_update_is_backward_euler_and_stable_at_any_slope():
         if v == 0.0:  # at rest: the kernel leaves it there
             break
         vel = np.array([v, 0.0])
-        rs_step(vel, np.array([NA]), np.array([m]), th, vp, _prm(0, A, B, Dc, V0, mu_ref), dt)
+        rs_step(vel, np.array([NA]), np.array([m]), th, vp, _prm(0, A, B, Dc, V0, mu_ref), dt, np.zeros(1))
         u = vel[0]
         ln_s = (mu_ref + B * math.log(V0 * th[0] / Dc)) / A - math.log(2 * V0 * U.VELOCITY)
         d = 1e-12 * v

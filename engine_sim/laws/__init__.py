@@ -13,6 +13,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import ClassVar
 
+import numpy as np
+
 from ..parts import Registry
 
 __all__ = ["FrictionSpec", "Law", "LAWS", "law_kind"]
@@ -66,6 +68,27 @@ class Law:
 
     def build(self, scene, body, c: float) -> None:
         """Add the velocity part of the law on ``body`` (scene units) to ``scene.space``."""
+
+    # the law applies impulses per step outside pymunk's constraints (impulse_totals), and they act after pymunk's
+    # step (written as velocities), not inside it as forces
+    per_step_impulses: ClassVar[bool] = False
+    impulses_after_step: ClassVar[bool] = False
+
+    def impulse_totals(self, scene) -> np.ndarray:
+        """The impulses (x, scene units) the law has applied to each sliding body (``scene.sliders`` order) outside
+        pymunk's constraints since the scene was built, summed per step; zeros for a law whose velocity part is its
+        dampers alone (the recorder's means read those from the bodies' motion)."""
+        tot = getattr(self, "_impulses", None)
+        if tot is None or tot.shape[0] != len(scene.sliders):
+            tot = self._impulses = np.zeros(len(scene.sliders))
+        return tot
+
+    def _add_impulses(self, scene, idx, acc):
+        """Add ``acc`` (per body of the batch, in its order; ``idx``: each one's slider index or -1) to the totals
+        :meth:`impulse_totals` hands over."""
+        tot = self.impulse_totals(scene)
+        mine = idx >= 0
+        tot[idx[mine]] += acc[mine]
 
     def advance(self, scene, n: int) -> None:
         """n pymunk steps of the scene (a law that writes forces each step overrides this)."""

@@ -31,6 +31,7 @@ class Log(Linear):
 
     name = "log"
     Spec = LogSpec
+    per_step_impulses = True
     positive = frozenset({"v_c"})
     non_negative = frozenset({"mu0", "c", "b"})
 
@@ -63,12 +64,14 @@ class Log(Linear):
 
     def _per_body(self, scene):
         """Per body of the space (in the batch's order, read once): b N_pad of the sliding body (scene units), 0
-        for the others."""
+        for the others, and its index among the sliders (-1 for the others)."""
         rd = B.Buffer()
         B.get_space_bodies(scene.space, B.BodyFields.BODY_ID, rd)
         ids = np.frombuffer(rd.int_buf(), dtype=np.int64)
         bN = {b.id: self.spec.b * load * U.FORCE for b, load in zip(scene.sliders, scene.slider_load)}
+        where = {b.id: k for k, b in enumerate(scene.sliders)}
         self._bN = np.array([bN.get(int(i), 0.0) for i in ids])
+        self._idx = np.array([where.get(int(i), -1) for i in ids], dtype=np.int64)
 
     def advance(self, scene, n):
         self._per_body(scene)  # in the batch's body order, read once per call (ids are addresses; order may change)
@@ -76,31 +79,35 @@ class Log(Linear):
         step, dt, space, rd, wr = scene.space.step, scene.dt, scene.space, B.Buffer(), B.Buffer()
         bN = self._bN
         f = np.zeros(2 * bN.size)
+        acc = np.zeros(bN.size)  # the forces' sum over the steps, per body: the recorder's mean drag
         for _ in range(n):
             rd.clear()
             B.get_space_bodies(space, B.BodyFields.VELOCITY, rd)
             vel = np.frombuffer(rd.float_buf())
             if vel.shape[0] != f.shape[0]:  # the kernel reads vel and writes f by body index, unchecked (numba)
                 raise RuntimeError(f"log law: {vel.shape[0] // 2} bodies in the space, {bN.size} expected")
-            _log_forces(vel, bN, vc, f)
+            _log_forces(vel, bN, vc, f, acc)
             wr.clear()
             wr.set_float_buf(f.tobytes())
             B.set_space_bodies(space, B.BodyFields.FORCE, wr)
             step(dt)
+        self._add_impulses(scene, self._idx, acc * dt)
 
     def __getstate__(self):
         state = self.__dict__.copy()
-        state.pop("_bN", None)  # by body order of the live space: re-read on every advance
+        state.pop("_bN", None)
+        state.pop("_idx", None)  # by body order of the live space: re-read on every advance
         return state
 
 
 @numba.njit(cache=True)
-def _log_forces(vel, bN, vc, out):
-    """out[2i] = -b N_pad ln(1 + |v_x| / v_c) sign(v_x) for sliding bodies (bN > 0), 0 otherwise."""
+def _log_forces(vel, bN, vc, out, acc):
+    """out[2i] = -b N_pad ln(1 + |v_x| / v_c) sign(v_x) for sliding bodies (bN > 0), 0 otherwise; added to acc[i]."""
     for i in range(bN.shape[0]):
         out[2 * i + 1] = 0.0
         if bN[i] > 0.0:
             vx = vel[2 * i]
             out[2 * i] = -np.sign(vx) * bN[i] * np.log1p(abs(vx) / vc)
+            acc[i] += out[2 * i]
         else:
             out[2 * i] = 0.0

@@ -87,6 +87,8 @@ class RateState(Linear):
 
     name = "rate_state"
     Spec = RateStateSpec
+    impulses_after_step = True
+    per_step_impulses = True
     positive = frozenset({"A", "D_c", "V0", "theta0"})
     non_negative = frozenset({"mu0", "c", "B", "mu_ref"})
     choices = {"state_law": tuple(STATE_LAWS)}
@@ -179,6 +181,7 @@ class RateState(Linear):
         params = np.array([s.A, s.B, s.D_c, s.V0 * U.VELOCITY, s.mu_ref, dt / U.TIME, float(STATE_LAWS[s.state_law]),
                            1.0 / U.VELOCITY])
         step, space, rd, wr = scene.space.step, scene.space, PB.Buffer(), PB.Buffer()
+        acc = np.zeros(NA.size)  # the law's impulses over the steps, per body: the recorder's mean drag
         for _ in range(n):
             step(dt)
             rd.clear()
@@ -186,13 +189,14 @@ class RateState(Linear):
             vel = np.frombuffer(rd.float_buf()).copy()
             if vel.shape[0] != 2 * NA.size:  # the kernel reads and writes by body index, unchecked (numba)
                 raise RuntimeError(f"rate_state law: {vel.shape[0] // 2} bodies in the space, {NA.size} expected")
-            rs_step(vel, NA, m, th, vp, params, dt)
+            rs_step(vel, NA, m, th, vp, params, dt, acc)
             wr.clear()
             wr.set_float_buf(vel.tobytes())
             PB.set_space_bodies(space, PB.BodyFields.VELOCITY, wr)
         for j, k in enumerate(idx):
             if k >= 0:
                 self.theta[k] = th[j]
+        self._add_impulses(scene, idx, acc)
 
 
 @numba.njit(cache=True)
@@ -207,8 +211,9 @@ def asinh_scaled(v, ln_s):
 
 
 @numba.njit(cache=True)
-def rs_step(vel, NA, m, th, vp, prm, dt):
-    """The law's share of one step, after pymunk's, on the bodies with NA > 0 (``vel`` and ``th`` in place).
+def rs_step(vel, NA, m, th, vp, prm, dt, acc):
+    """The law's share of one step, after pymunk's, on the bodies with NA > 0 (``vel`` and ``th`` in place; its
+    impulse m (u - v*) added to ``acc``).
 
     ``vel`` holds v* = v + dt F / m: the velocities after pymunk's forces and constraints over the step, over which
     it moved each body with its start-of-step velocity v (``vp``, what this kernel wrote at the end of the previous
@@ -254,4 +259,5 @@ def rs_step(vel, NA, m, th, vp, prm, dt):
                     un = 0.5 * (lo + hi)
                 u = un
             vel[2 * i] = math.copysign(u, w)
+            acc[i] += m[i] * (vel[2 * i] - w)
         vp[i] = vel[2 * i]

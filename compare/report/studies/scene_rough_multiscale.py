@@ -7,7 +7,8 @@ sample of the contact force aliases contact jitter into the top bands); then
 
 1. model I as the report builds it (``compare.analysis.extract``): a = (12/7) x the pad forces' correlation length in
    sliding distance, alpha = sqrt(12) rms / f_kin, c from the law, k0, m, M from the scene (the "before"), from
-   the pad forces sampled once per output step as the scenes study has them, and again from the averaged ones;
+   the pad forces sampled once per output step (as ``run.forces = "point"`` records them), and again from the averaged
+   ones (as the recorder's default, and so the scenes study, has them);
 2. the pad forces' spectrum (Welch, averaged over the pads) over 30 log bands from 4 frequency steps to half
    the output Nyquist is fitted by the sum of two renewal spectra (A8) at the measured speed, each with its own
    length and amplitude (:func:`reduced_models.multiscale_fit.fit_renewal_levels`): the slow level is the
@@ -69,8 +70,8 @@ def two_scale_comparison(tr, force_average_dt: float | None = None, sampled=None
     """Steps 1-4 of the module docstring on one trace: parameters and per-band ratios (JSON-able), and the
     spectra for a figure under "_spectra". ``force_average_dt``: the pad forces are averages over this interval
     (s), and their spectrum is divided by the average's exact gain sinc^2(omega dt / 2); None: samples.
-    ``sampled``: the same run with its pad forces sampled once per output step (what ``frictionnoise run`` records),
-    for model I exactly as the report builds it; default ``tr``."""
+    ``sampled``: the same run with its pad forces sampled once per output step (what ``run.forces = "point"``
+    records), for model I from point samples; default ``tr``."""
     from ...analysis.extract import model_I_parameters, spring_block_params
 
     dt = float(tr.t[1] - tr.t[0])
@@ -197,8 +198,8 @@ def run(quick: bool, seed: int) -> StudyResult:
         f"{1e3 * DT_OUT:g} ms with the pad forces averaged over each output interval (a once-per-step sample of the contact "
         "force aliases contact jitter above the output Nyquist into the top bands: 2.2x and 5.7x in the top two). "
         "Model I as the report builds it (a from the pad "
-        "forces' correlation length, alpha from their rms), from the forces sampled once per step as the scenes study "
-        "has them (the before) and from the averaged forces. Model Ib: the pad-force spectrum, averaged over pads, fitted "
+        "forces' correlation length, alpha from their rms), from the forces sampled once per output step (the recorder's "
+        "point mode: the before) and from the averaged forces (the recorder's default). Model Ib: the pad-force spectrum, averaged over pads, fitted "
         "over 30 log bands (4 frequency steps to half the output Nyquist) by the sum of two renewal spectra (A8) at the "
         "measured speed; the slow level is the macro renewal (a, alpha f_kin), the fast one the finer roughness (a2, "
         "alpha2 f_kin2), carried by one stiff micro contact per pad (T2 = 1 in the bands: the pads have no second "
