@@ -401,3 +401,16 @@ def test_shipped_examples_are_found_from_any_folder(tmp_path, monkeypatch):
     (tmp_path / "scenarios" / "data").mkdir(parents=True)
     (tmp_path / "scenarios" / "data" / "reciprocating_force.txt").write_text("t,F\n")
     assert shipped_file("scenarios/data/reciprocating_force.txt") == "scenarios/data/reciprocating_force.txt"
+
+
+def test_run_takes_a_shipped_scenario_by_its_path_in_the_docs(tmp_path, monkeypatch):
+    # the how-to "shake a scene" runs scenarios/sweeps/vibrated_patches.toml: from a folder that has no scenarios/
+    # (a pip install) `run` takes it inside the installed package, as `sweep` and `analyze` take theirs
+    from compare.cli.options import scenario_path
+    from engine_sim.scenario import SCENARIO_DIR
+
+    monkeypatch.chdir(tmp_path)
+    assert scenario_path("scenarios/sweeps/vibrated_patches.toml") == str(SCENARIO_DIR / "sweeps" / "vibrated_patches.toml")
+    assert scenario_path("scenarios/asperity_field.toml") == str(SCENARIO_DIR / "asperity_field.toml")
+    assert main(["run", "scenarios/sweeps/vibrated_patches.toml", "-o", str(tmp_path / "r"), "--duration", "0.01"]) == 0
+    assert (tmp_path / "r" / "trace.npz").is_file()

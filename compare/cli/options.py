@@ -39,7 +39,8 @@ def check_seed(seed):
 
 def scenario_path(arg, models=()) -> str:
     """A scenario argument as a path: an existing path as given (it wins over a shipped name of the same
-    spelling), else the shipped scenario of that name. A bare name (no folder) that is neither is a UserError that
+    spelling), else a ``scenarios/...`` path inside the installed package (:func:`shipped_file`), else the shipped
+    scenario of that name. A bare name (no folder) that is neither is a UserError that
     offers the nearest shipped names (and of ``models``, the other names the command takes) and points to
     ``frictionnoise scenarios``; any other path is returned as given (the input layer then names the problem)."""
     from pathlib import Path
@@ -49,6 +50,9 @@ def scenario_path(arg, models=()) -> str:
 
     if os.path.lexists(arg):
         return arg
+    shipped = shipped_file(arg)  # scenarios/... as the docs write it, inside an installed package
+    if shipped != arg:
+        return shipped
     try:
         return str(resolve_scenario(arg))
     except ScenarioError:
