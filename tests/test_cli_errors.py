@@ -88,6 +88,9 @@ def test_run_then_compare_round_trip(tmp_path):
     # 4 s is a short record: the exponent is loose (+-0.4 at 95 %) but must still read the model I regime
     assert abs(fit["gamma"] - 4.0) < 0.5 + fit["gamma_err"]
     assert (c / "index.html").exists() and any((c / "figures").iterdir())
+    html = (c / "index.html").read_text()  # the page says what it is: this command's page on this scene
+    assert "<title>frictionnoise compare: pads_friction_patches</title>" in html
+    assert "<h1>frictionnoise compare: pads_friction_patches</h1>" in html and "frictionnoise report" not in html
 
 
 def test_render_png_and_gif_headless(tmp_path):

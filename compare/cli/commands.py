@@ -342,7 +342,7 @@ def _compare_model(args) -> int:
             sections, summary = build_model_report(args.source, seed=args.seed or 0, duration=args.duration)
     except ValueError as e:  # e.g. a duration too short for the model's band
         raise UserError(f"{args.source}: {e}") from None
-    path = write_report(out, sections, summary)
+    path = write_report(out, sections, summary, title=f"frictionnoise compare: {args.source}")
     f = summary["models"][args.source]
     print(f"wrote {path / 'index.html'}: gamma = {f['gamma']:.3f} +- {f['gamma_err']:.3f} over "
           f"{f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s; simulated / closed form per band "
@@ -408,7 +408,7 @@ def cmd_compare(args) -> int:
     if note:
         summary["partial_trace"] = note
         print(f"frictionnoise: note: {note}; the spectra cover only what was recorded", file=sys.stderr)
-    path = write_report(out, sections, summary)
+    path = write_report(out, sections, summary, title=f"frictionnoise compare: {sc.name}")
     f = summary["scenarios"][sc.name]
     print(f"wrote {path / 'index.html'}: gamma = {f['gamma']:.3f} +- {f['gamma_err']:.3f} over "
           f"{f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s")
