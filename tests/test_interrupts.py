@@ -72,8 +72,10 @@ def _wait_for(cond, proc, timeout=120):
 
 
 def _without_progress(err: str) -> str:
-    """stderr less the progress lines a log gets before the signal (one per tenth of a run): not the message."""
-    return "".join(ln for ln in err.splitlines(keepends=True) if " s simulated (" not in ln)
+    """stderr less the progress lines a log gets before the signal (one per tenth of a run; the report's line at
+    its start and one per study ended): not the message."""
+    return "".join(ln for ln in err.splitlines(keepends=True)
+                   if " s simulated (" not in ln and not ln.startswith("report: "))
 
 
 def _one_line_130(proc, err, wall, limit):

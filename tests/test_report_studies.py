@@ -280,3 +280,19 @@ def test_first_report_tutorial_states_what_the_full_report_adds():
     only_full = [s for s in studies.selected(False) if s not in studies.selected(True)]
     assert only_full == [scene_rough_multiscale.STUDY, work_precision.STUDY] and work_precision.STUDY.alone
     assert (scene_rough_multiscale.SEEDS, scene_rough_multiscale.DURATION, len(work_precision.SETTINGS)) == (3, 12.5, 4)
+
+
+def test_report_says_at_its_start_how_many_studies_on_how_many_workers(tmp_path, monkeypatch, capsys):
+    # the first progress line comes when the first study ends (about 70 s into a quick report): one line at the
+    # start, on the progress lines' stream, says what runs and when to expect results
+    monkeypatch.setattr(studies, "selected", lambda quick: [STUB])
+    assert main(["report", "--quick", "--workers", "1", "-o", str(tmp_path / "r")]) == 0
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0] == ("report: 1 study on 1 worker; the first line of results comes when the first study ends, "
+                        "then one a study"), lines
+    assert lines[1].startswith("report: [1/1] stub done"), lines
+    alone = Study("stub_alone", "stub alone", lambda quick, seed: StudyResult("stub_alone", "", {"w": 1}), alone=True)
+    monkeypatch.setattr(studies, "selected", lambda quick: [STUB, alone])
+    assert main(["report", "--quick", "--workers", "2", "-o", str(tmp_path / "s")]) == 0
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0].startswith("report: 2 studies on 2 workers (1 alone after the others); the first line"), lines

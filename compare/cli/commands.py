@@ -423,7 +423,7 @@ def cmd_report(args) -> int:
     workers = args.workers or usable_cores(cap=4)
     from ..report import studies
     from ..report.html import write_report
-    from .progress import StageProgress
+    from .progress import StageProgress, report_start_line
     from ..report.build import build_report
 
     chosen = studies.selected(args.quick)
@@ -432,6 +432,7 @@ def cmd_report(args) -> int:
     # kernels compiled in this process (the studies that run alone) or in the pool's workers: one line, once
     announce = announcer()
     with compile_notice(announce=announce), StageProgress([s.label for s in chosen], desc="report") as progress:
+        progress.note(report_start_line(chosen, workers))
         results, summary = build_report(quick=args.quick, seed=args.seed, progress=progress, workers=workers,
                                         studies=chosen, on_compile=announce)
     path = write_report(out, results, summary)
