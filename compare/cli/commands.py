@@ -295,21 +295,26 @@ def _run_into(args, sc, out, ck) -> int:
             print(f"checkpoints every {every_s:g} s (whole epochs of {epoch_s:g} s)", file=sys.stderr)
     from .compile_notice import compile_notice
 
-    _before_run(sc, args, resuming=ck is not None and ck.exists())
+    _before_run(sc, args, resuming=(resuming := ck is not None and ck.exists()))
     bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration)
-    with bar, compile_notice():  # the recorder's and friction laws' kernels compile on a fresh install
-        try:
+    try:
+        with bar, compile_notice():  # the recorder's and friction laws' kernels compile on a fresh install
             tr = engine_sim.run(sc, duration=args.duration, seed=args.seed, progress=update, checkpoint=ck,
                                 checkpoint_every=args.checkpoint_every, epoch=args.epoch, on_plan=on_plan)
-        except (CheckpointError, TraceSizeError) as e:  # a checkpoint of another run or a corrupt one; a run too big
-            raise UserError(str(e)) from None
+    except (CheckpointError, TraceSizeError) as e:  # a checkpoint of another run or a corrupt one; a run too big
+        raise UserError(str(e)) from None
+    except KeyboardInterrupt:  # engine_sim.run returns a partial trace once it has recorded a sample
+        where = f"before it resumed from {ck} (kept)" if resuming else "in its warm-up"
+        print(f"frictionnoise: interrupted: the run was stopped {where}, before anything was recorded, so nothing "
+              "was written", file=sys.stderr)
+        return 130
     out.mkdir(parents=True, exist_ok=True)
     path = save_trace(tr, out / "trace.npz")
     meta = tr.metadata
     if meta["partial"]:
         at = meta.get("checkpoint_at_s")
-        print(f"interrupted ({meta['interrupted_by']}) at t = {tr.t[-1]:.3f} s: partial trace (marked partial) "
-              f"written to {path}" + (f"; rerun the same command to resume from t = {at:g} s" if at else ""),
+        print(f"frictionnoise: interrupted ({meta['interrupted_by']}) at t = {tr.t[-1]:.3f} s: partial trace "
+              f"(marked partial) written to {path}" + (f"; rerun the same command to resume from t = {at:g} s" if at else ""),
               file=sys.stderr)
         return 143 if meta["interrupted_by"] == "SIGTERM" else 130
     if ck is not None and ck.exists():
