@@ -49,6 +49,25 @@ FORCE_CHANNELS = {
 }
 
 
+# the per-trace text of the channels whose making depends on the scene (FORCE_CHANNELS gives both cases)
+_F_N = {True: "quadrature: the sum of the sliders' own balances (a guided block: the guide's force is unknown)",
+        False: "exact: the block is free vertically, so from its momentum"}
+_F_DRIVE = {True: "exact: a constant force, constant to 1e-9",
+            False: "quadrature: a velocity drive's spring, from both ends of the step"}
+FIRST_SAMPLE = "point: the first sample has no output step before it, so its forces are point samples"
+
+
+def force_channels(scene, forces: str) -> dict:
+    """How each force of this scene's trace is made (``metadata["force_channels"]``): :data:`FORCE_CHANNELS`
+    with F_n and F_drive as they apply to ``scene`` (guided block or not; constant-force drive or not), and the
+    first sample's forces (``"first_sample"``); all point samples when ``forces`` is "point"."""
+    if forces != "mean":
+        point = "point: the contact force of the last pymunk step before the sample (aliases)"
+        return {c: point for c in FORCE_CHANNELS}
+    return {**FORCE_CHANNELS, "F_n": _F_N[bool(scene.arrangement.guided)],
+            "F_drive": _F_DRIVE[bool(scene.sc.drive_part.constant_force)], "first_sample": FIRST_SAMPLE}
+
+
 _STEPS, _VIB = PRM.index("steps"), PRM.index("vib_x")  # steps, then w0..w3; vib_x, vib_y, vib_bx, vib_by
 
 
@@ -268,9 +287,7 @@ class Recorder:
         dt_s = np.diff(t) * U.TIME
         cum = lambda p: np.concatenate([[0.0], np.cumsum(0.5 * (p[1:n] + p[: n - 1]) * dt_s)]) / U.ENERGY
         metadata = {**metadata, **self.scene.wear.trace_metadata(int(o["stale"].sum())), "forces": self.forces,
-                    "force_channels": FORCE_CHANNELS if self.forces == "mean" else {
-                        c: "point: the contact force of the last pymunk step before the sample (aliases)"
-                        for c in FORCE_CHANNELS}}
+                    "force_channels": force_channels(self.scene, self.forces)}
         return EngineTrace(
             t=t - t[0], x=(o["x"] - o["x"][0]) / U.LENGTH, v=o["v"] / U.VELOCITY, F_t=o["F_t"].copy(),
             F_n=o["F_n"].copy(), F_drag=o["F_drag"].copy(), F_drive=o["F_drive"].copy(),

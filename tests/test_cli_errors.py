@@ -76,7 +76,7 @@ def test_trace_of_another_format(tmp_path, out, capsys):
     _assert_user_error(capsys, out, "junk.npz", "not a .npz trace file")
 
 
-def test_run_then_compare_round_trip(tmp_path):
+def test_run_then_compare_round_trip(tmp_path, capsys):
     r = tmp_path / "r"
     assert main(["run", str(PATCHES), "--duration", "4", "--seed", "2", "-o", str(r)]) == 0
     meta = json.loads((r / "trace.json").read_text())
@@ -88,6 +88,15 @@ def test_run_then_compare_round_trip(tmp_path):
     # 4 s is a short record: the exponent is loose (+-0.4 at 95 %) but must still read the model I regime
     assert abs(fit["gamma"] - 4.0) < 0.5 + fit["gamma_err"]
     assert (c / "index.html").exists() and any((c / "figures").iterdir())
+    html = (c / "index.html").read_text()  # the page says what it is: this command's page on this scene
+    assert "<title>frictionnoise compare: pads_friction_patches</title>" in html
+    assert "<h1>frictionnoise compare: pads_friction_patches</h1>" in html and "frictionnoise report" not in html
+    # docs/tutorials/scene_against_model.md: the terminal prints gamma only; the verdict is in the page's summary
+    # table and under summary.json's "verdicts"
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert last.startswith(f"wrote {c / 'index.html'}: gamma = ") and "agree" not in last, last
+    (v,) = [v for v in s["verdicts"] if v["study"] == "scenarios/pads_friction_patches"]
+    assert v["verdict"] in ("agrees", "disagrees") and "id='summary'" in html and f">{v['verdict']}</td>" in html
 
 
 def test_render_png_and_gif_headless(tmp_path):

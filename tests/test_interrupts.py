@@ -72,8 +72,10 @@ def _wait_for(cond, proc, timeout=120):
 
 
 def _without_progress(err: str) -> str:
-    """stderr less the progress lines a log gets before the signal (one per tenth of a run): not the message."""
-    return "".join(ln for ln in err.splitlines(keepends=True) if " s simulated (" not in ln)
+    """stderr less the progress lines a log gets before the signal (one per tenth of a run; the report's line at
+    its start and one per study ended): not the message."""
+    return "".join(ln for ln in err.splitlines(keepends=True)
+                   if " s simulated (" not in ln and not ln.startswith("report: "))
 
 
 def _one_line_130(proc, err, wall, limit):
@@ -159,12 +161,39 @@ def test_ctrl_c_in_other_subcommands(tmp_path, cmd, delay):
     assert proc.returncode == 130, err
     assert "Traceback" not in err and wall < 2.0, (wall, err)
     err = _without_progress(err)
+    assert err.startswith("frictionnoise: interrupted"), err  # every message of an interrupt: one prefix
     if cmd[0] == "run" and out.exists():  # interrupted while recording: the partial trace the README promises
         assert sorted(p.name for p in out.iterdir()) == ["trace.json", "trace.npz"]
         assert err.count("\n") == 1 and "partial trace" in err, err
+        assert err.startswith("frictionnoise: interrupted (SIGINT) at t = "), err
     else:
         assert err.count("\n") == 1, err
         assert not out.exists() and not [p for p in tmp_path.iterdir() if p.name.startswith(".o")]
+
+
+def test_ctrl_c_in_a_runs_warm_up_says_nothing_was_recorded(tmp_path):
+    # a 60 s warm-up, signalled once the run has begun (after the forecast's note, which a run longer than a
+    # minute prints before it starts): one line, with the prefix of the recording's message, that says the run was
+    # stopped in its warm-up before anything was recorded, so nothing was written
+    sc = tmp_path / "long_warmup.toml"
+    text = Path(PATCHES).read_text()
+    assert text.count("warmup = 1.0") == 1
+    sc.write_text(text.replace("warmup = 1.0", "warmup = 60.0"))
+    out, log = tmp_path / "o", tmp_path / "err.log"
+    with open(log, "w") as f:
+        proc = subprocess.Popen([sys.executable, "-m", "compare.cli", "run", str(sc), "--duration", "600", "-o",
+                                 str(out)], stdout=subprocess.DEVNULL, stderr=f, text=True,
+                                preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    _wait_for(lambda: "Ctrl-C stops it" in log.read_text(), proc, timeout=120)
+    time.sleep(1.0)  # into the warm-up (about 20 s of wall)
+    assert proc.poll() is None
+    proc.send_signal(signal.SIGINT)
+    proc.wait(timeout=60)
+    assert proc.returncode == 130
+    err = [ln for ln in log.read_text().splitlines() if "note:" not in ln and " s simulated (" not in ln]
+    assert err == ["frictionnoise: interrupted: the run was stopped in its warm-up, before anything was recorded, so "
+                   "nothing was written"], err
+    assert not out.exists()
 
 
 # engine_sim.run defers SIGINT/SIGTERM to its loop's consistent points (engine_sim/run.py, _Interrupts). Its first

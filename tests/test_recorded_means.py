@@ -49,7 +49,29 @@ def test_means_equal_the_block_average_of_every_step_on_flat_tracks():
         rms = np.sqrt(np.mean((got - ref) ** 2))
         assert rms <= tol * np.std(ref - ref.mean(axis=0)), ch
     assert tr.metadata["forces"] == "mean" and fine.metadata["forces"] == "point"
-    assert tr.metadata["force_channels"] == FORCE_CHANNELS
+    assert tr.metadata["force_channels"]["F_t"] == FORCE_CHANNELS["F_t"]
+
+
+@pytest.mark.parametrize("name, F_n, F_drive", [
+    ("pads_friction_patches", "quadrature", "exact"),  # a guided block pulled by a constant force
+    ("asperity_field", "exact", "exact"),  # a sole free vertically, constant force
+    ("constant_velocity", "quadrature", "quadrature"),  # guided, velocity drive
+])
+def test_force_channels_say_how_this_scenes_forces_are_made(name, F_n, F_drive):
+    # metadata["force_channels"]: FORCE_CHANNELS's general text gives both cases of F_n and F_drive; each trace
+    # says the one that applies to its scene, and that its first sample's forces are point samples
+    sc = load_scenario(shipped_scenarios()[name])
+    assert sc.arrangement_part.guided == (F_n == "quadrature") and sc.drive_part.constant_force == (F_drive == "exact")
+    tr = engine_sim.run(sc.with_run(duration=0.02, warmup=0.01))
+    ch = tr.metadata["force_channels"]
+    assert ch["F_n"].split(":")[0] == F_n and ch["F_drive"].split(":")[0] == F_drive
+    assert ("guided" in ch["F_n"]) == (F_n == "quadrature")
+    assert ("velocity drive" in ch["F_drive"]) == (F_drive == "quadrature")
+    assert "first sample" in ch["first_sample"] and ch["first_sample"].startswith("point")
+    assert {k: v for k, v in ch.items() if k not in ("F_n", "F_drive", "first_sample")} == \
+        {k: v for k, v in FORCE_CHANNELS.items() if k not in ("F_n", "F_drive")}
+    point = engine_sim.run(sc.with_run(duration=0.02, warmup=0.01, forces="point")).metadata["force_channels"]
+    assert set(point) == set(FORCE_CHANNELS) and all(v.startswith("point") for v in point.values())
 
 
 def test_means_read_zero_where_the_contact_force_is_zero():
@@ -90,3 +112,18 @@ def test_means_take_a_vibrations_impulses_in_closed_form(target, direction):
     tr = engine_sim.run(sc)
     m, n = int(round(sc.run.dt_out / sc.run.dt)), len(tr.t) - 1
     assert np.abs(tr.F_t[1:n + 1] - _block(fine.F_t, m, n)).max() < 1e-9 * np.std(fine.F_t)
+
+
+def test_trace_format_page_lists_every_array_of_the_trace():
+    # docs/reference/trace_format.md's column table: every EngineTrace array (vibration and work_vibration were
+    # missing), and x relative to the substrate in a shaken scene
+    from dataclasses import fields
+
+    from engine_sim.record import EngineTrace
+
+    page = (Path(__file__).parents[1] / "docs/reference/trace_format.md").read_text()
+    rows = [line for line in page.splitlines() if line.startswith("| `")]
+    listed = {name for line in rows for name in line.split("|")[1].replace("`", "").replace(",", " ").split()}
+    assert {f.name for f in fields(EngineTrace)} - {"metadata"} <= listed
+    (x_row,) = [line for line in rows if line.startswith("| `x` |")]
+    assert "relative to the substrate" in x_row and "x + vibration" in x_row

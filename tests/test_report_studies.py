@@ -257,3 +257,42 @@ def test_each_shipped_scene_goes_to_the_study_of_its_layout(monkeypatch):
     assert kinds["pads_with_wear"] == "model II" and kinds["asperity_field"] == "model III"
     assert kinds["pads_friction_patches"] == kinds["pads_rough_profile"] == kinds["line_scan_example"] == "model I"
     assert dict((n, d) for n, _, d in calls)["asperity_field"] == 16.0
+
+
+def test_first_report_tutorial_states_what_the_full_report_adds():
+    """docs/tutorials/first_report.md: without --quick the scenes run 20 s (spring_slider_rate_state its 30 s), and
+    the full report adds model Ib on the rough scene (three seeds of 12.5 s) and the work-precision study (four
+    step settings, run alone)."""
+    from pathlib import Path
+
+    from engine_sim import load_scenario, shipped_scenarios
+    from compare.report.studies import scene_rough_multiscale, work_precision
+    from compare.report.studies.scenes import FULL_DURATION, SHORTENED, fitting_part
+
+    text = " ".join((Path(__file__).parents[1] / "docs/tutorials/first_report.md").read_text().split())
+    assert "for 20 s of simulated time each (`spring_slider_rate_state` for its scenario's 30 s)" in text
+    assert "three seeds of 12.5 s" in text and "at four step settings, run alone" in text
+    full = {}
+    for name, path in shipped_scenarios().items():
+        sc = load_scenario(path)
+        full[name] = FULL_DURATION if fitting_part(sc).reduced_model in SHORTENED else sc.run.duration
+    assert full.pop("spring_slider_rate_state") == 30.0 and set(full.values()) == {20.0}
+    only_full = [s for s in studies.selected(False) if s not in studies.selected(True)]
+    assert only_full == [scene_rough_multiscale.STUDY, work_precision.STUDY] and work_precision.STUDY.alone
+    assert (scene_rough_multiscale.SEEDS, scene_rough_multiscale.DURATION, len(work_precision.SETTINGS)) == (3, 12.5, 4)
+
+
+def test_report_says_at_its_start_how_many_studies_on_how_many_workers(tmp_path, monkeypatch, capsys):
+    # the first progress line comes when the first study ends (about 70 s into a quick report): one line at the
+    # start, on the progress lines' stream, says what runs and when to expect results
+    monkeypatch.setattr(studies, "selected", lambda quick: [STUB])
+    assert main(["report", "--quick", "--workers", "1", "-o", str(tmp_path / "r")]) == 0
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0] == ("report: 1 study on 1 worker; the first line of results comes when the first study ends, "
+                        "then one a study"), lines
+    assert lines[1].startswith("report: [1/1] stub done"), lines
+    alone = Study("stub_alone", "stub alone", lambda quick, seed: StudyResult("stub_alone", "", {"w": 1}), alone=True)
+    monkeypatch.setattr(studies, "selected", lambda quick: [STUB, alone])
+    assert main(["report", "--quick", "--workers", "2", "-o", str(tmp_path / "s")]) == 0
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0].startswith("report: 2 studies on 2 workers (1 alone after the others); the first line"), lines

@@ -164,4 +164,5 @@ def test_reference_case_is_shaken_and_compare_runs_it(tmp_path):
     assert main(["compare", "model_Iv", "-o", str(tmp_path / "c")]) == 0
     m = json.loads((tmp_path / "c" / "summary.json").read_text())["models"]["model_Iv"]
     assert m["params"]["amplitude"] == 30e-6
+    assert "<title>frictionnoise compare: model_Iv</title>" in (tmp_path / "c" / "index.html").read_text()
     assert all(0.8 < b["ratio"] < 1.25 for b in m["band_ratios_vs_closed_form"]), m["band_ratios_vs_closed_form"]

@@ -121,3 +121,22 @@ def test_stored_sweep_rebuilds_the_committed_table():
         if r["xi"] > 4:
             assert abs(r["C_ratio"] - 1) <= max(r["C_ratio_ci"], 1e-3) and r["gamma"] == pytest.approx(
                 r["gamma_twin"], abs=0.01)
+
+
+@pytest.mark.parametrize("page", ["docs/results/vibration.md", "benchmarks/results/vibration_sweep.md"])
+def test_the_answers_measured_numbers_are_the_tables(page):
+    # every "value ± interval" the answer's bullets quote is a cell of the page's table (the table rebuilds from the
+    # stored tasks: test_stored_sweep_rebuilds_the_committed_table); the prose had quoted 0.0464 ± 0.0033 where the
+    # table reads 0.0464 ± 0.0031
+    import re
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parent.parent / page).read_text().replace("+-", "±")
+    cells = {c.strip().split(" (twin")[0] for line in text.splitlines() if line.startswith("| ")
+             for c in line.split("|")}
+    bullets = text[text.index("The answer"):]
+    start = bullets.index("\n- **")
+    bullets = bullets[start:min(i for i in (bullets.find("\n- Not run"), bullets.find("\n## ")) if i > start)]
+    quoted = re.findall(r"\d[\d.e+-]* ± \d[\d.e+-]*\d", bullets)
+    assert len(quoted) >= 40, quoted
+    assert [q for q in quoted if q not in cells] == []

@@ -295,21 +295,26 @@ def _run_into(args, sc, out, ck) -> int:
             print(f"checkpoints every {every_s:g} s (whole epochs of {epoch_s:g} s)", file=sys.stderr)
     from .compile_notice import compile_notice
 
-    _before_run(sc, args, resuming=ck is not None and ck.exists())
+    _before_run(sc, args, resuming=(resuming := ck is not None and ck.exists()))
     bar, update = progress_bar(sc.name, warmup=sc.run.warmup, duration=args.duration or sc.run.duration)
-    with bar, compile_notice():  # the recorder's and friction laws' kernels compile on a fresh install
-        try:
+    try:
+        with bar, compile_notice():  # the recorder's and friction laws' kernels compile on a fresh install
             tr = engine_sim.run(sc, duration=args.duration, seed=args.seed, progress=update, checkpoint=ck,
                                 checkpoint_every=args.checkpoint_every, epoch=args.epoch, on_plan=on_plan)
-        except (CheckpointError, TraceSizeError) as e:  # a checkpoint of another run or a corrupt one; a run too big
-            raise UserError(str(e)) from None
+    except (CheckpointError, TraceSizeError) as e:  # a checkpoint of another run or a corrupt one; a run too big
+        raise UserError(str(e)) from None
+    except KeyboardInterrupt:  # engine_sim.run returns a partial trace once it has recorded a sample
+        where = f"before it resumed from {ck} (kept)" if resuming else "in its warm-up"
+        print(f"frictionnoise: interrupted: the run was stopped {where}, before anything was recorded, so nothing "
+              "was written", file=sys.stderr)
+        return 130
     out.mkdir(parents=True, exist_ok=True)
     path = save_trace(tr, out / "trace.npz")
     meta = tr.metadata
     if meta["partial"]:
         at = meta.get("checkpoint_at_s")
-        print(f"interrupted ({meta['interrupted_by']}) at t = {tr.t[-1]:.3f} s: partial trace (marked partial) "
-              f"written to {path}" + (f"; rerun the same command to resume from t = {at:g} s" if at else ""),
+        print(f"frictionnoise: interrupted ({meta['interrupted_by']}) at t = {tr.t[-1]:.3f} s: partial trace "
+              f"(marked partial) written to {path}" + (f"; rerun the same command to resume from t = {at:g} s" if at else ""),
               file=sys.stderr)
         return 143 if meta["interrupted_by"] == "SIGTERM" else 130
     if ck is not None and ck.exists():
@@ -342,7 +347,7 @@ def _compare_model(args) -> int:
             sections, summary = build_model_report(args.source, seed=args.seed or 0, duration=args.duration)
     except ValueError as e:  # e.g. a duration too short for the model's band
         raise UserError(f"{args.source}: {e}") from None
-    path = write_report(out, sections, summary)
+    path = write_report(out, sections, summary, title=f"frictionnoise compare: {args.source}")
     f = summary["models"][args.source]
     print(f"wrote {path / 'index.html'}: gamma = {f['gamma']:.3f} +- {f['gamma_err']:.3f} over "
           f"{f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s; simulated / closed form per band "
@@ -408,7 +413,7 @@ def cmd_compare(args) -> int:
     if note:
         summary["partial_trace"] = note
         print(f"frictionnoise: note: {note}; the spectra cover only what was recorded", file=sys.stderr)
-    path = write_report(out, sections, summary)
+    path = write_report(out, sections, summary, title=f"frictionnoise compare: {sc.name}")
     f = summary["scenarios"][sc.name]
     print(f"wrote {path / 'index.html'}: gamma = {f['gamma']:.3f} +- {f['gamma_err']:.3f} over "
           f"{f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s")
@@ -423,7 +428,7 @@ def cmd_report(args) -> int:
     workers = args.workers or usable_cores(cap=4)
     from ..report import studies
     from ..report.html import write_report
-    from .progress import StageProgress
+    from .progress import StageProgress, report_start_line
     from ..report.build import build_report
 
     chosen = studies.selected(args.quick)
@@ -432,6 +437,7 @@ def cmd_report(args) -> int:
     # kernels compiled in this process (the studies that run alone) or in the pool's workers: one line, once
     announce = announcer()
     with compile_notice(announce=announce), StageProgress([s.label for s in chosen], desc="report") as progress:
+        progress.note(report_start_line(chosen, workers))
         results, summary = build_report(quick=args.quick, seed=args.seed, progress=progress, workers=workers,
                                         studies=chosen, on_compile=announce)
     path = write_report(out, results, summary)

@@ -6,7 +6,7 @@ import sys
 import threading
 import time
 
-__all__ = ["StageProgress", "progress_bar"]
+__all__ = ["StageProgress", "progress_bar", "report_start_line"]
 
 
 class StageProgress:
@@ -36,6 +36,13 @@ class StageProgress:
             self.bar.close()
         return False
 
+    def note(self, line: str):
+        """One line on the progress lines' stream (above the bar on a terminal)."""
+        if self.bar is not None:
+            self.bar.write(line, file=self.stream)
+        else:
+            print(line, file=self.stream, flush=True)
+
     def __call__(self, label: str, event: str, wall: float | None = None):
         if event == "start":
             self.running.append(label)
@@ -54,6 +61,14 @@ class StageProgress:
 
 
 HEARTBEAT_S = 30.0  # wall seconds: in a log, no longer than this between two progress lines
+
+
+def report_start_line(studies, workers: int) -> str:
+    """The report's first line: the progress lines come only as studies end (the first after about a minute)."""
+    n, alone = len(studies), sum(s.alone for s in studies)
+    return (f"report: {n} stud{'ies' if n > 1 else 'y'} on {workers} worker{'s' if workers > 1 else ''}"
+            + (f" ({alone} alone after the others)" if alone else "")
+            + "; the first line of results comes when the first study ends, then one a study")
 
 
 class _Logged:
