@@ -144,8 +144,10 @@ class Vibration:
         if not self.active or n1 <= n0:
             return 0.0, 0.0, 0.0, 0.0
         th = self.w * self.dt
-        n = np.arange(n0, n1)
-        j = self.A * self.wd2 * self.dt * float(np.sum(np.sin(th * n)))
+        # sum_{n=n0}^{n1-1} sin(th n) in closed form (a per-sample numpy sum cost 5-10 us, 0.5-1 us per step)
+        half = 0.5 * th
+        total = math.sin(half * (n1 - n0)) * math.sin(half * (n0 + n1 - 1)) / math.sin(half)
+        j = self.A * self.wd2 * self.dt * total
         if self.pseudo:
             return (j, 0.0, 0.0, 0.0) if self.axis == 0 else (0.0, j, 0.0, 0.0)
         j *= self.M
