@@ -96,9 +96,16 @@ def record_three(sc, duration: float, seed: int):
 
 
 def _bands(t_c, nper, dt_out):
+    """Log bands from the resolved bottom to half the Nyquist frequency: 7, or fewer on a short record (the smoke's
+    0.3 s), so that each holds two spectral ordinates at least."""
     nyq = np.pi / dt_out
     d_omega = 2 * np.pi / (nper * dt_out)
-    return np.geomspace(max(nyq / 256, 3 * d_omega), nyq / 2, 8)
+    lo, hi = max(nyq / 256, 3 * d_omega), nyq / 2
+    for k in range(8, 2, -1):
+        edges = np.geomspace(lo, hi, k)
+        if edges[1] - edges[0] >= 2 * d_omega:
+            return edges
+    return np.array([lo, hi])
 
 
 def _spec(t, F, nper, edges):
