@@ -1,7 +1,7 @@
 """Where the report's time goes: each study's wall and CPU time, run one after another in this process, with the
 machine's load (``uptime``) before and after, and the whole report's wall and CPU time with its worker pool.
 
-    python -m benchmarks.bench_report [--quick] [--full] [--workers N] [--only KEY ...] [--json out.json]
+    python -m benchmarks.bench_report [--quick [--all-scenes]] [--full] [--workers N] [--only KEY ...] [--json out.json]
 
 Each study is seeded on its own, so its time alone is what it costs inside the report; the pool's total is bounded
 below by the longest study and by the sum over the cores. The whole report runs as a user runs it: `frictionnoise
@@ -22,13 +22,13 @@ def load() -> str:
     return subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip()
 
 
-def per_study(quick: bool, seed: int, only=None) -> list:
+def per_study(quick: bool, seed: int, only=None, all_scenes: bool = False) -> list:
     """[(label, wall seconds, CPU seconds)] of each study of the quick or full report, run in this process. CPU
     seconds hardly depend on the load (a loaded machine stretches the wall time, not the work)."""
     from compare.report import studies
     from compare.report.build import run_studies
 
-    chosen = [s for s in studies.selected(quick) if not only or s.key in only or s.label in only]
+    chosen = [s for s in studies.selected(quick, all_scenes) if not only or s.key in only or s.label in only]
     rows = []
     for st in chosen:
         t0, c0 = time.perf_counter(), time.process_time()
@@ -67,7 +67,7 @@ print(json.dumps({"rc": rc, "wall_in_s": wall, "cpu_s": cpu}))
 """
 
 
-def whole(quick: bool, seed: int, workers: int) -> dict:
+def whole(quick: bool, seed: int, workers: int, all_scenes: bool = False) -> dict:
     """The whole `frictionnoise report` as a user runs it, in a fresh process (imports, worker start-up, the
     studies, the files): {"wall_s": from start to exit, "cpu_s": that process and its workers, user + system,
     "studies": each study's wall and CPU seconds inside the report (summary.json's study_seconds)}."""
@@ -75,7 +75,8 @@ def whole(quick: bool, seed: int, workers: int) -> dict:
     import tempfile
 
     with tempfile.TemporaryDirectory() as tmp:
-        args = ["report", "-o", f"{tmp}/report", "--seed", str(seed), "--workers", str(workers)] + (["--quick"] if quick else [])
+        args = ["report", "-o", f"{tmp}/report", "--seed", str(seed), "--workers", str(workers)] + (["--quick"] if quick else []) \
+            + (["--all-scenes"] if quick and all_scenes else [])
         t0 = time.perf_counter()
         r = subprocess.run([sys.executable, "-c", _WHOLE, *args], capture_output=True, text=True)
         wall = time.perf_counter() - t0
@@ -100,6 +101,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="the quick report (default: both)")
     ap.add_argument("--full", action="store_true", help="the full report (default: both)")
+    ap.add_argument("--all-scenes", action="store_true", help="the quick report of every scene (--quick --all-scenes)")
     ap.add_argument("--workers", type=int, default=2, help="processes for the whole-report run (0: skip it)")
     ap.add_argument("--only", nargs="*", help="study keys or labels to time")
     ap.add_argument("--whole-only", action="store_true", help="only the whole report with its worker pool")
@@ -113,26 +115,26 @@ def main(argv=None) -> int:
         quick = mode == "quick"
         before = load()
         print(f"{mode} report, studies one by one ({before})", flush=True)
-        rows = [] if args.whole_only else per_study(quick, args.seed, args.only)
+        rows = [] if args.whole_only else per_study(quick, args.seed, args.only, args.all_scenes)
         entry = {"load_before": before, "studies": {k: {"wall_s": w, "cpu_s": c} for k, w, c in rows},
                  "sum_s": sum(r[1] for r in rows), "sum_cpu_s": sum(r[2] for r in rows), "load_after": load()}
         print(f"  {'sum':32s} {entry['sum_s']:7.1f} s wall {entry['sum_cpu_s']:7.1f} s CPU ({entry['load_after']})")
         if rows and args.workers:
             from compare.report import studies
 
-            alone = {st.label for st in studies.selected(quick) if st.alone}
+            alone = {st.label for st in studies.selected(quick, args.all_scenes) if st.alone}
             entry["pool_cpu_bound_s"] = schedule([c for k, _, c in rows if k not in alone], args.workers)
             entry["alone_cpu_s"] = sum(c for k, _, c in rows if k in alone)
             print(f"  longest first on {args.workers} workers, the busiest ends after {entry['pool_cpu_bound_s']:.1f} CPU s"
                   + (f"; then {entry['alone_cpu_s']:.1f} CPU s alone" if alone else ""))
         for _ in range(args.repeat if args.workers and not args.only else 0):
             before = load()
-            w = whole(quick, args.seed, args.workers)
+            w = whole(quick, args.seed, args.workers, args.all_scenes)
             entry.setdefault("whole", []).append({**w, "load_before": before, "load_after": load()})
             entry.update(whole_s=w["wall_s"], whole_cpu_s=w["cpu_s"], workers=args.workers, load_whole=load())
             for k, v in sorted(w["studies"].items(), key=lambda kv: -kv[1]["cpu_s"]):
                 print(f"    in the pool: {k:32s} {v['wall_s']:7.1f} s wall {v['cpu_s']:7.1f} s CPU")
-            print(f"  whole {mode} report (`frictionnoise report{' --quick' if quick else ''} --workers {args.workers}`, "
+            print(f"  whole {mode} report (`frictionnoise report{' --quick' if quick else ''}{' --all-scenes' if quick and args.all_scenes else ''} --workers {args.workers}`, "
                   f"a fresh process): {w['wall_s']:.1f} s wall, {w['cpu_s']:.1f} s CPU ({before} -> {entry['load_whole']})",
                   flush=True)
         out["modes"][mode] = entry

@@ -257,7 +257,9 @@ class Wear(NoWear):
     """The particles of a scene (``wear.count > 0``): built into the scene's space by :meth:`build`."""
 
     reduced_model = "model_II"  # the key in reduced_models.MODELS of the model that fits a scene with particles
-    quick_duration = 8.0  # s recorded by each of a quick comparison's paired runs (with and without particles)
+    # s recorded by each of a quick comparison's paired runs (with and without particles): 5 s hold the band 3-30 v/a
+    # with 1 s Welch segments, and the pair (about 17 CPU s) keeps the quick report near 30 s on two cores
+    quick_duration = 5.0
 
     def validate(self, where: str = "") -> None:
         sc = self.sc

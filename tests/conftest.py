@@ -89,11 +89,20 @@ def installed(tmp_path_factory):
 
 @pytest.fixture(scope="session")
 def installed_quick_report(installed):
-    """(folder, wall s) of `frictionnoise report --quick` from the installed package, once per session: read by
-    tests/test_install.py and tests/test_report_cli.py (one quick report per CI run, not two)."""
+    """(folder, wall s) of `frictionnoise report --quick` (the README's main job: the models and the headline
+    scenes) from the installed package, once per session: read by tests/test_install.py."""
     from tests.installed import quick_report
 
     return quick_report(installed)
+
+
+@pytest.fixture(scope="session")
+def installed_all_scenes_report(installed):
+    """(folder, wall s) of `frictionnoise report --quick --all-scenes` (every shipped scene at its quick length)
+    from the installed package, once per session: read by tests/test_install.py and tests/test_report_cli.py."""
+    from tests.installed import quick_report
+
+    return quick_report(installed, "--all-scenes", out="rep-all")
 
 
 def _shared_fixtures(item) -> list:

@@ -47,11 +47,11 @@ def install_non_editable(tmp_path: Path):
     return py, venv / "bin" / "frictionnoise", elsewhere, time.perf_counter() - t0, bool(isolation)
 
 
-def quick_report(installed) -> tuple:
-    """`frictionnoise report --quick -o rep` run by the installed executable in its folder outside the source
-    tree, with the report's default workers: (output folder, wall seconds)."""
+def quick_report(installed, *extra: str, out: str = "rep") -> tuple:
+    """`frictionnoise report --quick [extra] -o out` run by the installed executable in its folder outside the
+    source tree, with the report's default workers: (output folder, wall seconds)."""
     _, exe, elsewhere, _, _ = installed
     t0 = time.perf_counter()
-    r = subprocess.run([exe, "report", "--quick", "-o", "rep"], cwd=elsewhere, capture_output=True, text=True)
+    r = subprocess.run([exe, "report", "--quick", *extra, "-o", out], cwd=elsewhere, capture_output=True, text=True)
     assert r.returncode == 0, r.stderr[-3000:]
-    return elsewhere / "rep", time.perf_counter() - t0
+    return elsewhere / out, time.perf_counter() - t0

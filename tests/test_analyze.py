@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from compare.cli import main
-from compare.io.measured import DataFileError, read_displacement_csv, read_measured
+from compare.io.measured import DataFileError, read_displacement_csv, read_measured, units_line
 from reduced_models.spring_block import SpringBlockParams, simulate
 
 
@@ -123,6 +123,8 @@ def test_instrument_export_with_preamble_units_row_semicolons_and_decimal_commas
     assert d.layout["separator"] == "semicolon" and d.layout["decimal_comma"]
     assert d.layout["preamble_lines"] == 2 and d.layout["header_line"] == 4 and d.layout["units_row_line"] == 5
     assert d.units["x"] == {"column": "Pos", "unit": "um", "from": "units row"}
+    # the line `analyze` prints says what it skipped (docs/reference/trace_format.md: "skipped and counted")
+    assert units_line(d).endswith("; 2 preamble lines above the header (line 4) skipped"), units_line(d)
 
 
 def test_units_from_bracketed_headers_in_a_tab_file_and_contradictions(tmp_path):
@@ -311,7 +313,8 @@ def test_cli_x_in_micrometres_without_a_mass(tmp_path, capsys, monkeypatch):
     assert s["mass_kg"] is None and "fit_F" not in s and s["notes"] == [C_F_NEEDS_MASS]
     assert s["fit_mu"]["gamma"] == pytest.approx(s["gamma"] - 4, abs=1e-9)
     assert sorted(p.name for p in (out / "figures").iterdir()) == ["measured_Cmu.png", "measured_Cx.png"]
-    assert "needs the block mass" in (out / "index.html").read_text()
+    html = (out / "index.html").read_text()
+    assert "needs the block mass" in html and "<title>frictionnoise analyze: x_um.csv</title>" in html
     # --method lsq for displacement data (it was refused), and --mass adds C_F's exponent, gamma - 4
     assert main(["analyze", "x_um.csv", "--x-unit", "um", "--time-unit", "s", "--method", "lsq", "--mass", "2",
                  "-o", "lsq"]) == 0

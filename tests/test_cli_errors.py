@@ -248,6 +248,20 @@ def test_run_help_says_o_is_a_folder(capsys):
     assert "DIR/trace.npz and DIR/trace.json" in out and "is refused" in out
 
 
+def test_analyze_help_names_the_default_fit_and_report_help_the_quick_selection(capsys):
+    from compare.analysis.fits import DEFAULT_METHOD
+    from compare.report.studies.scenes import HEADLINE_SCENES
+
+    with pytest.raises(SystemExit):
+        main(["analyze", "--help"])
+    out = " ".join(capsys.readouterr().out.split())
+    assert f"default: {DEFAULT_METHOD})" in out and "DEFAULT_METHOD" not in out
+    with pytest.raises(SystemExit):
+        main(["report", "--help"])
+    out = " ".join(capsys.readouterr().out.split())
+    assert all(name in out for name in HEADLINE_SCENES) and "--all-scenes" in out
+
+
 @pytest.mark.parametrize("flag, value, needle", [("--duration", "nan", "--duration must be"),
                                                  ("--duration", "-1", "--duration must be"),
                                                  ("--duration", "inf", "--duration must be"),

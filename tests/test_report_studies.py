@@ -91,7 +91,7 @@ def test_the_pool_starts_the_costliest_study_of_each_report_first():
                Study("c", "c", None))  # c: cost 1, the same in both reports
     assert pool_order([a, b, c], quick=True) == [1, 0, 2] and pool_order([a, b, c], quick=False) == [0, 1, 2]
     assert set(SCENE_COSTS) == set(shipped_scenarios())  # a scene without a measured cost would start at random
-    assert all(s.cost_in(q) > 0 for q in (True, False) for s in studies.selected(q) if s.key != "scenes_method")
+    assert all(s.cost_in(q) > 0 for q in (True, False) for s in studies.selected(q, True) if s.key != "scenes_method")
 
 
 def test_studies_marked_alone_run_last_after_the_speed_table():
@@ -277,7 +277,7 @@ def test_first_report_tutorial_states_what_the_full_report_adds():
         sc = load_scenario(path)
         full[name] = FULL_DURATION if fitting_part(sc).reduced_model in SHORTENED else sc.run.duration
     assert full.pop("spring_slider_rate_state") == 30.0 and set(full.values()) == {20.0}
-    only_full = [s for s in studies.selected(False) if s not in studies.selected(True)]
+    only_full = [s for s in studies.selected(False) if s not in studies.selected(True, all_scenes=True)]
     assert only_full == [scene_rough_multiscale.STUDY, work_precision.STUDY] and work_precision.STUDY.alone
     assert (scene_rough_multiscale.SEEDS, scene_rough_multiscale.DURATION, len(work_precision.SETTINGS)) == (3, 12.5, 4)
 
@@ -285,14 +285,14 @@ def test_first_report_tutorial_states_what_the_full_report_adds():
 def test_report_says_at_its_start_how_many_studies_on_how_many_workers(tmp_path, monkeypatch, capsys):
     # the first progress line comes when the first study ends (about 70 s into a quick report): one line at the
     # start, on the progress lines' stream, says what runs and when to expect results
-    monkeypatch.setattr(studies, "selected", lambda quick: [STUB])
+    monkeypatch.setattr(studies, "selected", lambda quick, all_scenes=False: [STUB])
     assert main(["report", "--quick", "--workers", "1", "-o", str(tmp_path / "r")]) == 0
     lines = capsys.readouterr().err.splitlines()
     assert lines[0] == ("report: 1 study on 1 worker; the first line of results comes when the first study ends, "
                         "then one a study"), lines
     assert lines[1].startswith("report: [1/1] stub done"), lines
     alone = Study("stub_alone", "stub alone", lambda quick, seed: StudyResult("stub_alone", "", {"w": 1}), alone=True)
-    monkeypatch.setattr(studies, "selected", lambda quick: [STUB, alone])
+    monkeypatch.setattr(studies, "selected", lambda quick, all_scenes=False: [STUB, alone])
     assert main(["report", "--quick", "--workers", "2", "-o", str(tmp_path / "s")]) == 0
     lines = capsys.readouterr().err.splitlines()
     assert lines[0].startswith("report: 2 studies on 2 workers (1 alone after the others); the first line"), lines

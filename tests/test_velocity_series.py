@@ -76,6 +76,7 @@ def test_cli_series_of_three_files(tmp_path, capsys, monkeypatch):
     printed = capsys.readouterr().out
     assert "~ v^(" in printed and "model I alpha^2/(N a)" in printed
     out = tmp_path / "analyze-series-v0"
+    assert f"<title>frictionnoise analyze: {len(names)} records against speed</title>" in (out / "index.html").read_text()
     s = json.loads((out / "summary.json").read_text())["velocity_series"]
     assert abs(s["exponent"] - 5 / 3) <= s["exponent_err"] and s["exponent_err_source"] in ("per-record",
                                                                                           "residual scatter")

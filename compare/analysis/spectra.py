@@ -294,11 +294,13 @@ def check_band(spectrum: Spectrum, band) -> tuple[float, float]:
     lo, hi = map(float, band)
     if not 0 < lo < hi:
         raise ValueError(f"band must satisfy 0 < low < high (got {band!r})")
-    if lo < spectrum.omega_min * (1 - 1e-9) or hi > spectrum.omega_max * (1 + 1e-9):
-        raise ValueError(
-            f"band ({lo:.4g}, {hi:.4g}) rad/s lies outside the resolved range "
-            f"({spectrum.omega_min:.4g}, {spectrum.omega_max:.4g}) rad/s"
-        )
+    below, above = lo < spectrum.omega_min * (1 - 1e-9), hi > spectrum.omega_max * (1 + 1e-9)
+    if below or above:
+        where = ("it lies wholly outside" if lo >= spectrum.omega_max or hi <= spectrum.omega_min else
+                 "it reaches beyond both ends of" if below and above else
+                 "its low end lies below" if below else "its high end lies above")
+        raise ValueError(f"band ({lo:.4g}, {hi:.4g}) rad/s: {where} the resolved range ({spectrum.omega_min:.4g}, "
+                         f"{spectrum.omega_max:.4g}) rad/s (from the record's segment length to its Nyquist frequency)")
     return lo, hi
 
 

@@ -125,7 +125,7 @@ def cmd_analyze(args) -> int:
             summary["units"] = data.units
     except ValueError as e:
         raise UserError(f"{args.data}: {e}") from None
-    write_report(out, sections, summary)
+    write_report(out, sections, summary, title=f"frictionnoise analyze: {Path(args.data).name}")
     print(f"{args.data}: {units_line(data)}")
     for line in (_force_lines if force else _displacement_lines)(summary, out / "index.html"):
         print(line)
@@ -431,7 +431,7 @@ def cmd_report(args) -> int:
     from .progress import StageProgress, report_start_line
     from ..report.build import build_report
 
-    chosen = studies.selected(args.quick)
+    chosen = studies.selected(args.quick, args.all_scenes)
     from .compile_notice import announcer, compile_notice
 
     # kernels compiled in this process (the studies that run alone) or in the pool's workers: one line, once
@@ -439,7 +439,7 @@ def cmd_report(args) -> int:
     with compile_notice(announce=announce), StageProgress([s.label for s in chosen], desc="report") as progress:
         progress.note(report_start_line(chosen, workers))
         results, summary = build_report(quick=args.quick, seed=args.seed, progress=progress, workers=workers,
-                                        studies=chosen, on_compile=announce)
+                                        studies=chosen, on_compile=announce, all_scenes=args.all_scenes)
     path = write_report(out, results, summary)
     print(f"wrote {path / 'index.html'} ({summary['total_wall_s']:.1f} s)")
     from ..report.verdict import summary_lines

@@ -37,7 +37,11 @@ def build_parser() -> argparse.ArgumentParser:
                         "fits and timings, as an HTML report with summary.json")
     rep.add_argument("-o", "--output", default="frictionnoise-report",
                      help="output folder for index.html, summary.json and figures/ (default: %(default)s)")
-    rep.add_argument("--quick", action="store_true", help="shorter runs (about 2 min on 2 cores)")
+    rep.add_argument("--quick", action="store_true",
+                     help="the models and three scenes (pads_friction_patches, pads_with_wear, asperity_field) in "
+                          "shorter runs: about 30 s on 2 cores; the full report runs every scene (about 3 min)")
+    rep.add_argument("--all-scenes", action="store_true",
+                     help="with --quick: every shipped scene at its quick length (about 70 s on 2 cores)")
     rep.add_argument("--seed", type=int, default=0,
                      help="random seed of every model and scene run (default: %(default)s); same seed, same numbers")
     rep.add_argument("--workers", type=int, default=None, metavar="N",
@@ -124,8 +128,8 @@ def build_parser() -> argparse.ArgumentParser:
     an.add_argument("--cut", type=float, default=None, metavar="S",
                     help="seconds cut at each end of a stroke (default: 10 %% of the median stroke)")
     an.add_argument("--method", default=None, choices=["whittle", "lsq"],
-                    help="exponent fit, for displacement and force data alike (default: "
-                         "compare.analysis.fits.DEFAULT_METHOD)")
+                    help="exponent fit, for displacement and force data alike: whittle (the Whittle likelihood "
+                         "over the band) or lsq (least squares on the log-binned spectrum) (default: whittle)")
     an.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"), help="fit band (rad/s)")
     an.add_argument("--resample", type=float, default=None, metavar="DT",
                     help="time stamps that change rate, skip, repeat or step back: put the record on one grid of DT "

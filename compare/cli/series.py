@@ -30,7 +30,7 @@ def analyze_series(args, read) -> int:
         raise UserError(str(e)) from None
     out = output_dir(args.output, f"analyze-series-{Path(args.data[0]).stem}", "index.html and summary.json")
     sections, summary = build_series_report(series, analyses, args.data)
-    write_report(out, sections, summary)
+    write_report(out, sections, summary, title=f"frictionnoise analyze: {len(args.data)} records against speed")
     for path, a in zip(args.data, analyses):
         print(f"{path}: v = {a.mean_velocity:.4g} m/s, gamma = {a.fit.gamma:.3f} +- {a.fit.gamma_err:.3f} over "
               f"{a.fit.band[0]:.3g}-{a.fit.band[1]:.3g} rad/s")

@@ -422,4 +422,9 @@ def units_line(data: MeasuredData) -> str:
     """One line saying which unit each column was read in and where the unit came from."""
     parts = [f"{v['column']!r} in {v['unit']} (from the {v['from']})" if v["from"] != "argument"
              else f"{v['column']!r} in {v['unit']} (as given)" for v in data.units.values()]
-    return "read " + ", ".join(parts)
+    line = "read " + ", ".join(parts)
+    skipped = (data.layout or {}).get("preamble_lines") or 0
+    if skipped:
+        line += (f"; {skipped} preamble line{'s' if skipped > 1 else ''} above the header (line "
+                 f"{data.layout['header_line']}) skipped")
+    return line

@@ -89,17 +89,17 @@ def _speed(rows: list, title: str, note: str) -> StudyResult:
 
 
 def build_report(quick: bool = False, seed: int = 0, progress=None, workers: int = 1, studies=None,
-                 on_compile=None):
+                 on_compile=None, all_scenes: bool = False):
     """Run every study and gather the results. Returns (results, summary): a list of StudyResult in page order
     and the dict for summary.json.
 
-    ``studies`` defaults to the registry's selection for ``quick``. ``workers`` > 1 runs them in that many
+    ``studies`` defaults to the registry's selection for ``quick`` and ``all_scenes``. ``workers`` > 1 runs them in that many
     processes (identical numbers: each study is seeded on its own); studies marked ``alone`` (they measure
     speed) run afterwards in this process. ``progress`` and ``on_compile`` as in :func:`run_studies`."""
     from . import studies as registry
 
-    studies = registry.selected(quick) if studies is None else list(studies)
-    header = {"version": package_version(), "quick": quick, "seed": seed, "workers": workers,
+    studies = registry.selected(quick, all_scenes) if studies is None else list(studies)
+    header = {"version": package_version(), "quick": quick, "all_scenes": not quick or all_scenes, "seed": seed, "workers": workers,
               "conventions": CONVENTIONS, "scenarios": {}}
     t0 = time.perf_counter()
     pooled = [s for s in studies if not s.alone]

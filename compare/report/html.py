@@ -116,7 +116,11 @@ def _header(header: dict) -> str:
     bits = [f"Version {esc(str(header.get('version', 'unknown')))}"]
     if seed is not None:
         bits.append(f"seed {esc(str(seed))}")
-    if header.get("quick"):
+    if header.get("quick") and not header.get("all_scenes", True):
+        bits.append("quick mode: the models and the scenes of the paper's three mechanisms, in shorter runs "
+                    "(<code>--quick --all-scenes</code> adds every other shipped scene; the full report, without "
+                    "<code>--quick</code>, runs them all at full length)")
+    elif header.get("quick"):
         bits.append("quick mode (shorter runs)")
     return (f"<p class='meta'>{', '.join(bits)}. Spectra are two-sided in angular frequency (Xu, Zhou &amp; Persson "
             "2025, eq. 2); &plusmn; is a 95 % confidence half-width.</p>")

@@ -62,7 +62,10 @@ class Study:
     label : progress label shown by the CLI.
     run : run(quick, seed) -> StudyResult, or a list of StudyResult. Seeded on its own: the numbers do not
         depend on which process runs it or what runs beside it.
-    quick : part of the quick report (``--quick``).
+    quick : part of the quick report (``--quick --all-scenes``).
+    headline : part of the quick report's default selection (``--quick``): the models and the scenes of the paper's
+        three mechanisms (:data:`compare.report.studies.scenes.HEADLINE_SCENES`); the other quick studies join it
+        with ``--all-scenes``. The full report runs every study.
     alone : measures speed, so it runs after the others, in the report's own process, with nothing beside it.
     cost : its cost in the full report, in CPU seconds as benchmarks/bench_report.py measures them, so the pool
         hands the longest studies to its workers first and they end together.
@@ -72,6 +75,7 @@ class Study:
     label: str
     run: Callable[[bool, int], StudyResult | list]
     quick: bool = True
+    headline: bool = True
     alone: bool = False
     cost: float = 1.0
     quick_cost: float | None = None

@@ -11,6 +11,9 @@ STUDIES = [model_I.STUDY, multiscale.STUDY, model_III.STUDY, model_II.STUDY, mod
            *scene_studies(), scene_rough_multiscale.STUDY, work_precision.STUDY]
 
 
-def selected(quick: bool) -> list:
-    """The studies of a quick or full report, in page order."""
-    return [s for s in STUDIES if s.quick or not quick]
+def selected(quick: bool, all_scenes: bool = False) -> list:
+    """The studies of a report, in page order: the full report runs them all; the quick one its headline studies
+    (the models and the scenes of the paper's three mechanisms), or every quick study with ``all_scenes``."""
+    if not quick:
+        return list(STUDIES)
+    return [s for s in STUDIES if s.quick and (s.headline or all_scenes)]

@@ -59,10 +59,9 @@ def _paired(name, sc, quick, seed, trace, duration, progress) -> SimpleNamespace
     states = {n: float(np.mean(tw.p_state == c)) for c, n in ((0, "idle"), (1, "trapped"), (2, "moving"))}
     bal = {k: balances(tr) for k, tr in runs.items()}
     # the particles' cost, measured with both scenes taking turns (the runs' own wall times depend on what the
-    # report runs beside them)
-    # (quick: 0.5 s of warm-up and the fastest of 4 turns, as tests/test_report_parallel.py measures it)
-    us_w, us_0 = step_costs([sc, sc.with_wear(count=0)], seed=seed, **({"warmup": 0.5, "chunks": 4} if quick else {}))
-    cost_ratio = us_w / us_0
+    # report runs beside them); the full report only: it is a speed number, and it costs the quick report 3 CPU s
+    us_w, us_0 = (None, None) if quick else step_costs([sc, sc.with_wear(count=0)], seed=seed)
+    cost_ratio = None if quick else us_w / us_0
     band_rows = [{"band": [float(edges[i]), float(edges[i + 1])], "C_x_ratio": float(level[i]), "C_F_ratio": float(levelF[i]),
                   "particle_force_over_B2": float(r_b2[i]), "delta_C_F_over_B2": float(r_dCF[i])} for i in range(len(level))]
     d = {
@@ -90,6 +89,15 @@ def rise_verdict(name, fits, dg, dg_err):
                             "+0.4 or more (target)", flags=flags, direction="above")
 
 
+def _cost_text(sc, us_w, us_0, cost_ratio) -> str:
+    """The particles' cost per step, measured with both scenes taking turns (full report), or where to find it."""
+    if cost_ratio is None:
+        return ("their cost per step, measured with both scenes taking turns (the runs' own times depend on what "
+                "ran beside them), is in the full report.")
+    return (f"measured side by side, {us_w:.0f} and {us_0:.0f} us per step, a cost ratio of {cost_ratio:.2f} at "
+            f"{sc.run.iterations} solver iterations.")
+
+
 def _text(name, sc, m) -> str:
     """The section's prose and its per-band table."""
     (T, tw, t0, wall_w, wall_0, fits, band, dg, dg_err, level, dur, r_b2, fit_p, r_dCF, wm, states, us_w, us_0,
@@ -105,8 +113,8 @@ def _text(name, sc, m) -> str:
     text = paragraphs([
         esc(sc.description.replace("\n", " ")),
         f"Paired runs of {T:g} s (same seed and substrate): {wall_w:.1f} s with particles ({tw.metadata['us_per_step']:.0f} us "
-        f"per step), {wall_0:.1f} s without ({t0.metadata['us_per_step']:.0f} us); measured side by side, {us_w:.0f} and "
-        f"{us_0:.0f} us per step, a cost ratio of {cost_ratio:.2f} at {sc.run.iterations} solver iterations. Mean speed {1e3 * vw:.3f} mm/s with particles, {1e3 * v0:.3f} mm/s without "
+        f"per step), {wall_0:.1f} s without ({t0.metadata['us_per_step']:.0f} us); " + _cost_text(sc, us_w, us_0, cost_ratio)
+        + f" Mean speed {1e3 * vw:.3f} mm/s with particles, {1e3 * v0:.3f} mm/s without "
         f"(law: {1e3 * sc.steady_velocity:.3f}): the grains add friction. Energy balance with particles "
         f"{pct(d['energy_balance_rel'])} (recycling moved {pct(float(tw.work_recycle[-1] / tw.work_drive[-1]), 4)} of the "
         f"drive's work); deepest grain overlap with a track {1e6 * d['particle_penetration_max_m']:.2f} um; "
