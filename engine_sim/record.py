@@ -257,7 +257,7 @@ class Recorder:
             if vib is not None:
                 prm[_VIB:_VIB + 4] = vib.impulses(self.last_steps, sc.steps)
         if sc.vibration is not None and sc.steps > 0:
-            prm[_VIB_LAST:_VIB_LAST + 2] = sc.vibration.impulses(sc.steps - 1, sc.steps)[:2]
+            prm[_VIB_LAST], prm[_VIB_LAST + 1] = sc.vibration.step_impulse(sc.steps - 1)
         self.last_steps = sc.steps
 
     def _drive_state(self):
