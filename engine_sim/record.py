@@ -69,6 +69,7 @@ def force_channels(scene, forces: str) -> dict:
 
 
 _STEPS, _VIB = PRM.index("steps"), PRM.index("vib_x")  # steps, then w0..w3; vib_x, vib_y, vib_bx, vib_by
+_VIB_LAST = PRM.index("vib_lx")  # vib_lx, vib_ly
 
 
 def step_weights(n: int) -> np.ndarray:
@@ -186,7 +187,8 @@ class Recorder:
         prm = {"dt": scene.dt, "M": scene.M, "g": -scene.space.gravity.y, "v_trap": scene.v_trap,
                "dt_out": scene.dt * scene.n_sub, "pulled": float(drive.pulled),
                "means": float(self.forces == "mean"), "guided": float(scene.arrangement.guided),
-               "law_after": float(scene.law.impulses_after_step)}
+               "law_after": float(scene.law.impulses_after_step),
+               "pair_mid": float(scene.vibration is not None and scene.vibration.active)}
         self._prm = np.array([prm.get(name, 0.0) for name in PRM])
         self._drive_spring = drive.spring
         sp = drive.spring  # its stiffness, rest length and anchor offset are constant; the anchor body moves
@@ -258,7 +260,8 @@ class Recorder:
 
     def _interval(self, prm):
         """The output step since the previous sample into ``prm``: its pymunk steps (0 at the first sample), the
-        quadrature weights (:func:`step_weights`) and a vibration's known impulses over it."""
+        quadrature weights (:func:`step_weights`) and a vibration's known impulses over it and over its last pymunk
+        step (per unit mass, for the step's mean velocity, :func:`engine_sim.reduction.step_mean_velocity`)."""
         sc = self.scene
         n = 0 if self.last_steps is None else sc.steps - self.last_steps
         prm[_STEPS] = n
@@ -272,6 +275,8 @@ class Recorder:
             vib = sc.vibration
             if vib is not None:
                 prm[_VIB:_VIB + 4] = vib.impulses(self.last_steps, sc.steps)
+        if sc.vibration is not None and sc.steps > 0:
+            prm[_VIB_LAST], prm[_VIB_LAST + 1] = sc.vibration.step_impulse(sc.steps - 1)
         self.last_steps = sc.steps
 
     def _drive_state(self):

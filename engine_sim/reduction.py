@@ -22,16 +22,18 @@ COLS = ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "penetration", "power_in", 
         "stale", "momentum_x", "momentum_y")
 X, V, F_T, F_N, F_DRAG, F_DRIVE, PEN, POWER_IN, POWER_OUT, MECH, PAIRS, P_PEN, STALE, MOM_X, MOM_Y = range(len(COLS))
 # the scalar parameters of a sample (Recorder._prm), scene units; pulled: index of the body the drive spring pulls among
-# the drive's bodies (-1: the block)
-# means: 1 to record the forces as means over the output step (:func:`means`), 0 for point samples; steps: pymunk
-# steps since the previous sample (0 at the first); w0..w3: the quadrature weights of a smooth force over those steps
-# (:func:`engine_sim.record.step_weights`); guided: 1 if a guide holds the block's height; vib_x, vib_y: a vibration's
-# impulse per unit mass on every body over those steps, vib_bx, vib_by: its impulse on the block alone; law_after: 1 if
-# the law's per-step impulses act after pymunk's step (engine_sim.laws.Law.impulses_after_step)
+# the drive's bodies (-1: the block); means: 1 to record the forces as means over the output step (:func:`means`), 0 for
+# point samples; steps: pymunk steps since the previous sample (0 at the first); w0..w3: the quadrature weights of a
+# smooth force over those steps (record.step_weights); guided: 1 if a guide holds the block's height; vib_x, vib_y: a
+# vibration's impulse per unit mass on every body over those steps, vib_bx, vib_by: its impulse on the block alone;
+# law_after: 1 if the law's per-step impulses act after pymunk's step (Law.impulses_after_step); vib_lx, vib_ly: a
+# vibration's impulse per unit mass on every body over the last pymunk step; pair_mid: 1 (a shaken scene) to pair the
+# last step's dissipative impulses with the step's mean velocity (:func:`step_mean_velocity`), 0 with v_after
 PRM = ("drive_k", "anchor_x", "drive_rest", "anchor_v", "x0", "dt", "M", "g", "v_trap", "dt_out", "pulled", "means",
-       "steps", "w0", "w1", "w2", "w3", "guided", "vib_x", "vib_y", "vib_bx", "vib_by", "law_after")
+       "steps", "w0", "w1", "w2", "w3", "guided", "vib_x", "vib_y", "vib_bx", "vib_by", "law_after", "vib_lx", "vib_ly",
+       "pair_mid")
 (DRIVE_K, ANCHOR_X, DRIVE_REST, ANCHOR_V, X0, DT, MASS, GRAV, V_TRAP, DT_OUT, PULLED, MEANS, STEPS, W0, W1, W2, W3,
- GUIDED, VIB_X, VIB_Y, VIB_BX, VIB_BY, LAW_AFTER) = range(len(PRM))
+ GUIDED, VIB_X, VIB_Y, VIB_BX, VIB_BY, LAW_AFTER, VIB_LX, VIB_LY, PAIR_MID) = range(len(PRM))
 # the means' state carried from sample to sample (engine_sim/means.py; rows: 0 the sliding system, 1 + i slider i):
 # system row [P_x, P_y, drive force, drive force one step ahead]; slider rows [x, y, vx, vy, spring force x, y, one step
 # ahead x, y, the law's impulse total]
@@ -90,10 +92,11 @@ def read_bodies(ids, fl, tab, grain, n_sl, n_d):
 
 
 @numba.njit(cache=True)
-def contact_velocity(kind, i, P, Q, blk, px, py):
-    """Velocity (vx, vy) of body (kind, i) at the contact point (px, py): grains rotate, the others do not."""
+def contact_velocity(kind, i, Vm, Q, blk, px, py):
+    """Velocity (vx, vy) of body (kind, i) at the contact point (px, py): grains rotate, the others do not; a
+    slider's is its mean over the last step (``Vm``, :func:`step_mean_velocity`)."""
     if kind == SLIDER:
-        return P[i, 2], P[i, 3]
+        return Vm[i, 0], Vm[i, 1]
     if kind == GRAIN:
         return Q[i, 2] - Q[i, 4] * (py - Q[i, 1]), Q[i, 3] + Q[i, 4] * (px - Q[i, 0])
     if kind == BLOCK:
@@ -102,13 +105,13 @@ def contact_velocity(kind, i, P, Q, blk, px, py):
 
 
 @numba.njit(cache=True)
-def contacts(ai, af, tab, grain, P, Q, blk, dt, k, p_force, n_sl):
+def contacts(ai, af, tab, grain, Q, dt, k, p_force, n_sl):
     """Contact forces of the arbiters, in a fixed order (:func:`arbiter_order`).
 
-    Returns per slider the tangential and normal force (ft, fn, on the slider) and whether it touches its track;
+    Returns per slider the (x, y) contact force (ft, fn, on the slider) and whether it touches its track;
     per grain whether it presses on its pad (its force on the pad, against sliding, goes to ``p_force[k]``); the
     deepest pad-track and grain-track overlaps; the pad-track contact pairs; the stale grain arbiters skipped; and
-    the friction power at the contacts, tangential force times tangential slip. The normal part of the power is left
+    the arbiters counted, in order, for :func:`friction_power`. The normal part of the power is left
     out: after a step of a few solver iterations the bodies keep a small residual normal velocity at resting contacts
     (pymunk's position bias fixes the error and does no recorded work), and its product with the normal force reads
     as a spurious 5-6 % of the drive's work once grains slide on tracks; resting contacts do no work, and inelastic
@@ -122,7 +125,8 @@ def contacts(ai, af, tab, grain, P, Q, blk, dt, k, p_force, n_sl):
     p_pen = 0.0
     pairs = 0
     stale_count = 0
-    pout = 0.0
+    used = np.empty(ai.shape[0] // 3, dtype=np.int64)
+    n_used = 0
     kinds = np.empty(2, dtype=np.int64)  # per arbiter: kind and index of bodies A and B
     idx = np.empty(2, dtype=np.int64)
     for r in arbiter_order(ai, af, tab):  # sums over several contacts of one pad must not depend on the batch's order
@@ -130,8 +134,6 @@ def contacts(ai, af, tab, grain, P, Q, blk, dt, k, p_force, n_sl):
             continue
         a0 = AF * r
         Fx, Fy = af[a0 + JX] / dt, af[a0 + JY] / dt  # on A; B feels minus this
-        tx, ty = -af[a0 + NY], af[a0 + NX]  # contact tangent
-        px, py = af[a0 + PAX], af[a0 + PAY]
         for s in range(2):
             kinds[s], idx[s] = body_of(tab, ai[3 * r + s])
         # a sleeping grain's cached arbiter holds stale contact data; asleep, a grain only rests on its track
@@ -142,11 +144,8 @@ def contacts(ai, af, tab, grain, P, Q, blk, dt, k, p_force, n_sl):
         if stale(kinds, idx, af, a0, Q, grain):
             stale_count += 1
             continue
-        Ft = Fx * tx + Fy * ty
-        for s in range(2):
-            sg = 1.0 if s == 0 else -1.0
-            vx, vy = contact_velocity(kinds[s], idx[s], P, Q, blk, px, py)
-            pout -= sg * Ft * (vx * tx + vy * ty)
+        used[n_used] = r
+        n_used += 1
         for s in range(2):
             if kinds[s] != SLIDER:
                 continue
@@ -165,15 +164,85 @@ def contacts(ai, af, tab, grain, P, Q, blk, dt, k, p_force, n_sl):
                 pairs += 1
         if (kinds[0] == GRAIN and kinds[1] == STATIC) or (kinds[1] == GRAIN and kinds[0] == STATIC):  # grain on track
             p_pen = max(p_pen, -af[a0 + DIST])
-    return ft, fn, touch, p_touch, pen, p_pen, pairs, stale_count, pout
+    return ft, fn, touch, p_touch, pen, p_pen, pairs, stale_count, used[:n_used]
 
 
 @numba.njit(cache=True)
-def sliders(P, sl, ft, fn, touch, g, k, pad_force, micro_force, ke, pe, pout):
+def friction_power(used, ai, af, tab, Vm, Q, blk, dt):
+    """The friction power at the contacts ``used`` (:func:`contacts`): tangential force times tangential slip, the
+    sliders' velocities ``Vm`` (in a shaken scene their means over the last step, :func:`step_mean_velocity`)."""
+    pout = 0.0
+    kinds = np.empty(2, dtype=np.int64)
+    idx = np.empty(2, dtype=np.int64)
+    for r in used:
+        a0 = AF * r
+        Fx, Fy = af[a0 + JX] / dt, af[a0 + JY] / dt  # on A; B feels minus this
+        tx, ty = -af[a0 + NY], af[a0 + NX]  # contact tangent
+        px, py = af[a0 + PAX], af[a0 + PAY]
+        Ft = Fx * tx + Fy * ty
+        for s in range(2):
+            kinds[s], idx[s] = body_of(tab, ai[3 * r + s])
+        for s in range(2):
+            sg = 1.0 if s == 0 else -1.0
+            vx, vy = contact_velocity(kinds[s], idx[s], Vm, Q, blk, px, py)
+            pout -= sg * Ft * (vx * tx + vy * ty)
+    return pout
+
+
+@numba.njit(cache=True)
+def law_drag(sl, i, vx):
+    """The law's velocity part on slider i at speed vx: c v + b N_pad ln(1 + |v|/v_c) sign(v) (``sl``: mass, c,
+    b N_pad, v_c per body)."""
+    f_v = sl[i, 1] * vx
+    if sl[i, 2] > 0.0:
+        f_v += np.sign(vx) * sl[i, 2] * np.log1p(abs(vx) / sl[i, 3])
+    return f_v
+
+
+@numba.njit(cache=True)
+def step_mean_velocity(blk, P, sl, sp, ft, fn, prm):
+    """Each slider's mean velocity over the last pymunk step, v - dv / 2, dv = (the step's impulses) / m: contacts
+    (``ft``, ``fn``: x, y forces), springs (elastic at the present places, where pymunk evaluated them; damping
+    -c_eff dt v_rel along them), the law's drag -f_v dt, a vibration's field and gravity. A step's impulse J does
+    J . (v_before + v_after) / 2; J . v_after over-counts J^2 / 2m, in the law's dampers (c dt / 4) sum dv^2, which
+    a vibration makes large. Used in shaken scenes only (``pair_mid``; benchmarks/results/vibration.md)."""
+    n_sl = P.shape[0]
+    dt = prm[DT]
+    F0 = np.zeros((n_sl, 2))
+    F1 = np.zeros((n_sl, 2))
+    L0 = np.empty(sp.shape[0])
+    L1 = np.empty(sp.shape[0])
+    spring_forces(sp, blk, P, dt, F0, F1, L0, L1)
+    for r in range(sp.shape[0]):
+        c = sp[r, 8]
+        if c == 0.0:
+            continue
+        a, b = int(sp[r, 0]), int(sp[r, 1])
+        ax, ay, avx, avy = (blk[0], blk[1], blk[2], blk[3]) if a < 0 else (P[a, 0], P[a, 1], P[a, 2], P[a, 3])
+        dx = P[b, 0] + sp[r, 4] - (ax + sp[r, 2])
+        dy = P[b, 1] + sp[r, 5] - (ay + sp[r, 3])
+        ln = np.sqrt(dx * dx + dy * dy)
+        f = -c * ((P[b, 2] - avx) * dx + (P[b, 3] - avy) * dy) / (ln * ln)  # damping force on b per unit of (dx, dy)
+        F0[b, 0] += f * dx
+        F0[b, 1] += f * dy
+        if a >= 0:
+            F0[a, 0] -= f * dx
+            F0[a, 1] -= f * dy
+    Vm = np.empty((n_sl, 2))
+    for i in range(n_sl):
+        m = sl[i, 0]
+        Vm[i, 0] = P[i, 2] - 0.5 * ((F0[i, 0] + ft[i] - law_drag(sl, i, P[i, 2])) * dt / m + prm[VIB_LX])
+        Vm[i, 1] = P[i, 3] - 0.5 * ((F0[i, 1] + fn[i]) * dt / m + prm[VIB_LY] - prm[GRAV] * dt)
+    return Vm
+
+
+@numba.njit(cache=True)
+def sliders(P, Vm, sl, ft, fn, touch, g, k, pad_force, micro_force, ke, pe, pout):
     """Per sliding body (the pads first, then any micro-pads): its tangential force against sliding into
     ``pad_force[k]`` or ``micro_force[k]``, and the sums: the tangential and normal contact force, the friction law's
     velocity part c v + b N_pad ln(1 + |v|/v_c) sign(v) (``sl``: mass, c, b N_pad, v_c per body) and its power, the
-    pads touching their track; the bodies' kinetic and potential energy added to ``ke``, ``pe``."""
+    pads touching their track; the bodies' kinetic and potential energy added to ``ke``, ``pe``. The law's power
+    pairs its force with the step's mean velocity ``Vm`` (:func:`friction_power`)."""
     N = pad_force.shape[1]
     sft = 0.0
     sfn = 0.0
@@ -187,13 +256,10 @@ def sliders(P, sl, ft, fn, touch, g, k, pad_force, micro_force, ke, pe, pout):
             micro_force[k, i - N] = -ft[i]
         sft -= ft[i]
         sfn += fn[i]
-        vx = P[i, 2]
-        m_p, bN = sl[i, 0], sl[i, 2]
-        f_v = sl[i, 1] * vx  # the law's velocity part on this body (drag, along its velocity)
-        if bN > 0.0:
-            f_v += np.sign(vx) * bN * np.log1p(abs(vx) / sl[i, 3])
+        m_p = sl[i, 0]
+        f_v = law_drag(sl, i, P[i, 2])  # the law's velocity part on this body (drag, along its velocity)
         fv += f_v
-        pout += f_v * vx
+        pout += f_v * Vm[i, 0]
         ke += 0.5 * m_p * (P[i, 2] ** 2 + P[i, 3] ** 2)
         pe += m_p * g * P[i, 1]
     return sft, sfn, fv, nc, ke, pe, pout
@@ -217,10 +283,11 @@ def grains(grain, Q, prev, p_touch, g, v_trap, dt_out, k, p_state, ke, pe):
 
 
 @numba.njit(cache=True)
-def springs(bs, pp, blk, P, pe, pout):
+def springs(bs, pp, blk, P, Vm, pe, pout):
     """The springs' elastic energy added to ``pe`` and their damping power c (relative speed along the spring)^2 to
     ``pout``: block-slider springs ``bs`` (slider, anchor on the block, anchor on the slider, rest, k, c) and
-    slider-slider springs ``pp`` (slider a, slider b, anchors, rest, k, c)."""
+    slider-slider springs ``pp`` (slider a, slider b, anchors, rest, k, c); the sliders' velocities are their means
+    over the last step ``Vm``, paired with the damping force at the sample."""
     bx, by, bvx, bvy = blk[0], blk[1], blk[2], blk[3]
     for r in range(bs.shape[0]):
         i = int(bs[r, 0])
@@ -231,7 +298,8 @@ def springs(bs, pp, blk, P, pe, pout):
         pe += 0.5 * bs[r, 6] * d * d
         if bs[r, 7] > 0.0:
             vr = ((bvx - P[i, 2]) * ddx + (bvy - P[i, 3]) * ddy) / ln
-            pout += bs[r, 7] * vr * vr
+            vm = ((bvx - Vm[i, 0]) * ddx + (bvy - Vm[i, 1]) * ddy) / ln
+            pout += bs[r, 7] * vr * vm
     for r in range(pp.shape[0]):
         i = int(pp[r, 0])
         j2 = int(pp[r, 1])
@@ -242,7 +310,8 @@ def springs(bs, pp, blk, P, pe, pout):
         pe += 0.5 * pp[r, 7] * d * d
         if pp[r, 8] > 0.0:
             vr = ((P[i, 2] - P[j2, 2]) * ddx + (P[i, 3] - P[j2, 3]) * ddy) / ln
-            pout += pp[r, 8] * vr * vr
+            vm = ((Vm[i, 0] - Vm[j2, 0]) * ddx + (Vm[i, 1] - Vm[j2, 1]) * ddy) / ln
+            pout += pp[r, 8] * vr * vm
     return pe, pout
 
 
@@ -293,15 +362,17 @@ def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, dm, k, out, pad_
     blk, P, D, Q = read_bodies(ids, fl, tab, grain, sl.shape[0], dm.shape[0])
     pulled = int(prm[PULLED])
     hx, hvx = (blk[0], blk[2]) if pulled < 0 else (D[pulled, 0], D[pulled, 1])  # the body the drive spring pulls
-    ft, fn, touch, p_touch, pen, p_pen, pairs, n_stale, pout = contacts(ai, af, tab, grain, P, Q, blk, prm[DT], k,
-                                                                        p_force, sl.shape[0])
+    ft, fn, touch, p_touch, pen, p_pen, pairs, n_stale, used = contacts(ai, af, tab, grain, Q, prm[DT], k, p_force,
+                                                                        sl.shape[0])
+    Vm = step_mean_velocity(blk, P, sl, sp, ft, fn, prm) if prm[PAIR_MID] > 0.0 else P[:, 2:4].copy()
+    pout = friction_power(used, ai, af, tab, Vm, Q, blk, prm[DT])
     ke = 0.5 * prm[MASS] * (blk[2] * blk[2] + blk[3] * blk[3])
     pe = prm[MASS] * g * blk[1]  # constant unless the block is free vertically (asperity field)
     for j in range(dm.shape[0]):
         ke += 0.5 * dm[j] * D[j, 1] * D[j, 1]
-    sft, sfn, fv, nc, ke, pe, pout = sliders(P, sl, ft, fn, touch, g, k, pad_force, micro_force, ke, pe, pout)
+    sft, sfn, fv, nc, ke, pe, pout = sliders(P, Vm, sl, ft, fn, touch, g, k, pad_force, micro_force, ke, pe, pout)
     ke, pe = grains(grain, Q, prev, p_touch, g, prm[V_TRAP], prm[DT_OUT], k, p_state, ke, pe)
-    pe, pout = springs(bs, pp, blk, P, pe, pout)
+    pe, pout = springs(bs, pp, blk, P, Vm, pe, pout)
     f_drive, p_in, pe = drive(prm, hx, hvx, pe)
     out[k, X] = blk[0] - prm[X0]
     out[k, V] = blk[2]
@@ -376,4 +447,4 @@ def arbiter_order(ai, af, tab):
     return order
 
 
-from .means import means  # noqa: E402  (means reads this module's constants)
+from .means import means, spring_forces  # noqa: E402  (means reads this module's constants)

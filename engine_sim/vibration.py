@@ -153,6 +153,14 @@ class Vibration:
         j *= self.M
         return (0.0, 0.0, j, 0.0) if self.axis == 0 else (0.0, 0.0, 0.0, j)
 
+    def step_impulse(self, n: int) -> tuple[float, float]:
+        """The field's impulse (x, y) per unit mass over step n alone (substrate target; zeros for the block's
+        shaker, which acts on the block): one term of :meth:`impulses`, without its arrays (every sample)."""
+        if not self.active or not self.pseudo:
+            return 0.0, 0.0
+        j = self.A * self.wd2 * self.dt * math.sin(self.w * self.dt * n)
+        return (j, 0.0) if self.axis == 0 else (0.0, j)
+
     def displacement(self, steps: int) -> float:
         """s(t) at the scene's step count (m)."""
         return self._s(steps) / U.LENGTH if self.active else 0.0
