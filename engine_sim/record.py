@@ -68,8 +68,7 @@ def force_channels(scene, forces: str) -> dict:
             "F_drive": _F_DRIVE[bool(scene.sc.drive_part.constant_force)], "first_sample": FIRST_SAMPLE}
 
 
-_STEPS, _VIB = PRM.index("steps"), PRM.index("vib_x")  # steps, then w0..w3; vib_x, vib_y, vib_bx, vib_by
-_VIB_LAST = PRM.index("vib_lx")  # vib_lx, vib_ly
+_STEPS, _VIB = PRM.index("steps"), PRM.index("vib_x")  # steps, then w0..w3; vib_x, vib_y, vib_bx, vib_by, vib_lx, vib_ly
 
 
 def step_weights(n: int) -> np.ndarray:
@@ -272,11 +271,9 @@ class Recorder:
                     w = self._weights[n] = step_weights(n)
                 prm[_STEPS + 1:_STEPS + 5] = w
                 self._n_last = n
-            vib = sc.vibration
-            if vib is not None:
-                prm[_VIB:_VIB + 4] = vib.impulses(self.last_steps, sc.steps)
-        if sc.vibration is not None and sc.steps > 0:
-            prm[_VIB_LAST], prm[_VIB_LAST + 1] = sc.vibration.step_impulse(sc.steps - 1)
+        vib = sc.vibration
+        if vib is not None:  # over the output step (none at the first sample) and over its last pymunk step
+            prm[_VIB:_VIB + 6] = vib.impulses(sc.steps if n == 0 else self.last_steps, sc.steps)
         self.last_steps = sc.steps
 
     def _drive_state(self):

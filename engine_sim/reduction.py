@@ -25,15 +25,16 @@ X, V, F_T, F_N, F_DRAG, F_DRIVE, PEN, POWER_IN, POWER_OUT, MECH, PAIRS, P_PEN, S
 # the drive's bodies (-1: the block); means: 1 to record the forces as means over the output step (:func:`means`), 0 for
 # point samples; steps: pymunk steps since the previous sample (0 at the first); w0..w3: the quadrature weights of a
 # smooth force over those steps (record.step_weights); guided: 1 if a guide holds the block's height; vib_x, vib_y: a
-# vibration's impulse per unit mass on every body over those steps, vib_bx, vib_by: its impulse on the block alone;
-# law_after: 1 if the law's per-step impulses act after pymunk's step (Law.impulses_after_step); vib_lx, vib_ly: a
-# vibration's impulse per unit mass on every body over the last pymunk step; pair_mid: 1 (a shaken scene) to pair the
-# last step's dissipative impulses with the step's mean velocity (:func:`step_mean_velocity`), 0 with v_after
+# vibration's impulse per unit mass on every body over those steps, vib_bx, vib_by: its impulse on the block alone,
+# vib_lx, vib_ly: its impulse per unit mass on every body over the last pymunk step (the six from one call,
+# Vibration.impulses); law_after: 1 if the law's per-step impulses act after pymunk's step
+# (Law.impulses_after_step); pair_mid: 1 (a shaken scene) to pair the last step's dissipative impulses with the
+# step's mean velocity (:func:`step_mean_velocity`), 0 with v_after
 PRM = ("drive_k", "anchor_x", "drive_rest", "anchor_v", "x0", "dt", "M", "g", "v_trap", "dt_out", "pulled", "means",
-       "steps", "w0", "w1", "w2", "w3", "guided", "vib_x", "vib_y", "vib_bx", "vib_by", "law_after", "vib_lx", "vib_ly",
+       "steps", "w0", "w1", "w2", "w3", "guided", "vib_x", "vib_y", "vib_bx", "vib_by", "vib_lx", "vib_ly", "law_after",
        "pair_mid")
 (DRIVE_K, ANCHOR_X, DRIVE_REST, ANCHOR_V, X0, DT, MASS, GRAV, V_TRAP, DT_OUT, PULLED, MEANS, STEPS, W0, W1, W2, W3,
- GUIDED, VIB_X, VIB_Y, VIB_BX, VIB_BY, LAW_AFTER, VIB_LX, VIB_LY, PAIR_MID) = range(len(PRM))
+ GUIDED, VIB_X, VIB_Y, VIB_BX, VIB_BY, VIB_LX, VIB_LY, LAW_AFTER, PAIR_MID) = range(len(PRM))
 # the means' state carried from sample to sample (engine_sim/means.py; rows: 0 the sliding system, 1 + i slider i):
 # system row [P_x, P_y, drive force, drive force one step ahead]; slider rows [x, y, vx, vy, spring force x, y, one step
 # ahead x, y, the law's impulse total]

@@ -137,29 +137,26 @@ class Vibration:
         """Displacement of the shaken part after n steps (mm)."""
         return self.A * math.sin(self.w * n * self.dt)
 
-    def impulses(self, n0: int, n1: int) -> tuple[float, float, float, float]:
+    def impulses(self, n0: int, n1: int) -> tuple[float, float, float, float, float, float]:
         """The vibration's impulses over steps n0 .. n1 - 1 (scene units; step n feels the acceleration
         A omega_d^2 sin(omega t_n), see :meth:`advance`): (x, y) per unit mass on every body (substrate target),
-        then (x, y) on the block alone (block target)."""
-        if not self.active or n1 <= n0:
-            return 0.0, 0.0, 0.0, 0.0
+        (x, y) on the block alone (block target), then (x, y) per unit mass on every body over step n1 - 1 alone
+        (substrate target; for the step's mean velocity, :func:`engine_sim.reduction.step_mean_velocity`). One call
+        a sample: the recorder's cost per shaken sample is the part's budget."""
+        if not self.active or n1 <= 0:
+            return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
         th = self.w * self.dt
-        # sum_{n=n0}^{n1-1} sin(th n) in closed form (a per-sample numpy sum cost 5-10 us, 0.5-1 us per step)
-        half = 0.5 * th
-        total = math.sin(half * (n1 - n0)) * math.sin(half * (n0 + n1 - 1)) / math.sin(half)
-        j = self.A * self.wd2 * self.dt * total
+        a_dt = self.A * self.wd2 * self.dt
+        last = a_dt * math.sin(th * (n1 - 1)) if self.pseudo else 0.0
+        if n1 <= n0:
+            j = 0.0
+        else:  # sum_{n=n0}^{n1-1} sin(th n) in closed form (a per-sample numpy sum cost 5-10 us, 0.5-1 us per step)
+            half = 0.5 * th
+            j = a_dt * math.sin(half * (n1 - n0)) * math.sin(half * (n0 + n1 - 1)) / math.sin(half)
         if self.pseudo:
-            return (j, 0.0, 0.0, 0.0) if self.axis == 0 else (0.0, j, 0.0, 0.0)
+            return (j, 0.0, 0.0, 0.0, last, 0.0) if self.axis == 0 else (0.0, j, 0.0, 0.0, 0.0, last)
         j *= self.M
-        return (0.0, 0.0, j, 0.0) if self.axis == 0 else (0.0, 0.0, 0.0, j)
-
-    def step_impulse(self, n: int) -> tuple[float, float]:
-        """The field's impulse (x, y) per unit mass over step n alone (substrate target; zeros for the block's
-        shaker, which acts on the block): one term of :meth:`impulses`, without its arrays (every sample)."""
-        if not self.active or not self.pseudo:
-            return 0.0, 0.0
-        j = self.A * self.wd2 * self.dt * math.sin(self.w * self.dt * n)
-        return (j, 0.0) if self.axis == 0 else (0.0, j)
+        return (0.0, 0.0, j, 0.0, 0.0, 0.0) if self.axis == 0 else (0.0, 0.0, 0.0, j, 0.0, 0.0)
 
     def displacement(self, steps: int) -> float:
         """s(t) at the scene's step count (m)."""

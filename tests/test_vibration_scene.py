@@ -312,19 +312,28 @@ def test_energy_balance_at_40_steps_per_period(scenario):
 
 @pytest.mark.parametrize("scenario", ["vibrated_patches.toml", "vibrated_velocity.toml"])
 @pytest.mark.parametrize("A", [2.72e-6, 6.58e-6])
-def test_energy_balance_past_the_onset_sampled_every_step(scenario, A):
+def test_energy_balance_past_the_onset_closes_when_the_output_resolves_the_vibration(scenario, A):
     # past the pads' onset of reversal (1 kHz, 40 steps per period) the recorder's dissipation pairs each step's
     # impulses with the step's mean velocity (v_before + v_after) / 2, the work they did; J . v_after over-counts
-    # J^2 / 2m per step, (c dt / 4) sum dv^2 in the law's dampers (reduction.step_mean_velocity). Sampled every
-    # step, so nothing aliases, the balance closes within 1e-3 of the drive's work: measured -1.1e-4, -8.7e-5
-    # (vibrated_patches), -4.8e-5, -6.0e-5 (vibrated_velocity) over these 0.05 s. At the scenes' output step
-    # (10 steps) the sampled powers alias (benchmarks/results/vibration.md)
+    # J^2 / 2m per step, (c dt / 4) sum dv^2 in the law's dampers (reduction.step_mean_velocity). The powers are
+    # sampled and integrated by trapezoids, so the balance closes within 1e-3 of the drive's work once the output
+    # resolves the vibration (compare.analysis.balances.SAMPLES_PER_PERIOD = 20). Measured over these 0.1 s
+    # (vibrated_patches, vibrated_velocity; 2.72, 6.58 um): every step -5.6e-5, -4.4e-5, -2.2e-5, -2.5e-5; 20 samples
+    # per period -1.8e-4, +3.9e-4, -7.3e-5, +4.5e-4 (the bound holds a factor 2 over the largest). At the sweep's
+    # 4 samples per period the harmonics fold onto the means: +5.0e-3, -3.9e-2, +5.1e-3, -5.4e-2, flagged unresolved
+    from compare.analysis.balances import SAMPLES_PER_PERIOD, balances
+    from compare.report.studies._common import energy_text
     from engine_sim.scenario import SCENARIO_DIR
 
-    d = tomllib.loads((SCENARIO_DIR / "sweeps" / scenario).read_text())
-    d["run"] = {**d["run"], "duration": 0.05, "warmup": 0.02, "dt_out": d["run"]["dt"]}
-    d["vibration"] = {**d["vibration"], "amplitude": A, "frequency": 1000.0}
-    tr = engine_sim.run(scenario_from_dict(d))
-    W = tr.work_drive[-1]
-    resid = W + tr.work_vibration[-1] + tr.work_recycle[-1] - tr.dissipated[-1] - tr.mech_energy[-1]
-    assert abs(resid / W) < 1e-3
+    d0 = tomllib.loads((SCENARIO_DIR / "sweeps" / scenario).read_text())
+    dt = d0["run"]["dt"]
+    for k in (1, 2, 10):
+        d = {**d0, "run": {**d0["run"], "duration": 0.1, "warmup": 0.02, "dt_out": k * dt},
+             "vibration": {**d0["vibration"], "amplitude": A, "frequency": 1000.0}}
+        b = balances(engine_sim.run(scenario_from_dict(d)))
+        assert b["samples_per_vibration_period"] == pytest.approx(1e-3 / (k * dt))
+        assert b["energy_balance_resolved"] == (k * dt * 1000.0 * SAMPLES_PER_PERIOD <= 1 + 1e-9)
+        if b["energy_balance_resolved"]:
+            assert abs(b["energy_balance_rel"]) < 1e-3, (k, b)
+        else:  # stated, not bounded: the report says so (compare.report.studies._common.energy_text)
+            assert np.isfinite(b["energy_balance_rel"]) and "stated, not bounded" in energy_text(b)

@@ -7,10 +7,10 @@ import time
 import numpy as np
 
 from ..html import esc, span
-from ...analysis.balances import balances  # noqa: F401  (re-exported for the studies)
+from ...analysis.balances import SAMPLES_PER_PERIOD, balances  # noqa: F401  (balances re-exported for the studies)
 from ...analysis.spectra import band_average
 
-__all__ = ["band_ratios", "ratio_rows", "log_err", "param_rows", "timed", "timing", "balances", "ratio_range",
+__all__ = ["energy_text", "band_ratios", "ratio_rows", "log_err", "param_rows", "timed", "timing", "balances", "ratio_range",
            "require_band", "whole_run", "run_scene"]
 
 
@@ -83,6 +83,19 @@ def timing(model: str, run: str, wall, err) -> dict:
         except (TypeError, ValueError):
             return None
     return {"model": model, "run": run, "wall_s": num(wall), "mean_abs_log_ratio": num(err)}
+
+
+def energy_text(d: dict, digits: int = 4) -> str:
+    """"energy balance X %" as the report states it; in a shaken trace sampled too coarsely to resolve the
+    vibration (:func:`compare.analysis.balances.balances`), what the residual then holds."""
+    from ..html import pct
+
+    text = f"energy balance {pct(d['energy_balance_rel'], digits)}"
+    if d.get("energy_balance_resolved") is False:
+        text += (f" (the sampled powers hold {d['samples_per_vibration_period']:.3g} samples per vibration period; "
+                 f"past the pads' onset of reversal the balance closes within 1e-3 from {SAMPLES_PER_PERIOD}, so this "
+                 "residual is stated, not bounded)")
+    return text
 
 
 def run_scene(sc, quick, seed, trace, duration, progress):

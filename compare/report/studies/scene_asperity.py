@@ -14,7 +14,7 @@ from ...analysis.spectra import band_average, displacement_spectrum, force_serie
 from ..study import Figure, StudyResult
 from ..verdict import fit_text, ratio_verdict
 from ..html import pct, span
-from ._common import balances, band_ratios, param_rows, ratio_rows, run_scene, timing
+from ._common import balances, energy_text, band_ratios, param_rows, ratio_rows, run_scene, timing
 
 
 def asperity_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult:
@@ -69,7 +69,7 @@ def asperity_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
         esc(sc.description.replace("\n", " ")),
         f"{T:g} s simulated in {wall:.1f} s ({tr.metadata['us_per_step']:.0f} us per step). Mean speed "
         f"{1e3 * prm.v:.3f} mm/s (friction law: {1e3 * sc.steady_velocity:.3f} mm/s); friction balances the drive "
-        f"to {pct(d['force_balance_rel'])}; energy balance {pct(d['energy_balance_rel'], 4)}.",
+        f"to {pct(d['force_balance_rel'])}; {energy_text(d)}.",
         f"Model III with the scene's contact statistics (w = {1e3 * prm.w:.1f} mm, N = {prm.N:.1f} contacts, p = {prm.p:.4f} "
         f"per {1e3 * sc.substrate.cell:.2f} mm cell, f0 = {1e3 * prm.f0:.2f} mN) predicts a contact force with relative "
         f"std {math.sqrt(prm.N_w * asperity_force.grid_force_variance(prm)) / prm.F_f:.3f}; the scene's is "

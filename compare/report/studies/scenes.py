@@ -18,7 +18,7 @@ from ..html import esc, paragraphs, span, table
 from ...analysis.spectra import displacement_spectrum, force_series_spectrum
 from ..study import Figure, Study, StudyResult
 from ..verdict import NOT_A_POWER_LAW, fit_text, ratio_verdict
-from ._common import balances, band_ratios, line_text, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
+from ._common import balances, energy_text, band_ratios, line_text, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
 
 # (quick, full) cost of each scene's study in CPU seconds, as benchmarks/bench_report.py measures them (load 2-4),
 # so the report's pool starts the longest first and its workers end together (the wear pair,
@@ -129,7 +129,7 @@ def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
         esc(sc.description.replace("\n", " ")),
         f"{T:g} s simulated in {wall:.1f} s ({tr.metadata['us_per_step']:.0f} us per step). Mean speed "
         f"{1e3 * ex['v']['value']:.3f} mm/s (friction law: {1e3 * sc.steady_velocity:.3f} mm/s); force balance "
-        f"{pct(d['force_balance_rel'])}; energy balance {pct(d['energy_balance_rel'], 4)}.",
+        f"{pct(d['force_balance_rel'])}; {energy_text(d)}.",
         f"Scene gamma = {fit_text(fit, 3)} over {span(band[0], band[1])} rad/s; model I with the extracted "
         f"parameters: {fit_text(fit_m1, 3)}. Per-band ratio scene / model I (A10): {ratio_range(ratios)} over "
         f"{span(edges[0], edges[-1])} rad/s" + verdict,
