@@ -84,9 +84,16 @@ def own_work(name: str, vib: dict, reps: int = 300):
     no-op), (without vibration, before, after), measured in alternation. The riding anchor's cost (one more body
     and a groove joint) is inside ``space.step`` and so not in these figures: the whole loop's are the ones to read."""
     scenes = [Scene(scenario(name, None)), before_scene(scenario(name, vib)), Scene(scenario(name, vib))]
-    best = [math.inf] * 3
     for s in scenes:
         s.advance(100)
+    return stepping_minima(scenes, reps)
+
+
+def stepping_minima(scenes, reps: int) -> list:
+    """Each scene's stepping work per pymunk step with ``space.step`` made a no-op (us, CPU, minimum over ``reps``
+    output steps, the scenes in alternation)."""
+    best = [math.inf] * len(scenes)
+    for s in scenes:
         s.space.step = lambda dt: None
     for _ in range(reps):
         for i, s in enumerate(scenes):

@@ -98,10 +98,10 @@ def test_task_files_without_mean_forces_are_left_out():
 
 
 def test_stored_sweep_rebuilds_the_committed_table():
-    # benchmarks/results/vibration_sweep_tasks holds every task of the vibration sweep (84 JSON files): the table of
-    # benchmarks/results/vibration_sweep.md rebuilds from them row by row, the 1000 Hz grid holds the 7 values of
-    # xi from 0.05 to 10 under both drives, and xi = 4.14 and 10 (A / A_onset 0.12, 0.05: no contact reverses)
-    # leave the in-band level at the twin's within their intervals (measured 1 +- 5e-4)
+    # benchmarks/results/vibration_sweep_tasks holds every task of the vibration sweep (132 JSON files): the table of
+    # benchmarks/results/vibration_sweep.md rebuilds from them row by row, each frequency's grid holds the 7 values
+    # of xi from 0.05 to 10 under both drives, and xi = 4.14 and 10 (A / A_onset <= 0.12: no contact reverses)
+    # leave the in-band level at the twin's within their intervals (measured 1 +- 5e-4 at 1000 Hz)
     from pathlib import Path
 
     from benchmarks.vibration_sweep import markdown
@@ -114,13 +114,18 @@ def test_stored_sweep_rebuilds_the_committed_table():
     committed = [line for line in (root / "vibration_sweep.md").read_text().splitlines()
                  if line.startswith(("| 20 |", "| 1000 |", "| 2000 |"))]
     assert markdown(rows, sc).splitlines()[2:] == committed
-    for cf in (True, False):
-        k = sorted(round(r["xi"], 2) for r in rows if r["frequency"] == 1000.0 and r["constant_force"] == cf)
-        assert k == [0.05, 0.12, 0.29, 0.7, 1.71, 4.14, 10.0] and all(r["seeds"] == 3 for r in rows)
+    for f, xi in ((20.0, 0.7), (1000.0, 0.7), (2000.0, 0.71)):  # 2000 Hz: 0.563 um, xi = 0.707
+        for cf in (True, False):
+            k = sorted(round(r["xi"], 2) for r in rows if r["frequency"] == f and r["constant_force"] == cf)
+            assert k == [0.05, 0.12, 0.29, xi, 1.71, 4.14, 10.0], (f, cf, k)
+    assert all(r["seeds"] == 3 for r in rows)
+    # gamma: the twin's within 0.01 where the line is removed (20 and 1000 Hz: measured within 0.001); at 2000 Hz the
+    # line sits at the output's Nyquist frequency and is left in, and gamma moves by 0.006-0.024 (both drives,
+    # xi = 4.14 and 10; 0.032 at most in a seed) while the level stays the twin's within 1e-4: 0.03 is asserted there
     for r in rows:
         if r["xi"] > 4:
             assert abs(r["C_ratio"] - 1) <= max(r["C_ratio_ci"], 1e-3) and r["gamma"] == pytest.approx(
-                r["gamma_twin"], abs=0.01)
+                r["gamma_twin"], abs=0.03 if r["frequency"] == 2000.0 else 0.01)
 
 
 @pytest.mark.parametrize("page", ["docs/results/vibration.md", "benchmarks/results/vibration_sweep.md"])
