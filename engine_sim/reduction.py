@@ -26,10 +26,9 @@ X, V, F_T, F_N, F_DRAG, F_DRIVE, PEN, POWER_IN, POWER_OUT, MECH, PAIRS, P_PEN, S
 # point samples; steps: pymunk steps since the previous sample (0 at the first); w0..w3: the quadrature weights of a
 # smooth force over those steps (record.step_weights); guided: 1 if a guide holds the block's height; vib_x, vib_y: a
 # vibration's impulse per unit mass on every body over those steps, vib_bx, vib_by: its impulse on the block alone,
-# vib_lx, vib_ly: its impulse per unit mass on every body over the last pymunk step (the six from one call,
-# Vibration.impulses); law_after: 1 if the law's per-step impulses act after pymunk's step
-# (Law.impulses_after_step); pair_mid: 1 (a shaken scene) to pair the last step's dissipative impulses with the
-# step's mean velocity (:func:`step_mean_velocity`), 0 with v_after
+# vib_lx, vib_ly: per unit mass over the last pymunk step (all six from Vibration.impulses); law_after: 1 if the law's
+# per-step impulses act after pymunk's step (Law.impulses_after_step); pair_mid: 1 (a shaken scene) to pair the last
+# step's dissipative impulses with the step's mean velocity (:func:`step_mean_velocity`), 0 with v_after
 PRM = ("drive_k", "anchor_x", "drive_rest", "anchor_v", "x0", "dt", "M", "g", "v_trap", "dt_out", "pulled", "means",
        "steps", "w0", "w1", "w2", "w3", "guided", "vib_x", "vib_y", "vib_bx", "vib_by", "vib_lx", "vib_ly", "law_after",
        "pair_mid")

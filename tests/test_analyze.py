@@ -124,7 +124,7 @@ def test_instrument_export_with_preamble_units_row_semicolons_and_decimal_commas
     assert d.layout["preamble_lines"] == 2 and d.layout["header_line"] == 4 and d.layout["units_row_line"] == 5
     assert d.units["x"] == {"column": "Pos", "unit": "um", "from": "units row"}
     # the line `analyze` prints says what it skipped (docs/reference/trace_format.md: "skipped and counted")
-    assert units_line(d).endswith("; 2 preamble lines above the header (line 4) skipped"), units_line(d)
+    assert units_line(d).endswith("; 2 non-blank preamble lines above the header (line 4) skipped"), units_line(d)
 
 
 def test_units_from_bracketed_headers_in_a_tab_file_and_contradictions(tmp_path):

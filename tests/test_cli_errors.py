@@ -91,12 +91,16 @@ def test_run_then_compare_round_trip(tmp_path, capsys):
     html = (c / "index.html").read_text()  # the page says what it is: this command's page on this scene
     assert "<title>frictionnoise compare: pads_friction_patches</title>" in html
     assert "<h1>frictionnoise compare: pads_friction_patches</h1>" in html and "frictionnoise report" not in html
-    # docs/tutorials/scene_against_model.md: the terminal prints gamma only; the verdict is in the page's summary
-    # table and under summary.json's "verdicts"
-    last = capsys.readouterr().out.strip().splitlines()[-1]
-    assert last.startswith(f"wrote {c / 'index.html'}: gamma = ") and "agree" not in last, last
+    # docs/tutorials/scene_against_model.md: the terminal prints gamma, then the verdicts, one line each, as the
+    # page's summary table and summary.json's "verdicts"
+    printed = capsys.readouterr().out.strip().splitlines()
+    wrote = [i for i, line in enumerate(printed) if line.startswith(f"wrote {c / 'index.html'}: gamma = ")]
+    assert len(wrote) == 1, printed
+    verdicts = printed[wrote[0] + 1:]
+    assert len(verdicts) == len(s["verdicts"]) >= 1, printed
     (v,) = [v for v in s["verdicts"] if v["study"] == "scenarios/pads_friction_patches"]
     assert v["verdict"] in ("agrees", "disagrees") and "id='summary'" in html and f">{v['verdict']}</td>" in html
+    assert any(line.split()[0] == v["verdict"] and "scenarios/pads_friction_patches:" in line for line in verdicts)
 
 
 def test_render_png_and_gif_headless(tmp_path):
@@ -246,6 +250,19 @@ def test_run_help_says_o_is_a_folder(capsys):
         main(["run", "--help"])
     out = " ".join(capsys.readouterr().out.split())
     assert "DIR/trace.npz and DIR/trace.json" in out and "is refused" in out
+
+
+def test_unit_options_read_the_micro_sign_as_files_write_it(tmp_path, capsys):
+    from compare.cli.parser import build_parser
+
+    for typed in ("\u00b5m", "\u03bcm", "um"):
+        assert build_parser().parse_args(["analyze", "x.csv", "--x-unit", typed]).x_unit == "um"
+    assert build_parser().parse_args(["analyze", "x.csv", "--time-unit", "\u00b5s"]).time_unit == "us"
+    # a trace given to analyze: the message says where it goes
+    z = tmp_path / "trace.npz"
+    z.write_bytes(b"PK\x03\x04" + bytes(range(256)))
+    assert main(["analyze", str(z), "-o", str(tmp_path / "a")]) == 2
+    assert "frictionnoise compare" in capsys.readouterr().err
 
 
 def test_analyze_help_names_the_default_fit_and_report_help_the_quick_selection(capsys):

@@ -54,7 +54,8 @@ def assert_spectral_slope(t, x, expected: float, tol: float, band=None, method: 
         raise SpectralAssertionError(
             f"spectral slope: measured gamma = {fit.gamma:.3f} +- {fit.gamma_err:.3f} (95 % CI, {fit.method}) over "
             f"{fit.band[0]:.4g}-{fit.band[1]:.4g} rad/s ({'auto' if fit.band_auto else 'given'} band, "
-            f"{fit.n_points} log bins); expected {expected:g} +- {tol:g}; off by {fit.gamma - expected:+.3f}"
+            f"{fit.n_points} {'periodogram ordinates' if fit.method == 'whittle' else 'log bins'}); expected "
+            f"{expected:g} +- {tol:g}; off by {fit.gamma - expected:+.3f}"
         )
     return fit
 

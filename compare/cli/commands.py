@@ -6,7 +6,7 @@ from __future__ import annotations
 import sys
 
 from .options import UserError, check_seed, load_scenario_arg, output_dir, scenario_path, shipped_file, usable_cores
-from .progress import progress_bar
+from .progress import print_verdicts, progress_bar
 
 __all__ = ["cmd_analyze", "cmd_compare", "cmd_render", "cmd_report", "cmd_run", "cmd_scenarios", "cmd_sweep"]
 
@@ -139,7 +139,8 @@ def _read_record(path, args):
 
     path = shipped_file(path)
     if sniff(input_file(path)) != "text":  # kind, emptiness, binary; the format is read by compare.io.measured
-        raise UserError(f"{path}: binary data, not a CSV text file")
+        hint = "; a trace of `frictionnoise run` goes to `frictionnoise compare`" if str(path).endswith(".npz") else ""
+        raise UserError(f"{path}: binary data, not a CSV text file{hint}")
     try:
         data = read_measured(path, time_col=args.time_col, x_col=args.x_col, force_col=args.force_col,
                              normal_col=args.normal_col, direction_col=args.direction_col, time_unit=args.time_unit,
@@ -417,6 +418,7 @@ def cmd_compare(args) -> int:
     f = summary["scenarios"][sc.name]
     print(f"wrote {path / 'index.html'}: gamma = {f['gamma']:.3f} +- {f['gamma_err']:.3f} over "
           f"{f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s")
+    print_verdicts(summary)
     return 0
 
 
@@ -442,8 +444,5 @@ def cmd_report(args) -> int:
                                         studies=chosen, on_compile=announce, all_scenes=args.all_scenes)
     path = write_report(out, results, summary)
     print(f"wrote {path / 'index.html'} ({summary['total_wall_s']:.1f} s)")
-    from ..report.verdict import summary_lines
-
-    for line in summary_lines(summary):  # the page's summary table, flags included
-        print(line)
+    print_verdicts(summary)
     return 0

@@ -15,6 +15,11 @@ class Parser(argparse.ArgumentParser):
         self.exit(2, f"frictionnoise: error: {self.prog}: {message} (see {self.prog} --help)\n")
 
 
+
+def _micro(unit: str) -> str:
+    """A unit as typed, with the micro sign (µ, U+00B5, or the Greek mu, U+03BC) read as "u", as files write it."""
+    return unit.replace("\u00b5", "u").replace("\u03bc", "u")
+
 def build_parser() -> argparse.ArgumentParser:
     from frictionnoise import package_version  # the leaf package: no numerics imported to build the parser
 
@@ -117,9 +122,9 @@ def build_parser() -> argparse.ArgumentParser:
     an.add_argument("--force-col", default=None, help="friction-force column: analyse force data (C_F, force exponent)")
     an.add_argument("--normal-col", default=None, help="normal-force column (force data): adds C_mu of F/N")
     an.add_argument("--direction-col", default=None, help="direction column of a reciprocating test (strokes)")
-    an.add_argument("--time-unit", default=None, choices=["s", "ms", "us", "min", "h"],
+    an.add_argument("--time-unit", default=None, choices=["s", "ms", "us", "min", "h"], type=_micro,
                     help="time unit, when neither the header nor a units row names it")
-    an.add_argument("--x-unit", default=None, choices=["nm", "um", "mm", "m"],
+    an.add_argument("--x-unit", default=None, choices=["nm", "um", "mm", "m"], type=_micro,
                     help="displacement unit, when neither the header (x_um, x [mm]) nor a units row names it")
     an.add_argument("--force-unit", default=None, choices=["mN", "N", "kN"],
                     help="force unit, when neither the header (F(N)) nor a units row names it")

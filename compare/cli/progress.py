@@ -6,7 +6,7 @@ import sys
 import threading
 import time
 
-__all__ = ["StageProgress", "progress_bar", "report_start_line"]
+__all__ = ["StageProgress", "print_verdicts", "progress_bar", "report_start_line"]
 
 
 class StageProgress:
@@ -164,3 +164,11 @@ def progress_bar(desc, stream=None, *, warmup: float = 0.0, duration: float | No
                 line(" as last reported; still running")
 
     return _Logged(bar, None if tty else beat), update
+
+
+def print_verdicts(summary) -> None:
+    """The page's summary table on stdout, one verdict a line, flags included (``report`` and ``compare``)."""
+    from ..report.verdict import summary_lines
+
+    for line in summary_lines(summary):
+        print(line)

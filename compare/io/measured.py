@@ -425,6 +425,6 @@ def units_line(data: MeasuredData) -> str:
     line = "read " + ", ".join(parts)
     skipped = (data.layout or {}).get("preamble_lines") or 0
     if skipped:
-        line += (f"; {skipped} preamble line{'s' if skipped > 1 else ''} above the header (line "
+        line += (f"; {skipped} non-blank preamble line{'s' if skipped > 1 else ''} above the header (line "
                  f"{data.layout['header_line']}) skipped")
     return line
