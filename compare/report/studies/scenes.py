@@ -39,10 +39,10 @@ def fitting_part(sc):
 
 # Recorded seconds of a scene in the full report, by the reduced model it is compared with (the quick report takes
 # each part's ``quick_duration``, 8-16 s; ``frictionnoise compare`` and the other models the scenario's own duration).
-# 12.5 s is the shortest record whose spectra keep the 4 s Welch segments (2^12 samples at 1 ms) of a 20 s one: the
-# same resolved band (3-30 v/a) and band edges, with 5 segments averaged instead of 9, so gamma's 95 % half-width
-# grows by about sqrt(9/5) (about 0.13 at 20 s). Model III's comparison below its corner v/w needs segments of
-# about 8 s, so asperity_field keeps 20 s. Before/after per scene: benchmarks/results/report_speed.md.
+# 12.5 s is the shortest record whose spectra hold 4 s Welch segments (2^12 samples at 1 ms; 5 of them, half
+# overlapping): they resolve 3-30 v/a and the ratio bands down to 4 frequency steps, and gamma's 95 % half-width is
+# about 0.2 on the friction-patch scenes (sqrt(9/5) that of a 20 s record). Model III's comparison below its corner
+# v/w needs segments of about 8 s, so asperity_field records 20 s. Per scene: benchmarks/results/report_speed.md.
 FULL_DURATION = {"model_I": 12.5, "model_II": 12.5, "model_ageing": 12.5, "model_III": 20.0}
 
 
