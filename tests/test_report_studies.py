@@ -260,23 +260,25 @@ def test_each_shipped_scene_goes_to_the_study_of_its_layout(monkeypatch):
 
 
 def test_first_report_tutorial_states_what_the_full_report_adds():
-    """docs/tutorials/first_report.md: without --quick the scenes run 20 s (spring_slider_rate_state its 30 s), and
-    the full report adds model Ib on the rough scene (three seeds of 12.5 s) and the work-precision study (four
+    """docs/tutorials/first_report.md: without --quick the scenes run 12.5 s (asperity_field 20 s,
+    spring_slider_rate_state its 30 s), and the full report adds model Ib on the rough scene (three seeds of 12.5 s) and the work-precision study (four
     step settings, run alone)."""
     from pathlib import Path
 
     from engine_sim import load_scenario, shipped_scenarios
     from compare.report.studies import scene_rough_multiscale, work_precision
-    from compare.report.studies.scenes import FULL_DURATION, SHORTENED, fitting_part
+    from compare.report.studies.scenes import full_duration
 
     text = " ".join((Path(__file__).parents[1] / "docs/tutorials/first_report.md").read_text().split())
-    assert "for 20 s of simulated time each (`spring_slider_rate_state` for its scenario's 30 s)" in text
+    assert ("for 12.5 s of simulated time each (`asperity_field` for 20 s, `spring_slider_rate_state` for its "
+            "scenario's 30 s)") in text
     assert "three seeds of 12.5 s" in text and "at four step settings, run alone" in text
     full = {}
     for name, path in shipped_scenarios().items():
         sc = load_scenario(path)
-        full[name] = FULL_DURATION if fitting_part(sc).reduced_model in SHORTENED else sc.run.duration
-    assert full.pop("spring_slider_rate_state") == 30.0 and set(full.values()) == {20.0}
+        full[name] = full_duration(sc) or sc.run.duration
+    assert full.pop("spring_slider_rate_state") == 30.0 and full.pop("asperity_field") == 20.0
+    assert set(full.values()) == {12.5}
     only_full = [s for s in studies.selected(False) if s not in studies.selected(True, all_scenes=True)]
     assert only_full == [scene_rough_multiscale.STUDY, work_precision.STUDY] and work_precision.STUDY.alone
     assert (scene_rough_multiscale.SEEDS, scene_rough_multiscale.DURATION, len(work_precision.SETTINGS)) == (3, 12.5, 4)

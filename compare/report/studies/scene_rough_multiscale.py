@@ -239,4 +239,4 @@ def run(quick: bool, seed: int) -> StudyResult:
                                f"{float(np.mean(mIb)):.3f}"),), verdicts)
 
 
-STUDY = Study(key="scenarios/pads_rough_profile_model_Ib", label="model Ib on the rough scene", run=run, quick=False, cost=88.9)
+STUDY = Study(key="scenarios/pads_rough_profile_model_Ib", label="model Ib on the rough scene", run=run, quick=False, cost=75.4)

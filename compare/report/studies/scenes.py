@@ -20,14 +20,14 @@ from ..study import Figure, Study, StudyResult
 from ..verdict import NOT_A_POWER_LAW, fit_text, ratio_verdict
 from ._common import balances, energy_text, band_ratios, line_text, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
 
-# (quick, full) cost of each scene's study in CPU seconds, as benchmarks/bench_report.py measures them (load 2-4),
-# so the report's pool starts the longest first and its workers end together (the wear pair,
-# pads_multiscale with both models, the line-scan and rough-profile substrates, whose pads cost about 1.5 CPU s
-# per simulated second, lead; a friction-patch scene costs about 0.35)
-SCENE_COSTS = {"pads_with_wear": (17.0, 85.9), "pads_multiscale": (25.0, 31.0), "line_scan_example": (14.3, 33.3),
-               "pads_rough_profile": (13.0, 32.6), "pads_rate_state": (10.2, 16.4), "asperity_field": (8.9, 11.8),
-               "pads_friction_patches": (3.9, 5.6), "constant_velocity": (4.9, 5.6), "leonardo_slider": (5.5, 6.1),
-               "spring_slider_rate_state": (4.7, 7.1), "tilted_plane": (4.6, 6.9)}
+# (quick, full) cost of each scene's study in CPU seconds, as benchmarks/bench_report.py measures them (quick: load
+# 2-4, the wear pair at load 4-5; full: the whole report at load 4-5), so the report's pool starts the longest first and its workers end
+# together (the wear pair, pads_multiscale with both models, the line-scan and rough-profile substrates, whose pads
+# cost about 1.5 CPU s per simulated second, lead; a friction-patch scene costs about 0.35)
+SCENE_COSTS = {"pads_with_wear": (17.0, 58.4), "pads_multiscale": (25.0, 16.5), "line_scan_example": (14.3, 21.2),
+               "pads_rough_profile": (13.0, 18.9), "pads_rate_state": (10.2, 9.7), "asperity_field": (8.9, 10.4),
+               "pads_friction_patches": (3.9, 3.9), "constant_velocity": (4.9, 3.9), "leonardo_slider": (5.5, 4.1),
+               "spring_slider_rate_state": (4.7, 5.4), "tilted_plane": (4.6, 3.4)}
 
 
 def fitting_part(sc):
@@ -37,13 +37,18 @@ def fitting_part(sc):
     return next(part for part in (sc.wear_part, sc.law_part, sc.substrate_part) if part.reduced_model)
 
 
-# Recorded seconds of a scene in the full report (the quick one takes each part's ``quick_duration``, 8-16 s;
-# ``frictionnoise compare`` the scenario's own duration). 20 s resolve 3-30 v/a with 4 s Welch segments, so
-# gamma's 95 % half-width is about 0.13 (0.20 at 12 s; see benchmarks/results/report_speed.md), and every
-# per-band ratio averages at least 9 segments. pads_rate_state against model I with ageing contacts: 0.67-1.31 per
-# band at 20 s, 0.72-1.19 at 60 s (both within the factor 1.5), gamma 4.32 +- 0.16 against 4.44 +- 0.09.
-FULL_DURATION = 20.0
-SHORTENED = ("model_I", "model_II", "model_III", "model_ageing")
+# Recorded seconds of a scene in the full report, by the reduced model it is compared with (the quick report takes
+# each part's ``quick_duration``, 8-16 s; ``frictionnoise compare`` and the other models the scenario's own duration).
+# 12.5 s is the shortest record whose spectra hold 4 s Welch segments (2^12 samples at 1 ms; 5 of them, half
+# overlapping): they resolve 3-30 v/a and the ratio bands down to 4 frequency steps, and gamma's 95 % half-width is
+# about 0.2 on the friction-patch scenes (sqrt(9/5) that of a 20 s record). Model III's comparison below its corner
+# v/w needs segments of about 8 s, so asperity_field records 20 s. Per scene: benchmarks/results/report_speed.md.
+FULL_DURATION = {"model_I": 12.5, "model_II": 12.5, "model_ageing": 12.5, "model_III": 20.0}
+
+
+def full_duration(sc) -> float | None:
+    """Recorded seconds of ``sc`` in the full report (None: the scenario's own duration)."""
+    return FULL_DURATION.get(fitting_part(sc).reduced_model)
 
 # each reduced model's comparison with a scene: (module of this package, function), looked up when called
 COMPARISONS = {"model_I": ("scenes", "_model_I_result"), "model_II": ("scene_wear", "wear_result"),
@@ -196,7 +201,7 @@ def _run_shipped(name: str, quick: bool, seed: int) -> list:
     sc = load_scenario(shipped_scenarios()[name])
     part = fitting_part(sc)
     # the full report's shorter record applies to the comparisons it was measured on (models I, II, III)
-    duration = part.quick_duration if quick else (FULL_DURATION if part.reduced_model in SHORTENED else None)
+    duration = part.quick_duration if quick else full_duration(sc)
     if "micro" not in describe(sc):
         return [scene_result(name, sc, quick, seed, duration=duration)]
     from .scene_multiscale import scene_against_model_Ib
