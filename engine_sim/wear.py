@@ -257,9 +257,10 @@ class Wear(NoWear):
     """The particles of a scene (``wear.count > 0``): built into the scene's space by :meth:`build`."""
 
     reduced_model = "model_II"  # the key in reduced_models.MODELS of the model that fits a scene with particles
-    # s recorded by each of a quick comparison's paired runs (with and without particles): 5 s hold the band 3-30 v/a
-    # with 1 s Welch segments, and the pair (about 17 CPU s) keeps the quick report near 30 s on two cores
-    quick_duration = 5.0
+    # s recorded by each of a quick comparison's paired runs (with and without particles): 4 s hold the band 3-30 v/a
+    # with 1 s Welch segments (7 half-overlapping), and the pair (about 16 CPU s, after 1 s of warm-up each) keeps the
+    # quick report under 30 s on two cores
+    quick_duration = 4.0
 
     def validate(self, where: str = "") -> None:
         sc = self.sc
