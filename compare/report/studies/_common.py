@@ -10,8 +10,16 @@ from ..html import esc, span
 from ...analysis.balances import SAMPLES_PER_PERIOD, balances  # noqa: F401  (balances re-exported for the studies)
 from ...analysis.spectra import band_average
 
-__all__ = ["energy_text", "band_ratios", "ratio_rows", "log_err", "param_rows", "timed", "timing", "balances", "ratio_range",
+__all__ = ["energy_text", "segment_samples", "band_ratios", "ratio_rows", "log_err", "param_rows", "timed", "timing", "balances", "ratio_range",
            "require_band", "whole_run", "run_scene"]
+
+
+def segment_samples(n: int, dt_out: float, quick: bool) -> int:
+    """Samples in a scene study's Welch segment: a power of two of at most 4.1 s (quick) or 8.2 s (2^12 and 2^13
+    samples at the shipped scenes' 1 ms output step), and at most a third of the record's ``n`` samples. The cap is
+    a time, not a count, so a finer output step resolves the same low frequencies."""
+    cap = 1 << int(round(math.log2((4.096 if quick else 8.192) / dt_out)))
+    return min(cap, 1 << int(math.floor(math.log2(n / 3))))
 
 
 def require_band(spec, band, T: float, dt_out: float, nominal_low: float | None = None,
@@ -93,7 +101,7 @@ def energy_text(d: dict, digits: int = 4) -> str:
     text = f"energy balance {pct(d['energy_balance_rel'], digits)}"
     if d.get("energy_balance_resolved") is False:
         text += (f" (the sampled powers hold {d['samples_per_vibration_period']:.3g} samples per vibration period; "
-                 f"past the pads' onset of reversal the balance closes within 1e-3 from {SAMPLES_PER_PERIOD}, so this "
+                 f"past the pads' onset of reversal it closes within 1e-3 from {SAMPLES_PER_PERIOD}, so this "
                  "residual is stated, not bounded)")
     return text
 

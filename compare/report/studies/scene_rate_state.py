@@ -20,7 +20,7 @@ from ...analysis.spectra import displacement_spectrum
 from ..html import esc, paragraphs, span, table
 from ..study import Figure, StudyResult
 from ..verdict import Verdict, fit_text, ratio_verdict
-from ._common import balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
+from ._common import segment_samples, balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
 
 __all__ = ["ageing_params", "ageing_result", "slider_result"]
 
@@ -50,7 +50,7 @@ def ageing_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
 
     tr, wall, T = run_scene(sc, quick, seed, trace, duration, progress)
     dt_out = float(tr.t[1] - tr.t[0])
-    nper = min(2**12 if quick else 2**13, 1 << int(math.floor(math.log2(len(tr.t) / 3))))
+    nper = segment_samples(len(tr.t), float(tr.t[1] - tr.t[0]), quick)
     spec = displacement_spectrum(tr.t, tr.x, nperseg=nper)
     ex = model_I_parameters(tr, sc)
     p = ageing_params(tr, sc, ex)

@@ -13,7 +13,7 @@ from ..html import esc, paragraphs, pct, span, table
 from ...analysis.spectra import band_average, displacement_spectrum, force_series_spectrum
 from ..study import Figure, StudyResult
 from ..verdict import fit_text, flags_of, interval_verdict
-from ._common import balances, require_band, timed, timing, whole_run
+from ._common import segment_samples, balances, require_band, timed, timing, whole_run
 
 
 def _paired(name, sc, quick, seed, trace, duration, progress) -> SimpleNamespace:
@@ -30,7 +30,7 @@ def _paired(name, sc, quick, seed, trace, duration, progress) -> SimpleNamespace
     else:
         tw, wall_w = timed(whole_run, sc.with_run(duration=T), seed=seed, progress=progress)
     t0, wall_0 = timed(whole_run, sc.with_run(duration=T).with_wear(count=0), seed=seed, progress=progress)
-    nper = min(2**12 if quick else 2**13, 1 << int(math.floor(math.log2(len(tw.t) / 3))))
+    nper = segment_samples(len(tw.t), float(tw.t[1] - tw.t[0]), quick)
     runs = {"with": tw, "without": t0}
     specs = {k: displacement_spectrum(tr.t, tr.x, nperseg=nper) for k, tr in runs.items()}
     fspec = {k: force_series_spectrum(tr.t, tr.F_t, nperseg=nper) for k, tr in runs.items()}

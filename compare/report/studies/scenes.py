@@ -18,7 +18,7 @@ from ..html import esc, paragraphs, span, table
 from ...analysis.spectra import displacement_spectrum, force_series_spectrum
 from ..study import Figure, Study, StudyResult
 from ..verdict import NOT_A_POWER_LAW, fit_text, ratio_verdict
-from ._common import balances, energy_text, band_ratios, line_text, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
+from ._common import segment_samples, balances, energy_text, band_ratios, line_text, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
 
 # (quick, full) cost of each scene's study in CPU seconds, as benchmarks/bench_report.py measures them (quick: load
 # 2-4, the wear pair at load 4-5; full: the whole report at load 4-5), so the report's pool starts the longest first and its workers end
@@ -95,7 +95,7 @@ def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
     from ...analysis.extract import model_I_parameters, spring_block_params
 
     tr, wall, T = run_scene(sc, quick, seed, trace, duration, progress)
-    nper = min(2**12 if quick else 2**13, 1 << int(math.floor(math.log2(len(tr.t) / 3))))
+    nper = segment_samples(len(tr.t), float(tr.t[1] - tr.t[0]), quick)
     spec = displacement_spectrum(tr.t, tr.x, nperseg=nper)
     ex = model_I_parameters(tr, sc)
     w0 = ex["v"]["value"] / ex["a"]["value"]
