@@ -307,7 +307,7 @@ def test_welch_segments_are_capped_in_seconds_not_samples():
     # run for "at least 3 s" (a new user's check)
     from compare.report.studies._common import segment_samples
 
-    assert segment_samples(12_000, 1e-3, True) == 2**12 and segment_samples(20_000, 1e-3, False) == 2**13
+    assert segment_samples(15_000, 1e-3, True) == 2**12 and segment_samples(30_000, 1e-3, False) == 2**13
     assert segment_samples(6_000, 1e-3, False) == 2**10  # a third of a short record
     n = segment_samples(120_000, 2.5e-5, False)  # 3 s at 2.5e-5 s: a third of the record, 1 s
     assert n == 2**15 and segment_samples(10**7, 2.5e-5, False) * 2.5e-5 == pytest.approx(8.192)
