@@ -18,7 +18,7 @@ def segment_samples(n: int, dt_out: float, quick: bool) -> int:
     """Samples in a scene study's Welch segment: a power of two of at most 4.1 s (quick) or 8.2 s (2^12 and 2^13
     samples at the shipped scenes' 1 ms output step), and at most a third of the record's ``n`` samples. The cap is
     a time, not a count, so a finer output step resolves the same low frequencies."""
-    cap = 1 << int(round(math.log2((4.096 if quick else 8.192) / dt_out)))
+    cap = 1 << int(math.floor(math.log2((4.096 if quick else 8.192) / dt_out) + 1e-9))
     return min(cap, 1 << int(math.floor(math.log2(n / 3))))
 
 
