@@ -309,6 +309,13 @@ def test_cli_x_in_micrometres_without_a_mass(tmp_path, capsys, monkeypatch):
     s = json.loads((out / "summary.json").read_text())
     a = analyze_displacement(read_measured("x_um.csv", x_unit="um", time_unit="s"))
     assert (s["gamma"], s["gamma_err"], s["zeta_rms_m"]) == (a.fit.gamma, a.fit.gamma_err, a.zeta_rms)
+    # zeta_rms integrates the resolved band (eq. 4), which the summary and the printed line name
+    from compare.analysis.spectra import rms_from_spectrum
+
+    assert s["zeta_rms_band"] == [a.C_x.omega_min, a.C_x.omega_max]
+    assert rms_from_spectrum(a.C_x, band=tuple(s["zeta_rms_band"])) == pytest.approx(s["zeta_rms_m"], rel=1e-12)
+    lo, hi = s["zeta_rms_band"]
+    assert f"zeta_rms = {s['zeta_rms_m']:.4g} m over {lo:.3g}-{hi:.4g} rad/s (eq. 4)" in printed, printed
     assert abs(s["gamma"] - GAMMA) <= 1.5 * s["gamma_err"], s["fit"]
     assert s["mass_kg"] is None and "fit_F" not in s and s["notes"] == [C_F_NEEDS_MASS]
     assert s["fit_mu"]["gamma"] == pytest.approx(s["gamma"] - 4, abs=1e-9)

@@ -273,6 +273,7 @@ def test_analyze_help_names_the_default_fit_and_report_help_the_quick_selection(
         main(["analyze", "--help"])
     out = " ".join(capsys.readouterr().out.split())
     assert f"default: {DEFAULT_METHOD})" in out and "DEFAULT_METHOD" not in out
+    assert "--band LO HI fit band (rad/s); default: the straightest stretch" in out  # the automatic band, said
     with pytest.raises(SystemExit):
         main(["report", "--help"])
     out = " ".join(capsys.readouterr().out.split())

@@ -217,6 +217,10 @@ def test_compare_of_a_shaken_trace_removes_the_line_and_says_so(tmp_path):
     s = json.loads((tmp_path / "cmp" / "summary.json").read_text())
     ratios = [b["ratio"] for b in s["scenarios"]["pads_friction_patches"]["band_ratios_vs_model_I"]]
     assert max(ratios) < 1e3, ratios
+    # model I holds no vibration: the verdict against it is "no verdict", flagged, not a "disagrees" (a new user read
+    # a shaken scene's model-I verdict as the answer while the page said to read it against the twin)
+    (v,) = [v for v in s["verdicts"] if v["study"] == "scenarios/pads_friction_patches"]
+    assert v["verdict"] == "no verdict" and v["flags"] and "unshaken twin" in v["by"], v
 
 
 @pytest.mark.slow  # a 3 s shaken scene at 40 steps per period, run and compared (about 10 s)

@@ -36,7 +36,9 @@ class DisplacementAnalysis:
     mean_velocity : float
         The fitted sliding velocity v (m/s).
     zeta_rms : float
-        rms of zeta over the resolved band, eq. (4) (m).
+        rms of zeta over the resolved band, eq. (4) (m): sqrt(2 Int C_x domega) from the Welch segment's frequency
+        step to the Nyquist frequency, so it leaves out the drift and periods longer than a segment (a record's own
+        standard deviation holds them).
     C_mu : Spectrum
         Friction-coefficient spectrum omega^4 C_x / g^2 of a free block (s).
     fit_mu : PowerLawFit
@@ -86,11 +88,14 @@ class DisplacementAnalysis:
         -------
         dict
             ``gamma``, ``gamma_err``, ``band`` (rad/s), ``fit`` (C_x), ``fit_mu``, ``mean_velocity`` (m/s),
-            ``zeta_rms_m`` (m), ``mu_rms``; ``fit_F`` and ``F_rms_N`` (N) only when a mass was given.
+            ``zeta_rms_m`` (m) with ``zeta_rms_band`` (rad/s: the resolved band it integrates, from the Welch
+            segment's frequency step to the Nyquist frequency), ``mu_rms``; ``fit_F`` and ``F_rms_N`` (N) only when a
+            mass was given.
         """
         s = {"kind": "displacement", "mass_kg": self.mass, "gamma": self.fit.gamma, "gamma_err": self.fit.gamma_err,
              "band": list(self.fit.band), "fit": self.fit.to_dict(), "mean_velocity": self.mean_velocity,
-             "zeta_rms_m": self.zeta_rms, "fit_mu": self.fit_mu.to_dict(), "mu_rms": self.mu_rms, "g_m_per_s2": self.g,
+             "zeta_rms_m": self.zeta_rms, "zeta_rms_band": [self.C_x.omega_min, self.C_x.omega_max],
+             "fit_mu": self.fit_mu.to_dict(), "mu_rms": self.mu_rms, "g_m_per_s2": self.g,
              "spectrum_steps": list(self.C_x.provenance["steps"]), "notes": self.notes}
         if self.fit_F is not None:
             s["fit_F"] = self.fit_F.to_dict()

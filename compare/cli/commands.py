@@ -192,7 +192,8 @@ def _force_lines(summary: dict, index, most: int = 10) -> list:
 
 def _displacement_lines(summary: dict, index) -> list:
     lines = [f"wrote {index}: C_x ~ omega^-gamma, gamma = {_fit_text(summary['fit'])}; mean velocity "
-             f"{summary['mean_velocity']:.4g} m/s; zeta_rms = {summary['zeta_rms_m']:.4g} m, mu_rms = "
+             f"{summary['mean_velocity']:.4g} m/s; zeta_rms = {summary['zeta_rms_m']:.4g} m over "
+             f"{summary['zeta_rms_band'][0]:.3g}-{summary['zeta_rms_band'][1]:.4g} rad/s (eq. 4), mu_rms = "
              f"{summary['mu_rms']:.4g} (C_mu = omega^4 C_x / g^2)"]
     if "fit_F" in summary:
         lines.append(f"  C_F = M^2 omega^4 C_x (M = {summary['mass_kg']:g} kg, eq. 3): force exponent "

@@ -135,7 +135,9 @@ def build_parser() -> argparse.ArgumentParser:
     an.add_argument("--method", default=None, choices=["whittle", "lsq"],
                     help="exponent fit, for displacement and force data alike: whittle (the Whittle likelihood "
                          "over the band) or lsq (least squares on the log-binned spectrum) (default: whittle)")
-    an.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"), help="fit band (rad/s)")
+    an.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"),
+                    help="fit band (rad/s); default: the straightest stretch of at least a decade between four "
+                         "frequency steps and a sixteenth of the Nyquist frequency (printed with the fit)")
     an.add_argument("--resample", type=float, default=None, metavar="DT",
                     help="time stamps that change rate, skip, repeat or step back: put the record on one grid of DT "
                          "seconds (faster segments low-passed first; the filter is stated) instead of analysing its "
