@@ -22,13 +22,12 @@ def balances(tr) -> dict:
     than :data:`SAMPLES_PER_PERIOD` times per vibration period (``samples_per_vibration_period``), whose sampled powers
     do not resolve the vibration: its residual is then stated, not bounded.
     """
-    w_vib = getattr(tr, "work_vibration", None)
-    w_vib = float(w_vib[-1]) if w_vib is not None and len(w_vib) else 0.0
+    w_vib = float(tr.work_vibration[-1]) if len(tr.work_vibration) else 0.0  # empty in a trace without the part
     resid = tr.work_drive[-1] + tr.work_recycle[-1] + w_vib - tr.dissipated[-1] - tr.mech_energy[-1]
     out = {"energy_balance_rel": float(resid / tr.work_drive[-1]),
            "force_balance_rel": float(np.mean(tr.F_t + tr.F_drag) / np.mean(tr.F_drive) - 1)}
-    vib = (tr.metadata.get("scene") or {}).get("vibration") if isinstance(getattr(tr, "metadata", None), dict) else None
-    if vib and vib.get("amplitude", 0) > 0 and len(tr.t) > 1:
+    vib = (tr.metadata.get("scene") or {}).get("vibration")
+    if vib and vib["amplitude"] > 0 and len(tr.t) > 1:
         n = 1.0 / (vib["frequency"] * float(tr.t[1] - tr.t[0]))
         out.update(samples_per_vibration_period=n, energy_balance_resolved=bool(n >= SAMPLES_PER_PERIOD * (1 - 1e-9)))
     return out

@@ -6,7 +6,7 @@ import time
 
 import numpy as np
 
-from ..html import esc, span
+from ..html import esc, pct, span
 from ...analysis.balances import SAMPLES_PER_PERIOD, balances  # noqa: F401  (balances re-exported for the studies)
 from ...analysis.spectra import band_average
 
@@ -96,8 +96,6 @@ def timing(model: str, run: str, wall, err) -> dict:
 def energy_text(d: dict, digits: int = 4) -> str:
     """"energy balance X %" as the report states it; in a shaken trace sampled too coarsely to resolve the
     vibration (:func:`compare.analysis.balances.balances`), what the residual then holds."""
-    from ..html import pct
-
     text = f"energy balance {pct(d['energy_balance_rel'], digits)}"
     if d.get("energy_balance_resolved") is False:
         text += (f" (the sampled powers hold {d['samples_per_vibration_period']:.3g} samples per vibration period; "
