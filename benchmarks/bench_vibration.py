@@ -122,7 +122,7 @@ def overhead(sc_vib, sc_base, reps: int = 300):
             t0 = time.process_time()
             rec.sample()
             ts.append((time.process_time() - t0) * 1e6)
-            ids, fl = np.frombuffer(rec._bbuf.int_buf(), dtype=np.int64), np.frombuffer(rec._bbuf.float_buf())
+            ids, fl = rec._bodies.read()
             t0 = time.process_time()
             _momentum_before(ids, fl, rec._tab, scene.M, scene.slider_terms, rec.grain_table, rec._drive_mass, 0)
             tk.append((time.process_time() - t0) * 1e6)

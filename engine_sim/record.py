@@ -21,8 +21,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pymunk.batch as B
+from pymunk._chipmunk import lib
 
 from . import reduction as R, units as U
+from .batch_reader import BatchReader
 from .reduction import COLS, MS_COLS, PRM, reduce_sample
 from .vibration import VIB_COLS
 
@@ -180,8 +182,8 @@ class Recorder:
         rows += [(b.id, R.DRIVE_BODY, j) for j, b in enumerate(drive.bodies)]
         rows.sort()
         self._tab = np.array(rows, dtype=np.int64).reshape(-1, 3)
-        self._bbuf = B.Buffer()
-        self._abuf = B.Buffer()
+        self._bodies = BatchReader(scene.space, self._BODY, "bodies")
+        self._arbiters = BatchReader(scene.space, self._ARB, "arbiters")
         # scalars for the kernel, in reduction.PRM order (the drive's state and x0 are set per sample)
         prm = {"dt": scene.dt, "M": scene.M, "g": -scene.space.gravity.y, "v_trap": scene.v_trap,
                "dt_out": scene.dt * scene.n_sub, "pulled": float(drive.pulled),
@@ -191,7 +193,7 @@ class Recorder:
         self._prm = np.array([prm.get(name, 0.0) for name in PRM])
         self._drive_spring = drive.spring
         sp = drive.spring  # its stiffness, rest length and anchor offset are constant; the anchor body moves
-        self._drive_const = (sp.stiffness, sp.rest_length, sp.anchor_b.x, sp.b)
+        self._drive_const = (sp.stiffness, sp.rest_length, sp.anchor_b.x, sp.b._body)  # the anchor body's C handle
         self._drive_mass = np.array([b.mass for b in drive.bodies], dtype=float)
         # springs with energy as arrays for vectorised lengths: (slider, anchors, rest length, stiffness, damping);
         # slider-slider springs use both positions; springs without stiffness (pure dampers) store none
@@ -218,7 +220,7 @@ class Recorder:
 
     def __getstate__(self):
         state = self.__dict__.copy()
-        for k in ("_tab", "_bbuf", "_abuf", "_prm", "_drive_spring", "_drive_const", "_drive_mass", "_bs", "_pp",
+        for k in ("_tab", "_bodies", "_arbiters", "_prm", "_drive_spring", "_drive_const", "_drive_mass", "_bs", "_pp",
                   "_sp", "_weights", "_law_totals", "_n_last"):
             del state[k]  # derived from the scene (pymunk ids change on unpickling; batch buffers do not pickle)
         return state
@@ -231,14 +233,8 @@ class Recorder:
         sc, k = self.scene, self.k
         if not 0 <= k < self.t.shape[0]:  # reduce_sample writes row k unchecked (numba): never past the buffers
             raise IndexError(f"recorder full: sample {k} of {self.t.shape[0]}")
-        self._bbuf.clear()
-        B.get_space_bodies(sc.space, self._BODY, self._bbuf)
-        self._abuf.clear()
-        B.get_space_arbiters(sc.space, self._ARB, self._abuf)
-        ids = np.frombuffer(self._bbuf.int_buf(), dtype=np.int64)
-        fl = np.frombuffer(self._bbuf.float_buf())
-        ai = np.frombuffer(self._abuf.int_buf(), dtype=np.int64)
-        af = np.frombuffer(self._abuf.float_buf())
+        ids, fl = self._bodies.read()
+        ai, af = self._arbiters.read()
         if self.x0 is None:
             self.x0 = float(sc.block.position.x)
         prm = self._prm
@@ -280,7 +276,7 @@ class Recorder:
         """(stiffness, anchor x, rest length, anchor speed) of the drive spring, scene units (its anchor body
         does not rotate, so the anchor point is the body's position plus the fixed offset)."""
         k, rest, off, b = self._drive_const
-        return k, b.position.x + off, rest, b.velocity.x
+        return k, lib.cpBodyGetPosition(b).x + off, rest, lib.cpBodyGetVelocity(b).x
 
     def trace(self, metadata: dict) -> EngineTrace:
         n = self.k

@@ -51,15 +51,6 @@ STALE_TOL = 0.01
 
 
 @numba.njit(cache=True)
-def body_of(tab, body_id):
-    """(kind, index) of a pymunk body id in the sorted body table; (STATIC, 0) for a body not in it."""
-    t = np.searchsorted(tab[:, 0], body_id)
-    if t < tab.shape[0] and tab[t, 0] == body_id:
-        return tab[t, 1], tab[t, 2]
-    return STATIC, 0
-
-
-@numba.njit(cache=True)
 def read_bodies(ids, fl, tab, grain, n_sl, n_d):
     """The bodies' states from the body buffer: block (x, y, vx, vy), sliders P (x, y, vx, vy), the drive's bodies D
     (x, vx, vy) and grains Q (x, y, vx, vy, w). Bodies absent from the buffer are asleep, at rest: sliders read zero,
@@ -105,8 +96,9 @@ def contact_velocity(kind, i, Vm, Q, blk, px, py):
 
 
 @numba.njit(cache=True)
-def contacts(ai, af, tab, grain, Q, dt, k, p_force, n_sl):
-    """Contact forces of the arbiters, in a fixed order (:func:`arbiter_order`).
+def contacts(ai, af, key, grain, Q, dt, k, p_force, n_sl):
+    """Contact forces of the arbiters, in a fixed order (:func:`arbiter_order`); ``key``: each arbiter's bodies as
+    (kind, index) pairs (:func:`arbiter_keys`).
 
     Returns per slider the (x, y) contact force (ft, fn, on the slider) and whether it touches its track;
     per grain whether it presses on its pad (its force on the pad, against sliding, goes to ``p_force[k]``); the
@@ -129,13 +121,13 @@ def contacts(ai, af, tab, grain, Q, dt, k, p_force, n_sl):
     n_used = 0
     kinds = np.empty(2, dtype=np.int64)  # per arbiter: kind and index of bodies A and B
     idx = np.empty(2, dtype=np.int64)
-    for r in arbiter_order(ai, af, tab):  # sums over several contacts of one pad must not depend on the batch's order
+    for r in arbiter_order(key, af):  # sums over several contacts of one pad must not depend on the batch's order
         if ai[3 * r + 2] <= 0:
             continue
         a0 = AF * r
         Fx, Fy = af[a0 + JX] / dt, af[a0 + JY] / dt  # on A; B feels minus this
         for s in range(2):
-            kinds[s], idx[s] = body_of(tab, ai[3 * r + s])
+            kinds[s], idx[s] = key[r, 2 * s], key[r, 2 * s + 1]
         # a sleeping grain's cached arbiter holds stale contact data; asleep, a grain only rests on its track
         if (kinds[0] == GRAIN and grain[idx[0], G_ASLEEP] > 0) or (kinds[1] == GRAIN and grain[idx[1], G_ASLEEP] > 0):
             continue
@@ -168,9 +160,10 @@ def contacts(ai, af, tab, grain, Q, dt, k, p_force, n_sl):
 
 
 @numba.njit(cache=True)
-def friction_power(used, ai, af, tab, Vm, Q, blk, dt):
-    """The friction power at the contacts ``used`` (:func:`contacts`): tangential force times tangential slip, the
-    sliders' velocities ``Vm`` (in a shaken scene their means over the last step, :func:`step_mean_velocity`)."""
+def friction_power(used, af, key, Vm, Q, blk, dt):
+    """The friction power at the contacts ``used`` (:func:`contacts`; ``key``: :func:`arbiter_keys`): tangential
+    force times tangential slip, the sliders' velocities ``Vm`` (in a shaken scene their means over the last step,
+    :func:`step_mean_velocity`)."""
     pout = 0.0
     kinds = np.empty(2, dtype=np.int64)
     idx = np.empty(2, dtype=np.int64)
@@ -181,7 +174,7 @@ def friction_power(used, ai, af, tab, Vm, Q, blk, dt):
         px, py = af[a0 + PAX], af[a0 + PAY]
         Ft = Fx * tx + Fy * ty
         for s in range(2):
-            kinds[s], idx[s] = body_of(tab, ai[3 * r + s])
+            kinds[s], idx[s] = key[r, 2 * s], key[r, 2 * s + 1]
         for s in range(2):
             sg = 1.0 if s == 0 else -1.0
             vx, vy = contact_velocity(kinds[s], idx[s], Vm, Q, blk, px, py)
@@ -362,10 +355,11 @@ def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, dm, k, out, pad_
     blk, P, D, Q = read_bodies(ids, fl, tab, grain, sl.shape[0], dm.shape[0])
     pulled = int(prm[PULLED])
     hx, hvx = (blk[0], blk[2]) if pulled < 0 else (D[pulled, 0], D[pulled, 1])  # the body the drive spring pulls
-    ft, fn, touch, p_touch, pen, p_pen, pairs, n_stale, used = contacts(ai, af, tab, grain, Q, prm[DT], k, p_force,
+    key = arbiter_keys(ai, tab)
+    ft, fn, touch, p_touch, pen, p_pen, pairs, n_stale, used = contacts(ai, af, key, grain, Q, prm[DT], k, p_force,
                                                                         sl.shape[0])
     Vm = step_mean_velocity(blk, P, sl, sp, ft, fn, prm) if prm[PAIR_MID] > 0.0 else P[:, 2:4].copy()
-    pout = friction_power(used, ai, af, tab, Vm, Q, blk, prm[DT])
+    pout = friction_power(used, af, key, Vm, Q, blk, prm[DT])
     ke = 0.5 * prm[MASS] * (blk[2] * blk[2] + blk[3] * blk[3])
     pe = prm[MASS] * g * blk[1]  # constant unless the block is free vertically (asperity field)
     for j in range(dm.shape[0]):
@@ -414,37 +408,5 @@ def stale(kinds, idx, af, a0, Q, grain):
     return abs((af[a0 + PBX] - af[a0 + PAX]) * ny - (af[a0 + PBY] - af[a0 + PAY]) * nx) > tol
 
 
-@numba.njit(cache=True)
-def _less(key, af, r, q):
-    """Arbiter r before q: by the bodies' (kind, index), then contact point and impulse (all deterministic)."""
-    for c in range(4):
-        if key[r, c] != key[q, c]:
-            return key[r, c] < key[q, c]
-    for c in (PAX, PAY, JX, JY):
-        if af[AF * r + c] != af[AF * q + c]:
-            return af[AF * r + c] < af[AF * q + c]
-    return False
-
-
-@numba.njit(cache=True)
-def arbiter_order(ai, af, tab):
-    """The arbiters in a fixed order (insertion sort, tens of rows). pymunk's batch lists them in its hash set's
-    order and names bodies by address, both of which vary from run to run, and so would the last bits of per-pad and
-    summed forces and of the friction power. Bodies are keyed by their (kind, index) in the body table."""
-    n = ai.shape[0] // 3
-    key = np.empty((n, 4), dtype=np.int64)
-    for r in range(n):
-        for s in range(2):
-            key[r, 2 * s], key[r, 2 * s + 1] = body_of(tab, ai[3 * r + s])
-    order = np.arange(n)
-    for i in range(1, n):
-        r = order[i]
-        j = i - 1
-        while j >= 0 and _less(key, af, r, order[j]):
-            order[j + 1] = order[j]
-            j -= 1
-        order[j + 1] = r
-    return order
-
-
-from .means import means, spring_forces  # noqa: E402  (means reads this module's constants)
+from .contact_order import arbiter_keys, arbiter_order, body_of  # noqa: E402  (both read this module's constants)
+from .means import means, spring_forces  # noqa: E402
