@@ -66,7 +66,7 @@ def arbiter_order(key, af):
     for i in range(1, n):
         r = order[i]
         j = i - 1
-        while j >= 0 and _less(key, af, r, order[j]):
+        while j >= 0 and (code[r] < code[order[j]] or (code[r] == code[order[j]] and _less(key, af, r, order[j]))):
             order[j + 1] = order[j]
             j -= 1
         order[j + 1] = r

@@ -64,21 +64,21 @@ def read_bodies(ids, fl, tab, grain, n_sl, n_d):
         Q[j, 0], Q[j, 1] = grain[j, G_X], grain[j, G_Y]
     for r in range(ids.shape[0]):
         kind, i = body_of(tab, ids[r])
-        f = fl[5 * r: 5 * r + 5]
+        f0 = 5 * r  # the body's five floats in the buffer (x, y, vx, vy, w)
         if kind == BLOCK:
             for q in range(4):
-                blk[q] = f[q]
+                blk[q] = fl[f0 + q]
         elif kind == SLIDER:
             for q in range(4):
-                P[i, q] = f[q]
+                P[i, q] = fl[f0 + q]
         elif kind == GRAIN:
             for q in range(5):
-                Q[i, q] = f[q]
+                Q[i, q] = fl[f0 + q]
             if grain[i, G_ASLEEP] > 0:
                 Q[i, 2] = Q[i, 3] = Q[i, 4] = 0.0
-            grain[i, G_X], grain[i, G_Y] = f[0], f[1]
+            grain[i, G_X], grain[i, G_Y] = fl[f0], fl[f0 + 1]
         elif kind == DRIVE_BODY:
-            D[i, 0], D[i, 1], D[i, 2] = f[0], f[2], f[3]
+            D[i, 0], D[i, 1], D[i, 2] = fl[f0], fl[f0 + 2], fl[f0 + 3]
     return blk, P, D, Q
 
 
@@ -133,7 +133,7 @@ def contacts(ai, af, key, grain, Q, dt, k, p_force, n_sl):
             continue
         # pymunk re-lists a woken grain's cached arbiters (after a restore every grain wakes) with contact points from
         # before it slept or was moved, until the next step recomputes them: skip (and count) them
-        if stale(kinds, idx, af, a0, Q, grain):
+        if (kinds[0] == GRAIN or kinds[1] == GRAIN) and stale(kinds, idx, af, a0, Q, grain):  # pads never go stale
             stale_count += 1
             continue
         used[n_used] = r
@@ -176,6 +176,8 @@ def friction_power(used, af, key, Vm, Q, blk, dt):
         for s in range(2):
             kinds[s], idx[s] = key[r, 2 * s], key[r, 2 * s + 1]
         for s in range(2):
+            if kinds[s] == STATIC:  # at rest: no power (Ft is finite)
+                continue
             sg = 1.0 if s == 0 else -1.0
             vx, vy = contact_velocity(kinds[s], idx[s], Vm, Q, blk, px, py)
             pout -= sg * Ft * (vx * tx + vy * ty)
@@ -183,12 +185,12 @@ def friction_power(used, af, key, Vm, Q, blk, dt):
 
 
 @numba.njit(cache=True)
-def law_drag(sl, i, vx):
-    """The law's velocity part on slider i at speed vx: c v + b N_pad ln(1 + |v|/v_c) sign(v) (``sl``: mass, c,
-    b N_pad, v_c per body)."""
-    f_v = sl[i, 1] * vx
-    if sl[i, 2] > 0.0:
-        f_v += np.sign(vx) * sl[i, 2] * np.log1p(abs(vx) / sl[i, 3])
+def law_drag(c, bN, vc, vx):
+    """The law's velocity part on a slider at speed vx: c v + b N_pad ln(1 + |v|/v_c) sign(v) (``c``, ``bN``,
+    ``vc``: its row of ``sl``, columns 1-3; scalars, as an array argument costs a reference count per call)."""
+    f_v = c * vx
+    if bN > 0.0:
+        f_v += np.sign(vx) * bN * np.log1p(abs(vx) / vc)
     return f_v
 
 
@@ -224,7 +226,8 @@ def step_mean_velocity(blk, P, sl, sp, ft, fn, prm):
     Vm = np.empty((n_sl, 2))
     for i in range(n_sl):
         m = sl[i, 0]
-        Vm[i, 0] = P[i, 2] - 0.5 * ((F0[i, 0] + ft[i] - law_drag(sl, i, P[i, 2])) * dt / m + prm[VIB_LX])
+        f_v = law_drag(sl[i, 1], sl[i, 2], sl[i, 3], P[i, 2])
+        Vm[i, 0] = P[i, 2] - 0.5 * ((F0[i, 0] + ft[i] - f_v) * dt / m + prm[VIB_LX])
         Vm[i, 1] = P[i, 3] - 0.5 * ((F0[i, 1] + fn[i]) * dt / m + prm[VIB_LY] - prm[GRAV] * dt)
     return Vm
 
@@ -250,7 +253,7 @@ def sliders(P, Vm, sl, ft, fn, touch, g, k, pad_force, micro_force, ke, pe, pout
         sft -= ft[i]
         sfn += fn[i]
         m_p = sl[i, 0]
-        f_v = law_drag(sl, i, P[i, 2])  # the law's velocity part on this body (drag, along its velocity)
+        f_v = law_drag(sl[i, 1], sl[i, 2], sl[i, 3], P[i, 2])  # the law's velocity part on this body (drag)
         fv += f_v
         pout += f_v * Vm[i, 0]
         ke += 0.5 * m_p * (P[i, 2] ** 2 + P[i, 3] ** 2)
