@@ -190,10 +190,11 @@ class Recorder:
                "means": float(self.forces == "mean"), "guided": float(scene.arrangement.guided),
                "law_after": float(scene.law.impulses_after_step),
                "pair_mid": float(scene.vibration is not None and scene.vibration.active)}
-        self._prm = np.array([prm.get(name, 0.0) for name in PRM])
-        self._drive_spring = drive.spring
         sp = drive.spring  # its stiffness, rest length and anchor offset are constant; the anchor body moves
-        self._drive_const = (sp.stiffness, sp.rest_length, sp.anchor_b.x, sp.b._body)  # the anchor body's C handle
+        prm.update(drive_k=sp.stiffness, drive_rest=sp.rest_length, x0=0.0 if self.x0 is None else self.x0)
+        self._prm = np.array([prm.get(name, 0.0) for name in PRM])
+        self._drive_spring = sp
+        self._anchor = (sp.b._body, sp.anchor_b.x)  # the anchor body's C handle (chipmunk's getters read it)
         self._drive_mass = np.array([b.mass for b in drive.bodies], dtype=float)
         # springs with energy as arrays for vectorised lengths: (slider, anchors, rest length, stiffness, damping);
         # slider-slider springs use both positions; springs without stiffness (pure dampers) store none
@@ -220,7 +221,7 @@ class Recorder:
 
     def __getstate__(self):
         state = self.__dict__.copy()
-        for k in ("_tab", "_bodies", "_arbiters", "_prm", "_drive_spring", "_drive_const", "_drive_mass", "_bs", "_pp",
+        for k in ("_tab", "_bodies", "_arbiters", "_prm", "_drive_spring", "_anchor", "_drive_mass", "_bs", "_pp",
                   "_sp", "_weights", "_law_totals", "_n_last"):
             del state[k]  # derived from the scene (pymunk ids change on unpickling; batch buffers do not pickle)
         return state
@@ -235,11 +236,12 @@ class Recorder:
             raise IndexError(f"recorder full: sample {k} of {self.t.shape[0]}")
         ids, fl = self._bodies.read()
         ai, af = self._arbiters.read()
-        if self.x0 is None:
-            self.x0 = float(sc.block.position.x)
         prm = self._prm
-        prm[0], prm[1], prm[2], prm[3] = self._drive_state()
-        prm[4] = self.x0
+        if self.x0 is None:
+            self.x0 = prm[R.X0] = float(sc.block.position.x)
+        anchor, offset = self._anchor  # the drive's anchor body does not rotate: its point is the body's plus offset
+        prm[R.ANCHOR_X] = lib.cpBodyGetPosition(anchor).x + offset
+        prm[R.ANCHOR_V] = lib.cpBodyGetVelocity(anchor).x
         self._interval(prm)
         sc.wear.mark_sleeping(self.grain_table)
         self.recycle[k] = sc.wear.recycle_work
@@ -271,12 +273,6 @@ class Recorder:
         if vib is not None:  # over the output step (none at the first sample) and over its last pymunk step
             prm[_VIB:_VIB + 6] = vib.impulses(sc.steps if n == 0 else self.last_steps, sc.steps)
         self.last_steps = sc.steps
-
-    def _drive_state(self):
-        """(stiffness, anchor x, rest length, anchor speed) of the drive spring, scene units (its anchor body
-        does not rotate, so the anchor point is the body's position plus the fixed offset)."""
-        k, rest, off, b = self._drive_const
-        return k, lib.cpBodyGetPosition(b).x + off, rest, lib.cpBodyGetVelocity(b).x
 
     def trace(self, metadata: dict) -> EngineTrace:
         n = self.k
