@@ -191,7 +191,7 @@ class Recorder:
                "law_after": float(scene.law.impulses_after_step),
                "pair_mid": float(scene.vibration is not None and scene.vibration.active)}
         sp = drive.spring  # its stiffness, rest length and anchor offset are constant; the anchor body moves
-        prm.update(drive_k=sp.stiffness, drive_rest=sp.rest_length, x0=0.0 if self.x0 is None else self.x0)
+        prm.update(drive_k=sp.stiffness, drive_rest=sp.rest_length)
         self._prm = np.array([prm.get(name, 0.0) for name in PRM])
         self._drive_spring = sp
         self._anchor = (sp.b._body, sp.anchor_b.x)  # the anchor body's C handle (chipmunk's getters read it)
@@ -238,7 +238,8 @@ class Recorder:
         ai, af = self._arbiters.read()
         prm = self._prm
         if self.x0 is None:
-            self.x0 = prm[R.X0] = float(sc.block.position.x)
+            self.x0 = float(sc.block.position.x)
+        prm[R.X0] = self.x0  # per sample: a checkpoint's restore sets x0 on a new recorder
         anchor, offset = self._anchor  # the drive's anchor body does not rotate: its point is the body's plus offset
         prm[R.ANCHOR_X] = lib.cpBodyGetPosition(anchor).x + offset
         prm[R.ANCHOR_V] = lib.cpBodyGetVelocity(anchor).x
