@@ -10,6 +10,8 @@ from collections import deque
 import numpy as np
 import pymunk
 
+from .static_segments import add_segments, remove_shapes
+
 __all__ = ["PatchTrack", "SelfAffineTrack", "BumpTrack", "self_affine_kernel"]
 
 _CHUNK = 32  # patches generated at a time
@@ -39,15 +41,9 @@ class StreamedTrack:
             b_next = ends[i + 1][1] if i + 1 < len(ends) else (b[0] + (b[0] - a[0]), b[1] + (b[1] - a[1]))
             links.append((a_prev, b_next))
             prev = a
-        body, radius, flt = self.space.static_body, self.radius, self.filter
-        new = []
-        for (a, b), mu, (na, nb) in zip(ends, frictions, links):
-            seg = pymunk.Segment(body, a, b, radius)
-            seg.friction = mu
-            seg.filter = flt
-            seg.set_neighbors(na, nb)
-            new.append(seg)
-        self.space.add(*new)
+        a, b = zip(*ends)
+        na, nb = zip(*links)
+        new = add_segments(self.space, self.space.static_body, a, b, self.radius, frictions, self.filter, na, nb)
         self.neighbors.extend(links)
         self.segments.extend(new)
         self.generated += len(new)
@@ -71,9 +67,7 @@ class StreamedTrack:
             if self.neighbors:
                 self.neighbors.popleft()
         if old:
-            self.space.remove(*old)
-            for shape in old:
-                shape.body = None  # off the static body's list of its shapes, which kept every dropped one alive
+            remove_shapes(self.space, old)  # and off the static body's list of its shapes, which would keep them alive
             self.removed += len(old)
 
     @staticmethod
