@@ -18,10 +18,13 @@ from pymunk._chipmunk_cffi import ffi
 from pymunk._chipmunk_cffi import lib as cp
 from pymunk._util import _dead_ref
 
-__all__ = ["add_segments", "remove_shapes"]
+__all__ = ["add_segments", "remove_shapes", "segment_b"]
 
 _NULL = ffi.NULL
 _new = object.__new__
+_setattr = object.__setattr__  # pymunk's own attribute hook, without its Python frame
+
+segment_b = cp.cpSegmentShapeGetB  # segment_b(shape._shape).x: a segment's end b without pymunk's Vec2d
 
 
 def _free(cp_shape) -> None:
@@ -64,7 +67,7 @@ def add_segments(space: pymunk.Space, body: pymunk.Body, a: list, b: list, radiu
     assert body.space is space, "the segments' body must be in the space"
     new_seg, set_ud, set_fr = cp.cpSegmentShapeNew, cp.cpShapeSetUserData, cp.cpShapeSetFriction
     set_flt, set_nb, add = cp.cpShapeSetFilter, cp.cpSegmentShapeSetNeighbors, cp.cpSpaceAddShape
-    gc, handle, new, cls = ffi.gc, ffi.new_handle, _new, pymunk.Segment
+    gc, handle, new, cls, setattr = ffi.gc, ffi.new_handle, _new, pymunk.Segment, _setattr
     cp_body, cp_space = body._body, space._space
     body_ref, space_ref = weakref.ref(body), weakref.ref(space)
     body_shapes, space_shapes = body._shapes, space._shapes
@@ -75,16 +78,15 @@ def add_segments(space: pymunk.Space, body: pymunk.Body, a: list, b: list, radiu
     for pa, pb, mu, na, nb in zip(a, b, friction, a_prev, b_next):
         c = new_seg(cp_body, pa, pb, radius)
         seg = new(cls)
-        d = seg.__dict__
-        d["_body"] = body_ref
+        setattr(seg, "_body", body_ref)
         body_shapes[seg] = None
-        d["_shape"] = c = gc(c, _free)
-        d["_h"] = h = handle(seg)
+        setattr(seg, "_shape", c := gc(c, _free))
+        setattr(seg, "_h", h := handle(seg))
         set_ud(c, h)
         set_fr(c, mu)
         set_flt(c, flt)
         set_nb(c, na, nb)
-        d["_space"] = space_ref
+        setattr(seg, "_space", space_ref)
         space_shapes[seg] = None
         add(cp_space, c)
         append(seg)
@@ -105,13 +107,13 @@ def remove_shapes(space: pymunk.Space, shapes) -> None:
     assert not space._locked, "shapes are removed outside the space's step"
     remove, set_body, cp_space = cp.cpSpaceRemoveShape, cp.cpShapeSetBody, space._space
     space_shapes, removed = space._shapes, space._removed_shapes
+    setattr = _setattr
     for s in shapes:
-        d = s.__dict__
-        c = d["_shape"]
+        c = s._shape
         del space_shapes[s]  # a KeyError if the shape is not in the space
         removed[s] = None  # pymunk keeps removed shapes alive until its next step
-        d["_space"] = _dead_ref
+        setattr(s, "_space", _dead_ref)
         remove(cp_space, c)
-        del d["_body"]()._shapes[s]
+        del s._body()._shapes[s]
         set_body(c, _NULL)
-        d["_body"] = _dead_ref
+        setattr(s, "_body", _dead_ref)
