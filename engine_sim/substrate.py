@@ -10,9 +10,18 @@ from collections import deque
 import numpy as np
 import pymunk
 
+from .static_segments import add_segments, remove_shapes, segment_b as _segment_b
+
 __all__ = ["PatchTrack", "SelfAffineTrack", "BumpTrack", "self_affine_kernel"]
 
 _CHUNK = 32  # patches generated at a time
+
+
+def _points(p: np.ndarray) -> list:
+    """The rows of an (n, 2) array as (x, y) tuples of floats (tuples of floats leave the garbage collector's
+    care, lists do not)."""
+    it = iter(p.ravel().tolist())
+    return list(zip(it, it))
 
 
 class StreamedTrack:
@@ -26,40 +35,33 @@ class StreamedTrack:
         self.generated = 0
         self.removed = 0
 
-    def _link_and_add(self, ends: list, frictions):
-        """Add straight segments ((ax, ay), (bx, by)) with their frictions, each linked with set_neighbors to the
-        one before and the one after (so pads do not catch on joints; a chunk's last segment and a track's first
-        look past their own far end, extrapolated)."""
-        if not ends:
+    def _link_and_add(self, a: np.ndarray, b: np.ndarray, frictions: list):
+        """Add straight segments from a[i] to b[i] ((n, 2) arrays) with their frictions, each linked with
+        set_neighbors to the one before and the one after (so pads do not catch on joints; a chunk's last segment
+        and a track's first look past their own far end, extrapolated)."""
+        if not len(a):
             return
-        prev = self.segments[-1].a if self.segments else None
-        links = []
-        for i, (a, b) in enumerate(ends):
-            a_prev = prev if prev is not None else (a[0] - (b[0] - a[0]), a[1] - (b[1] - a[1]))
-            b_next = ends[i + 1][1] if i + 1 < len(ends) else (b[0] + (b[0] - a[0]), b[1] + (b[1] - a[1]))
-            links.append((a_prev, b_next))
-            prev = a
-        body, radius, flt = self.space.static_body, self.radius, self.filter
-        new = []
-        for (a, b), mu, (na, nb) in zip(ends, frictions, links):
-            seg = pymunk.Segment(body, a, b, radius)
-            seg.friction = mu
-            seg.filter = flt
-            seg.set_neighbors(na, nb)
-            new.append(seg)
-        self.space.add(*new)
-        self.neighbors.extend(links)
+        a_prev = np.empty_like(a)
+        a_prev[1:] = a[:-1]
+        a_prev[0] = self.segments[-1].a if self.segments else a[0] - (b[0] - a[0])
+        b_next = np.empty_like(b)
+        b_next[:-1] = b[1:]
+        b_next[-1] = b[-1] + (b[-1] - a[-1])
+        na, nb = _points(a_prev), _points(b_next)
+        new = add_segments(self.space, self.space.static_body, _points(a), _points(b), self.radius, frictions,
+                           self.filter, na, nb)
+        self.neighbors.extend(zip(na, nb))
         self.segments.extend(new)
         self.generated += len(new)
 
-    def _add_polyline(self, xs: list, ys: list):
+    def _add_polyline(self, xs: np.ndarray, ys: np.ndarray):
         """Straight segments through the points (xs, ys) (continuing from the last point added), friction
         self.mu0, linked."""
-        pts = list(zip(xs, ys))
+        pts = np.column_stack([xs, ys])
         if self._last is not None:
-            pts.insert(0, self._last)
-        self._link_and_add(list(zip(pts[:-1], pts[1:])), [self.mu0] * (len(pts) - 1))
-        self._last = pts[-1]
+            pts = np.concatenate([[self._last], pts])
+        self._link_and_add(pts[:-1], pts[1:], [self.mu0] * (len(pts) - 1))
+        self._last = tuple(pts[-1].tolist())
 
     def maintain(self, x: float, ahead: float, behind: float):
         """Keep segments covering [x - behind, x + ahead]; add ahead, remove behind."""
@@ -71,14 +73,12 @@ class StreamedTrack:
             if self.neighbors:
                 self.neighbors.popleft()
         if old:
-            self.space.remove(*old)
-            for shape in old:
-                shape.body = None  # off the static body's list of its shapes, which kept every dropped one alive
+            remove_shapes(self.space, old)  # and off the static body's list of its shapes, which would keep them alive
             self.removed += len(old)
 
     @staticmethod
     def _end_x(shape) -> float:
-        return shape.b.x
+        return _segment_b(shape._shape).x
 
     def restore_neighbors(self):
         """Re-apply set_neighbors after unpickling (pymunk does not save them)."""
@@ -122,11 +122,32 @@ class PatchTrack(StreamedTrack):
             has_pit = self.rng.random(_CHUNK) < self.pit_p
             widths = self.pit_width[0] + self.rng.random(_CHUNK) * (self.pit_width[1] - self.pit_width[0])
             where = self.rng.random(_CHUNK)
+        if self.pit_p > 0:
+            ends, fr = self._with_pits(bounds.tolist(), mus.tolist(), has_pit, widths, where)
+            e = np.array(ends, dtype=float).reshape(-1, 2, 2)
+            self._link_and_add(e[:, 0], e[:, 1], fr)
+        else:  # flat patches end to end: a from the previous bound, b to the next
+            a = np.empty((_CHUNK, 2))
+            a[0, 0] = self._x_end
+            a[1:, 0] = bounds[:-1]
+            a[:, 1] = self.y
+            b = np.empty((_CHUNK, 2))
+            b[:, 0] = bounds
+            b[:, 1] = self.y
+            self._link_and_add(a, b, mus.tolist())
+        self._j = int(j[-1])
+        self._x_end = float(bounds[-1])
+
+
+    def _with_pits(self, bounds: list, mus: list, has_pit, widths, where):
+        """Segment ends ((ax, ay), (bx, by)) and frictions of the chunk's patches from the last bound to each of
+        ``bounds``, a patch flagged in ``has_pit`` and wider than twice its pit's width holding the pit (its
+        width from ``widths``, its place from ``where``)."""
         ends, fr = [], []
         x0 = self._x_end
         y = self.y
-        for c, (x1, mu) in enumerate(zip(bounds.tolist(), mus.tolist())):
-            if self.pit_p > 0 and has_pit[c] and x1 - x0 > 2 * widths[c]:
+        for c, (x1, mu) in enumerate(zip(bounds, mus)):
+            if has_pit[c] and x1 - x0 > 2 * widths[c]:
                 w, d = float(widths[c]), self.pit_depth
                 xa = x0 + 0.5 * w + float(where[c]) * (x1 - x0 - 2 * w)
                 xb = xa + w
@@ -138,9 +159,7 @@ class PatchTrack(StreamedTrack):
                 ends.append(((x0, y), (x1, y)))
                 fr.append(mu)
             x0 = x1
-        self._link_and_add(ends, fr)
-        self._j = int(j[-1])
-        self._x_end = float(bounds[-1])
+        return ends, fr
 
 
 def self_affine_kernel(hurst: float, lambda_r: float, lambda_s: float, dx: float, rms_slope: float):
@@ -186,7 +205,7 @@ class SelfAffineTrack(StreamedTrack):
         h = np.convolve(w, self.k, mode="valid")  # chunk_points heights
         self._noise = w[-(len(self.k) - 1):]
         xs = self._x_next + self.dx * np.arange(self.chunk)
-        self._add_polyline(xs.tolist(), (self.y + h).tolist())
+        self._add_polyline(xs, self.y + h)
         self._x_next = float(xs[-1] + self.dx)
 
 

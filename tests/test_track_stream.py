@@ -24,9 +24,10 @@ def _expected_links(segments, first_prev):
 
 
 def test_neighbours_are_pymunks_vec2d_links():
-    """Three chunks of a rough track and of a patch track with pits, generated one at a time: every stored
-    neighbour pair (the points given to set_neighbors) equals the Vec2d arithmetic's, bit for bit."""
-    for name in ("pads_rough_profile", "pads_with_wear"):
+    """Three chunks of a rough track, a line scan's track and a patch track with pits and one without, generated
+    one at a time: every stored neighbour pair (the points given to set_neighbors) equals the Vec2d arithmetic's,
+    bit for bit."""
+    for name in ("pads_rough_profile", "line_scan_example", "pads_with_wear", "pads_friction_patches"):
         scene = _scene(name)
         tr = scene.tracks[0]
         prev = tr.segments[-1] if tr.segments else None

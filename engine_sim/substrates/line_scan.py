@@ -305,6 +305,6 @@ class ProfileTrack(StreamedTrack):
 
     def _extend(self):
         xs = self._x_next + self.dx * np.arange(self.chunk)
-        self._add_polyline(xs.tolist(), (self.y + self._heights(self._j, self.chunk)).tolist())
+        self._add_polyline(xs, self.y + self._heights(self._j, self.chunk))
         self._j += self.chunk
         self._x_next = float(xs[-1] + self.dx)
