@@ -184,7 +184,7 @@ class Recorder:
         self._tab = np.array(rows, dtype=np.int64).reshape(-1, 3)
         self._bodies = BatchReader(scene.space, self._BODY, "bodies")
         self._arbiters = BatchReader(scene.space, self._ARB, "arbiters")
-        # scalars for the kernel, in reduction.PRM order (the drive's state and x0 are set per sample)
+        # scalars for the kernel, in reduction.PRM order (the drive anchor's place and speed and x0 are set per sample)
         prm = {"dt": scene.dt, "M": scene.M, "g": -scene.space.gravity.y, "v_trap": scene.v_trap,
                "dt_out": scene.dt * scene.n_sub, "pulled": float(drive.pulled),
                "means": float(self.forces == "mean"), "guided": float(scene.arrangement.guided),
@@ -193,7 +193,6 @@ class Recorder:
         sp = drive.spring  # its stiffness, rest length and anchor offset are constant; the anchor body moves
         prm.update(drive_k=sp.stiffness, drive_rest=sp.rest_length)
         self._prm = np.array([prm.get(name, 0.0) for name in PRM])
-        self._drive_spring = sp
         self._anchor = (sp.b._body, sp.anchor_b.x)  # the anchor body's C handle (chipmunk's getters read it)
         self._drive_mass = np.array([b.mass for b in drive.bodies], dtype=float)
         # springs with energy as arrays for vectorised lengths: (slider, anchors, rest length, stiffness, damping);
@@ -221,7 +220,7 @@ class Recorder:
 
     def __getstate__(self):
         state = self.__dict__.copy()
-        for k in ("_tab", "_bodies", "_arbiters", "_prm", "_drive_spring", "_anchor", "_drive_mass", "_bs", "_pp",
+        for k in ("_tab", "_bodies", "_arbiters", "_prm", "_anchor", "_drive_mass", "_bs", "_pp",
                   "_sp", "_weights", "_law_totals", "_n_last"):
             del state[k]  # derived from the scene (pymunk ids change on unpickling; batch buffers do not pickle)
         return state
