@@ -2,7 +2,7 @@
 
 Build: ``python -m sphinx -W --keep-going -b html docs docs/_build/html`` (the ``docs`` extra installs the tools).
 Tutorials are MyST markdown notebooks executed at every build (myst-nb, ``nb_execution_mode = "force"``); a cell
-that raises fails the build.
+that raises fails the build, and so does a command-line cell (``!frictionnoise ...``) whose command fails.
 """
 import os
 import sys
@@ -13,6 +13,12 @@ sys.path.insert(0, str(ROOT))  # the source tree, also for the notebook kernels 
 os.environ["PYTHONPATH"] = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH")) if p)
 # the tutorials' kernels draw inline (CI exports MPLBACKEND=Agg, under which a notebook shows no figure)
 os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
+sys.path.insert(0, str(ROOT / "docs" / "_ext"))
+# the tutorials' command-line cells (``!frictionnoise ...``) run this environment's frictionnoise and fail the build
+# when the command fails or is not found (docs/_ext/notebook_shell.py)
+from notebook_shell import configure_kernels  # noqa: E402
+
+configure_kernels()
 
 from frictionnoise import package_version  # noqa: E402
 
@@ -32,7 +38,7 @@ extensions = [
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "myst-nb"}
-exclude_patterns = ["_build", "**.ipynb_checkpoints", "jupyter_execute"]
+exclude_patterns = ["_build", "_ext", "**.ipynb_checkpoints", "jupyter_execute"]
 root_doc = "index"
 
 # executed tutorials: every build runs every notebook; an exception in a cell fails the build
