@@ -238,3 +238,22 @@ def test_the_sweep_file_example_lives_in_one_docstring():
 
     assert "[grid]" in sweep_spec.__doc__ and "target =" in sweep_spec.__doc__
     assert "[grid]" not in tasks.__doc__ and ":mod:`compare.sweep.spec`" in tasks.__doc__
+
+
+def test_without_dask_the_sweep_names_its_extra_and_writes_nothing(tmp_path):
+    # dask is the `sweep` extra: an environment without it (simulated by a module that cannot be imported) gets one
+    # line naming the extra, exit 2, before any output exists; --serial still runs
+    blocker = tmp_path / "block"
+    blocker.mkdir()
+    (blocker / "distributed.py").write_text("raise ImportError('distributed is not installed')\n")
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(blocker), os.environ.get("PYTHONPATH", ""), "."])}
+    out = tmp_path / "o"
+    r = subprocess.run([sys.executable, "-m", "compare.cli", "sweep", str(_small(tmp_path)), "-o", str(out)],
+                       capture_output=True, text=True, timeout=120, env=env)
+    assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+    assert "pip install 'frictionnoise[sweep]'" in r.stderr and "--serial" in r.stderr
+    assert not out.exists()
+    r = subprocess.run([sys.executable, "-m", "compare.cli", "sweep", str(_small(tmp_path)), "--serial", "-o",
+                        str(out)], capture_output=True, text=True, timeout=300, env=env)
+    assert r.returncode == 0, r.stderr
+    assert (out / "summary.json").exists()

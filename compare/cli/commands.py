@@ -45,6 +45,12 @@ def cmd_sweep(args) -> int:
         raise UserError(f"--workers must be between 1 and 64 (got {args.workers})")
     if not 0 < args.connect_timeout <= 3600:
         raise UserError(f"--connect-timeout must be in (0, 3600] seconds (got {args.connect_timeout})")
+    if not args.serial:
+        from ..sweep.run import require_dask
+        try:
+            require_dask()  # before anything is written
+        except SchedulerError as e:
+            raise UserError(str(e)) from None
     out = output_dir(args.output, f"sweep-{spec.name}", "index.html, summary.json and its task cache")
     bar = tqdm(total=0, desc=spec.name, unit="task", file=sys.stderr, disable=not sys.stderr.isatty())
 

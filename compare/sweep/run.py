@@ -22,11 +22,21 @@ class SchedulerError(RuntimeError):
     """The dask scheduler could not be reached; nothing was written."""
 
 
+def require_dask() -> None:
+    """Raise :class:`SchedulerError` naming the extra to install when dask.distributed is not installed."""
+    try:
+        import distributed  # noqa: F401
+    except ImportError:
+        raise SchedulerError("a sweep on dask needs the sweep extra: pip install 'frictionnoise[sweep]' "
+                             "(or run it in this process with --serial)") from None
+
+
 def _connect(scheduler: str | None, workers: int, connect_timeout: float):
     """(client, cluster or None): a client of the scheduler at ``scheduler`` (given up after ``connect_timeout``
     seconds with a SchedulerError) or of a new LocalCluster of ``workers`` single-threaded processes."""
     import logging
 
+    require_dask()
     from distributed import Client, LocalCluster
 
     if scheduler:
