@@ -20,6 +20,7 @@ from .arrangements import ARRANGEMENTS, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSp
 from .drives import DRIVES, DriveSpec
 from .drives.force import ForceSpec
 from .laws import LAWS, FrictionSpec
+from .regime import check_regimes
 from .substrates import SUBSTRATES, SubstrateSpec
 from .substrates.patches import PatchesSpec
 from .vibration import Vibration, VibrationSpec
@@ -329,6 +330,11 @@ def scenario_from_dict(data: dict, where: str = "", strict: bool = True) -> Scen
             raise _err(where, f"{key} must be a string (got {type(data[key]).__name__})")
     sc = Scenario(name=data.get("name", "unnamed"), description=data.get("description", ""), **parts)
     _check_consistency(sc, where)
+    if strict:  # a trace's metadata is read as recorded, whatever regime it ran in
+        try:
+            check_regimes(sc)
+        except ValueError as e:
+            raise _err(where, str(e)) from None
     return sc
 
 

@@ -137,6 +137,70 @@ class Arrangement:
         """Entries of the arrangement's own in ``metadata["scene"]``."""
         return {}
 
+    # ------------------------------------------------------------------ regimes (SI; engine_sim.regime)
+    preloaded: ClassVar[bool] = True  # normal springs pre-compressed to carry the load (else relaxed, as a sole's)
+
+    def column_friction(self, load: float) -> float:
+        """The largest steady friction of one pad column under the column load ``load`` (N): the friction law's
+        force at the steady speed with the Coulomb part raised to the stickiest patch's mu (N)."""
+        sc = self.sc
+        mu0 = sc.friction.mu0
+        mu_hi = sc.substrate_part.mu_range(mu0)[1]
+        v = max(sc.steady_velocity, 0.0)
+        return sc.law_part.force(v, load, sc.friction.c) + (mu_hi - mu0) * load
+
+    def contact_load(self, load: float) -> float:
+        """The normal load on a pad's own contact (N) under the column load ``load``."""
+        return load
+
+    def limits(self) -> list:
+        """The pads' regime limits (:class:`engine_sim.regime.Limit`): the tangential spring's length LT against
+        the pad's largest friction; for pre-compressed normal springs, their compression against their length LN
+        and their softening F_s / LN against k0, and the load against the relief under the pad; the contact's
+        thickness against a step's fall under the load; run.dt against the block's modes on its pads."""
+        from ..regime import HANG_FRACTION, SOFTENING, Limit, dt_limit, load_limit, mass_limit
+
+        sc, p = self.sc, self.spec
+        L, M = sc.normal_load_per_pad, sc.block.M
+        col_w = self.column_mass * G
+        lt, ln = LT / U.LENGTH, LN / U.LENGTH  # m
+        out = []
+
+        def by_mass(L_max, why):
+            return Limit("block.M", M, mass_limit(sc, L_max), "kg", why)
+
+        f = self.column_friction(L)
+        L_lag = load_limit(self.column_friction, p.k0 * lt)
+        out.append(by_mass(L_lag, f"a pad column's largest friction {f:.4g} N stretches its tangential spring "
+                                  f"(k0 = {p.k0:.4g} N/m) by {f / p.k0 * 1e3:.3g} mm; beyond its length "
+                                  f"{lt * 1e3:.3g} mm the pad passes the spring's anchor"))
+        if self.preloaded:
+            F_s = L - col_w
+            out.append(by_mass(ln * p.k_normal + col_w, f"the normal spring's pre-compression {F_s / p.k_normal * 1e3:.3g} "
+                                                       f"mm (load / k_normal) must stay below its length {ln * 1e3:.3g} mm"))
+            out.append(by_mass(SOFTENING * p.k0 * ln + col_w,
+                               f"the pre-compressed normal spring (force {F_s:.4g} N, length {ln * 1e3:.3g} mm) softens "
+                               f"the pad's tangential stiffness by F_s / LN = {F_s / ln:.4g} N/m, more than "
+                               f"{SOFTENING:g} k0"))
+            depth = sc.substrate_part.pad_depth(HANG_FRACTION, p.radius)
+            if depth > 0:
+                N_pad = self.contact_load(L)
+                out.append(Limit("pads.k_normal", p.k_normal, N_pad / depth, "N/m",
+                                 f"a pad's load {N_pad:.4g} N / k_normal = {N_pad / p.k_normal * 1e6:.3g} um must "
+                                 f"cover the depth it follows below the track's datum, {depth * 1e6:.3g} um on "
+                                 f"{100 * (1 - HANG_FRACTION):g} % of its path, or it hangs over the valleys"))
+        if sc.substrate_part.pad_depth(HANG_FRACTION, p.radius) > 0:
+            dt = sc.run.dt / _substeps(sc)
+            rs = sc.substrate.segment_radius
+            N_pad = self.contact_load(L)
+            out.append(by_mass(load_limit(self.contact_load, rs * p.mass / dt**2),
+                               f"a pad falls (N_pad / m) dt^2 = {N_pad / p.mass * dt * dt * 1e6:.3g} um in one step "
+                               f"under its load; beyond the segment radius {rs * 1e6:.3g} um a pad leaving a rough "
+                               "track for a step lands past the segment's centre line"))
+        out.append(dt_limit("run.dt", sc, math.sqrt(p.N * p.k0 / M), p.N * p.c0 / M,
+                            f"the block on its {p.N} tangential pad springs"))
+        return out
+
     # ------------------------------------------------------------------ scene side (scene units)
     def build(self, scene) -> None:
         raise NotImplementedError
@@ -198,6 +262,11 @@ class Arrangement:
         return {"springs": ("segments", [((a.x, a.y), (q[0], q[1])) for a, q in zip(anchors, pads)],
                             {"colors": "0.4", "linewidths": 0.6, "label": "pad spring"}),
                 "pads": ("points", pads, {"s": 18, "c": "tab:red", "zorder": 3, "label": "pad"})}
+
+
+def _substeps(sc) -> int:
+    from ..wear import grain_step
+    return grain_step(sc)["substeps"]
 
 
 def arrangement_kind(name: str):

@@ -123,6 +123,40 @@ class Micro(Tracks):
         law, p = self.sc.law_part, self.spec
         return law.slope(v, self.pad_load(), self.sc.friction.c) + p.n_micro * law.slope(v, self.micro_load(), p.micro_c)
 
+    def column_friction(self, load):
+        """The pad's friction under N1 and its micro-pads' under N2, each on its stickiest patch (N)."""
+        return self._pad_friction((1 - self.spec.micro_share) * load) + self.spec.n_micro * self._micro_friction(load)
+
+    def _pad_friction(self, n1):
+        sc = self.sc
+        mu0 = sc.friction.mu0
+        v = max(sc.steady_velocity, 0.0)
+        return sc.law_part.force(v, n1, sc.friction.c) + (sc.substrate_part.mu_range(mu0)[1] - mu0) * n1
+
+    def _micro_friction(self, load):
+        """One micro-pad's largest friction under the column load ``load`` (N): its micro-track's stickiest patch."""
+        sc, p = self.sc, self.spec
+        n2 = p.micro_share * load / p.n_micro
+        v = max(sc.steady_velocity, 0.0)
+        return sc.law_part.force(v, n2, p.micro_c) + sc.friction.mu0 * p.micro_alpha / 2 * n2
+
+    def contact_load(self, load):
+        return (1 - self.spec.micro_share) * load
+
+    def limits(self):
+        """The pads' limits, and the micro-pads' tangential spring (micro_k) against their largest friction."""
+        from ..regime import Limit, load_limit, mass_limit
+
+        out = super().limits()
+        sc, p = self.sc, self.spec
+        f = self._micro_friction(sc.normal_load_per_pad)
+        L_max = load_limit(self._micro_friction, p.micro_k * LT / U.LENGTH)
+        out.append(Limit("block.M", sc.block.M, mass_limit(sc, L_max), "kg",
+                         f"a micro-pad's largest friction {f:.4g} N stretches its tangential spring (micro_k = "
+                         f"{p.micro_k:.4g} N/m) by {f / p.micro_k * 1e3:.3g} mm; beyond its length "
+                         f"{LT / U.LENGTH * 1e3:.3g} mm the micro-pad passes the spring's anchor"))
+        return out
+
     def sliders(self, sc):
         return [(self.pad_load(), self.spec.mass), (self.micro_load(), self.spec.micro_mass)]
 

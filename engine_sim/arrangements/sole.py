@@ -2,6 +2,8 @@
 redistribution: the block's weight is shared by whichever feet stand on asperities; section 7)."""
 from __future__ import annotations
 
+import math
+
 import pymunk
 
 from .. import units as U
@@ -16,6 +18,17 @@ class Sole(Arrangement):
     name = "sole"
     Spec = PadSpec
     guided = False
+
+    preloaded = False  # relaxed normal springs: the feet that stand on bumps carry the block
+
+    def limits(self):
+        """The feet's tangential springs and contact thickness (the mean foot load), and run.dt against the block's
+        vertical mode on its N normal springs."""
+        from ..regime import dt_limit
+
+        p, M = self.spec, self.sc.block.M
+        return super().limits() + [dt_limit("run.dt", self.sc, math.sqrt(p.N * p.k_normal / M), p.N * p.c_normal / M,
+                                            f"the block on its {p.N} normal foot springs")]
 
     def contact_width(self):
         return self.spec.N * self.spec.foot_length

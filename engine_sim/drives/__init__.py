@@ -55,6 +55,11 @@ class Drive:
             raise ValueError(f"drive force {sc.drive_force:.4g} N does not exceed the kinetic friction "
                              f"{sc.pads.N * sc.column_force(0.0):.4g} N: the block would not slide")
 
+    def limits(self) -> list:
+        """The drive's regime limits (:class:`engine_sim.regime.Limit`; none for a constant force, whose far spring
+        changes by 1e-6 over a metre)."""
+        return []
+
     def load_factor(self) -> float:
         """The share of the block's weight pressing on the pads (cos theta on a slope)."""
         return 1.0

@@ -1,6 +1,7 @@
 """A constant pulling speed: the block is pulled through a spring whose far end moves at v."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import pymunk
@@ -26,6 +27,13 @@ class Velocity(Drive):
     Spec = VelocitySpec
     positive = frozenset({"v", "k_drive"})
     constant_force = False
+
+    def limits(self):
+        """run.dt against the drive spring on the block (omega = sqrt(k_drive / M))."""
+        from ..regime import dt_limit
+
+        return [dt_limit("run.dt", self.sc, math.sqrt(self.spec.k_drive / self.sc.block.M), 0.0,
+                         "the block on its drive spring")]
 
     def force(self):
         return self.sc.pads.N * self.sc.column_force(self.spec.v)

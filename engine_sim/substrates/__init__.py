@@ -74,6 +74,11 @@ class Substrate:
         """The highest point of the substrate above its datum (mm): feet on a sole start above it."""
         return 0.0
 
+    def pad_depth(self, fraction: float, pad_radius: float) -> float:
+        """How far below the track's datum (m) the lowest point of a pad of ``pad_radius`` (m) follows the track
+        on ``fraction`` of its path (0: a flat track; engine_sim.regime compares it with the pad's deflection)."""
+        return 0.0
+
     def floor_depth(self) -> float:
         """How far below its surface a particle may sit on this track (mm; pits)."""
         return 0.0

@@ -44,6 +44,10 @@ class Asperities(Substrate):
         if p.foot_length < 2.5 * p.radius:
             raise ValueError(f"pads.foot_length = {p.foot_length!r} m must exceed 2.5 pad radii = {2.5 * p.radius:.3g} m")
 
+    def pad_depth(self, fraction, pad_radius):
+        """The asperity tops reach h_max above the datum; a foot between them follows them down to it (m)."""
+        return self.spec.h_max
+
     def top(self):
         return self.spec.h_max * U.LENGTH
 
