@@ -215,11 +215,12 @@ def cmd_render(args) -> int:
         raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
     from engine_sim import Scene
     from engine_sim.render import SceneRenderer
+    from engine_sim.side_render import SideRenderer
 
     out = output_dir(args.output, f"render-{sc.name}",
                       "frame_000.png, frame_001.png, ... and with --gif animation.gif")
     scene = Scene(sc, args.seed)
-    renderer = SceneRenderer(scene)
+    renderer = (SideRenderer if args.view == "side" else SceneRenderer)(scene)
     n_out = max(1, int(round(args.duration / sc.run.dt_out / args.frames)))  # output steps between frames
     images = []
     with atomic_folder(out) as tmp:

@@ -68,7 +68,95 @@ class PadSpec:
     arrangement: str = "tracks"
 
 
-class Arrangement:
+class SideMixin:
+    """The side view of pads on tracks of their own (``engine_sim.side_view``): the first ``SIDE_PADS`` pads side
+    by side, each in a slot over the piece of its own track under it, hung from the block by a normal spring
+    (vertical) and a tangential spring (horizontal, from a post under the block), all in display millimetres."""
+
+    SIDE_PADS: ClassVar[int] = 8
+
+    def side_layout(self, scene):
+        """The layout (:class:`engine_sim.side_view.SideLayout`): the exaggeration that shows the substrate's
+        relief at about half a display millimetre, slots of 8 pad radii."""
+        from ..side_view import SideLayout, nice_exaggeration
+
+        p = self.spec
+        R = p.radius * U.LENGTH
+        relief = scene.substrate.relief(p.radius) * U.LENGTH
+        E = min(nice_exaggeration(relief, 0.5), scene.wear.side_exaggeration)
+        n_show = min(p.N, self.SIDE_PADS, scene.wear.side_pads)
+        hc = min(R, 0.3 / E)  # true height of the pad's arc drawn (mm)
+        # a slot reaches at most as far behind the pad as its track is kept (Scene.behind)
+        slot = 2 * min(4 * R, 0.98 * scene.behind)
+        return SideLayout(E=E, slot=slot, n_show=n_show, contact=E * (relief + hc),
+                          body=0.15 * slot, spring=0.6 * slot, block=0.3 * slot, floor=-max(0.25 * slot, E * relief))
+
+    def side_tracks(self, scene, lay, n_points: int = 400):
+        """Per shown pad: (slot centre, the pad's track index, its datum height, x of the points in scene units)."""
+        bx = scene.block.position.x
+        xs = bx + np.linspace(-0.48 * lay.pad_win, 0.48 * lay.pad_win, n_points)  # a gap between neighbouring tracks
+        return [(lay.x0[i] + lay.pad_at, i, scene.track_surface[i], xs) for i in range(lay.n_show)]
+
+    def side(self, scene, lay, q_pad) -> dict:
+        """Shapes of the side view (display mm): substrate pieces, their surface (coloured by friction where it
+        varies), the pads (true contact arcs, schematic bodies), their springs and the block."""
+        from ..side_view import cap_outline, zigzag
+
+        bx = scene.block.position.x
+        R = self.spec.radius * U.LENGTH
+        hc = min(R, 0.3 / lay.E)
+        lo, hi = scene.substrate.mu_range(self.sc.friction.mu0)
+        coloured = hi > lo
+        fills, lines, band, mus, pucks, normal, tangential, posts = [], [], [], [], [], [], [], []
+        for x0, i, datum, xs in self.side_tracks(scene, lay):
+            top, spans = scene.substrate.side(scene.tracks[i], xs[0], xs[-1], xs, q_pad)
+            xd = xs - bx + x0
+            yd = np.maximum(lay.y(top - datum), lay.floor)
+            fills.append(np.column_stack([np.r_[xd[0], xd, xd[-1]], np.r_[lay.floor, yd, lay.floor]]))
+            lines.append(np.column_stack([xd, yd]))
+            for xa, xb, mu in spans if coloured else ():  # the friction as a band under the surface, span by span
+                m = (xs >= max(xa, xs[0])) & (xs <= min(xb, xs[-1]))
+                if m.sum() >= 2:
+                    band.append(np.vstack([np.column_stack([xd[m], yd[m]]),
+                                           np.column_stack([xd[m], yd[m] - 0.08])[::-1]]))
+                    mus.append(mu)
+            pad = scene.pads[i]
+            px, py = pad.position.x - bx + x0, pad.position.y - datum
+            arc = cap_outline(px, py, R, hc)
+            arc[:, 1] = lay.y(arc[:, 1])
+            y_top = arc[-1, 1] + lay.body
+            pucks.append(np.vstack([arc, [(arc[-1, 0], y_top), (arc[0, 0], y_top)]]))
+            normal.append(zigzag((px, y_top), (px, lay.block_bottom), coils=5, width=0.05 * lay.pad_win))
+            post_x = x0 - 0.42 * lay.pad_win
+            y_mid = arc[-1, 1] + 0.5 * lay.body
+            posts.append(np.array([(post_x, lay.block_bottom), (post_x, y_mid)]))
+            tangential.append(zigzag((post_x, y_mid), (arc[0, 0], y_mid), coils=4, width=0.025 * lay.pad_win))
+        shapes = {
+            "substrate": ("polys", fills, {"facecolors": "0.82", "edgecolors": "none", "zorder": 1,
+                                           "label": "substrate (each pad's own track)"}),
+            "surface": ("segments", lines, {"colors": "k", "linewidths": 0.8, "zorder": 2}),
+            "friction": ("polys", band, {"array": np.array(mus), "edgecolors": "none", "zorder": 1.5}),
+            "posts": ("segments", posts, {"colors": "0.3", "linewidths": 1.2, "zorder": 3}),
+            "tangential": ("segments", tangential, {"colors": "tab:green", "linewidths": 1.0, "zorder": 3,
+                                                    "label": f"tangential spring k0 = {self.spec.k0:.4g} N/m"}),
+            "normal": ("segments", normal, {"colors": "tab:purple", "linewidths": 1.0, "zorder": 3,
+                                            "label": f"normal spring k_normal = {self.spec.k_normal:.4g} N/m"}),
+            "pads": ("polys", pucks, {"facecolors": "tab:orange", "edgecolors": "k", "linewidths": 0.8, "zorder": 4,
+                                      "label": f"pad (radius {self.spec.radius * 1e3:.3g} mm)"}),
+        }
+        shapes["block"] = ("rect", ((-lay.width / 2 + 0.05 * lay.slot, lay.block_bottom), lay.width - 0.1 * lay.slot,
+                                    lay.block), {"facecolor": "tab:blue", "alpha": 0.45, "edgecolor": "tab:blue",
+                                                 "zorder": 2, "label": f"block M = {self.sc.block.M:.4g} kg"})
+        return shapes
+
+    def side_note(self, lay) -> str:
+        """What the side view shows of the arrangement, in a line."""
+        n = self.spec.N
+        shown = f"pads 1-{lay.n_show} of {n}" if lay.n_show < n else f"all {n} pads"
+        return f"{shown}, each over its own track"
+
+
+class Arrangement(SideMixin):
     """One pad arrangement (the base holds what tracks and sole share)."""
 
     name: ClassVar[str] = ""

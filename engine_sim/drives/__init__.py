@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import ClassVar
 
+import numpy as np
 import pymunk
 
 from .. import units as U
@@ -111,6 +112,21 @@ class Drive:
     def draw(self, scene, lo: float, hi: float) -> dict:
         """Shapes to draw (see ``render.py``: name -> (kind, data, style)), scene units."""
         return {}
+
+    def side(self, scene, lay) -> dict:
+        """The side view's drive (display mm): an arrow on the block's front, labelled with the force."""
+        x0, y = lay.width / 2 - 0.05 * lay.slot, lay.block_bottom + 0.5 * lay.block
+        x1 = x0 + 0.6 * lay.slot
+        head = 0.06 * lay.slot
+        return {"drive": ("segments", [np.array([(x0, y), (x1, y)]), np.array([(x1 - head, y + head / 2), (x1, y),
+                                                                               (x1 - head, y - head / 2)])],
+                          {"colors": "k", "linewidths": 1.5, "zorder": 5}),
+                "drive_label": ("text", ((x0 + 0.05 * lay.slot, lay.top + 0.05), f"drive: {self.side_label()}"),
+                                {"fontsize": 8, "ha": "right", "va": "bottom", "zorder": 5})}
+
+    def side_label(self) -> str:
+        """The drive in a few words for the side view."""
+        return f"F = {self.force():.3g} N"
 
     def describe(self) -> dict:
         return {}

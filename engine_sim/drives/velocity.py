@@ -35,6 +35,9 @@ class Velocity(Drive):
         return [dt_limit("run.dt", self.sc, math.sqrt(self.spec.k_drive / self.sc.block.M), 0.0,
                          "the block on its drive spring")]
 
+    def side_label(self):
+        return f"pulled at v = {self.spec.v * 1e3:.3g} mm/s through k_drive = {self.spec.k_drive:.4g} N/m"
+
     def force(self):
         return self.sc.pads.N * self.sc.column_force(self.spec.v)
 

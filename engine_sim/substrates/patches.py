@@ -50,6 +50,10 @@ class Patches(Substrate):
         dip = r - math.sqrt(r * r - half * half) if half < r else s.pit_depth
         return min(dip, s.pit_depth)
 
+    def relief(self, pad_radius):
+        """Pits (their depth) or a flat track; grains need no exaggeration of their own."""
+        return self.spec.pit_depth if self.spec.pit_p > 0 else 0.0
+
     def floor_depth(self):
         return (self.spec.pit_depth if self.spec.pit_p > 0 else 0.0) * U.LENGTH
 
