@@ -36,14 +36,20 @@ class SideRenderer:
         self.coloured = mu_hi > mu_lo
         self.norm = matplotlib.colors.Normalize(mu_lo, mu_hi + 1e-12)
         lay = self.layout
-        width = lay.width + lay.slot
-        height = 1.3 * (lay.top - lay.floor) + lay.E * _round_length(0.5 / lay.E * 1e3) * 1e-3
-        self.fig = Figure(figsize=(11.0, max(3.6, min(7.0, 10.0 * height / width + 1.9))), dpi=dpi)
+        # the drawing's limits (display mm): x from -w/2 - 0.1 slot to w/2 + 0.9 slot (the drive's arrow), y from
+        # the scale bars below the substrate's base to the block's top; the figure as tall as their aspect asks,
+        # plus three title lines and the key
+        H = lay.top - lay.floor
+        self._um = _round_length(0.5 / lay.E * 1e3)  # the vertical scale bar: true um drawn about 0.5 display mm
+        self._bar_y = lay.floor - 0.05 * H - lay.E * self._um * 1e-3
+        self.xlim = (-lay.width / 2 - 0.1 * lay.slot, lay.width / 2 + 0.9 * lay.slot)
+        self.ylim = (self._bar_y - 0.06 * H, lay.top + 0.04 * H)
+        aspect = (self.ylim[1] - self.ylim[0]) / (self.xlim[1] - self.xlim[0])
+        self.fig = Figure(figsize=(11.0, min(8.0, 0.98 * 11.0 * aspect + 1.24)), dpi=dpi)
         FigureCanvasAgg(self.fig)
         self.ax = self.fig.subplots()
         self.shapes = {}
         self.exaggeration_text = ""
-        self._height = lay.top - lay.floor  # display mm from the substrate's base to the block's top
 
     def observe(self):
         """Sample the scene after an output step (grain states, as the recorder classifies them)."""
@@ -64,8 +70,8 @@ class SideRenderer:
         for name, (kind, data, style) in shapes.items():
             _draw(ax, kind, data, dict(style), self.norm)
         self._scale_bars()
-        ax.set_xlim(-lay.width / 2 - 0.1 * lay.slot, lay.width / 2 + 0.9 * lay.slot)
-        ax.set_ylim(self._bottom, lay.top + 0.04 * self._height)
+        ax.set_xlim(*self.xlim)
+        ax.set_ylim(*self.ylim)
         ax.set_aspect("equal")
         ax.set_axis_off()
         v = s.block.velocity.x / U.VELOCITY * U.LENGTH
@@ -79,7 +85,8 @@ class SideRenderer:
                      + (f"   {caption}" if caption else "") + f"\n{self.exaggeration_text}\n"
                      f"{s.arrangement.side_note(lay)}", loc="left", fontsize=9)
         self._key()
-        self.fig.tight_layout(rect=(0, 0.1, 1, 1))
+        h = self.fig.get_figheight()
+        self.fig.subplots_adjust(left=0.01, right=0.99, top=1 - 0.62 / h, bottom=0.62 / h)
         self.fig.canvas.draw()
         return np.asarray(self.fig.canvas.buffer_rgba())
 
@@ -87,18 +94,15 @@ class SideRenderer:
         """A horizontal bar of a round length in mm and a vertical one of a round true height (um) at the
         exaggeration, at the lower left, below the substrate's base."""
         lay, ax = self.layout, self.ax
-        x = -lay.width / 2
-        um = _round_length(0.5 / lay.E * 1e3)  # true um shown as about half a display mm
+        x, y, um = -lay.width / 2, self._bar_y, self._um
         h = lay.E * um * 1e-3
-        y = lay.floor - 0.05 * self._height - h
         mm = _round_length(0.1 * lay.width)
         ax.plot([x, x + mm], [y, y], color="k", lw=2, solid_capstyle="butt")
-        ax.text(x + mm / 2, y - 0.01 * self._height, f"{mm:g} mm", ha="center", va="top", fontsize=8)
+        ax.text(x + mm / 2, y - 0.01 * (lay.top - lay.floor), f"{mm:g} mm", ha="center", va="top", fontsize=8)
         xb = x + mm + 0.02 * lay.width
         ax.plot([xb, xb], [y, y + h], color="k", lw=2, solid_capstyle="butt")
         ax.text(xb + 0.01 * lay.width, y + h / 2, f"{um:g} um" + (f" (drawn x{lay.E})" if lay.E > 1 else ""),
                 ha="left", va="center", fontsize=8)
-        self._bottom = y - 0.06 * self._height
 
     def _key(self):
         handles, labels = [], []

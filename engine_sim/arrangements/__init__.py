@@ -152,6 +152,8 @@ class SideMixin:
     def side_note(self, lay) -> str:
         """What the side view shows of the arrangement, in a line."""
         n = self.spec.N
+        if n == 1:
+            return "one pad on its track"
         shown = f"pads 1-{lay.n_show} of {n}" if lay.n_show < n else f"all {n} pads"
         return f"{shown}, each over its own track"
 

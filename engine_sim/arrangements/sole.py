@@ -113,7 +113,7 @@ class Sole(Arrangement):
         return {
             "substrate": ("polys", [fill], {"facecolors": "0.82", "edgecolors": "none", "zorder": 1,
                                             "label": "substrate: asperity caps (pymunk's circles)"}),
-            "surface": ("segments", [np.column_stack([xd, yd])], {"colors": "k", "linewidths": 0.8, "zorder": 2}),
+            "surface": ("segments", _pieces(xd, yd, yd > lay.floor), {"colors": "k", "linewidths": 0.8, "zorder": 2}),
             "normal": ("segments", springs, {"colors": "tab:purple", "linewidths": 0.8, "zorder": 3,
                                              "label": f"normal spring k_normal = {self.spec.k_normal:.4g} N/m"}),
             "pads": ("polys", feet, {"facecolors": "tab:orange", "edgecolors": "k", "linewidths": 0.6, "zorder": 4,
@@ -146,3 +146,10 @@ class Sole(Arrangement):
                 feet.append([(a.x, bot), (b.x, bot), (b.x, top), (a.x, top)])
         return {"feet": ("polys", feet, {"facecolors": (0.84, 0.15, 0.16, 0.35), "edgecolors": "tab:red",
                                          "linewidths": 1.5, "zorder": 3, "label": "foot of the sole"})}
+
+
+def _pieces(x, y, keep) -> list:
+    """The runs of the polyline (x, y) where ``keep`` holds, as (n, 2) arrays: the caps' envelope drawn where a cap
+    reaches above the drawing's base, none between (the scene has no floor there)."""
+    edges = np.flatnonzero(np.diff(np.r_[0, keep.astype(int), 0]))
+    return [np.column_stack([x[a:b], y[a:b]]) for a, b in zip(edges[::2], edges[1::2]) if b - a >= 2]

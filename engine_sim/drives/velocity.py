@@ -4,6 +4,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 import pymunk
 
 from .. import units as U
@@ -34,6 +36,20 @@ class Velocity(Drive):
 
         return [dt_limit("run.dt", self.sc, math.sqrt(self.spec.k_drive / self.sc.block.M), 0.0,
                          "the block on its drive spring")]
+
+    def side(self, scene, lay):
+        """The drive spring (schematic length) from the block's front to its anchor, which moves at v."""
+        from ..side_view import zigzag
+
+        x0, y = lay.width / 2 - 0.05 * lay.slot, lay.block_bottom + 0.5 * lay.block
+        x1 = x0 + 0.6 * lay.slot
+        d = 0.12 * lay.block
+        shapes = super().side(scene, lay)
+        shapes["drive"] = ("segments", [zigzag((x0, y), (x1, y), coils=4, width=0.15 * lay.block),
+                                        np.array([(x1, y - d), (x1 + 2 * d, y - d), (x1 + 2 * d, y + d), (x1, y + d),
+                                                  (x1, y - d)])],
+                           {"colors": "k", "linewidths": 1.2, "zorder": 5})
+        return shapes
 
     def side_label(self):
         return f"pulled at v = {self.spec.v * 1e3:.3g} mm/s through k_drive = {self.spec.k_drive:.4g} N/m"
