@@ -36,13 +36,13 @@ class SideRenderer:
         self.coloured = mu_hi > mu_lo
         self.norm = matplotlib.colors.Normalize(mu_lo, mu_hi + 1e-12)
         lay = self.layout
-        # the drawing's limits (display mm): x from -w/2 - 0.1 slot to w/2 + 0.9 slot (the drive's arrow), y from
+        # the drawing's limits (display mm): x from -w/2 - 0.1 slot to the drive's arrow past w/2, y from
         # the scale bars below the substrate's base to the block's top; the figure as tall as their aspect asks,
         # plus three title lines and the key
         H = lay.top - lay.floor
         self._um = _round_length(0.5 / lay.E * 1e3)  # the vertical scale bar: true um drawn about 0.5 display mm
         self._bar_y = lay.floor - 0.05 * H - lay.E * self._um * 1e-3
-        self.xlim = (-lay.width / 2 - 0.1 * lay.slot, lay.width / 2 + 0.9 * lay.slot)
+        self.xlim = (-lay.width / 2 - 0.1 * lay.slot, lay.width / 2 + 0.3 * lay.slot + lay.drive_len)
         self.ylim = (self._bar_y - 0.06 * H, lay.top + 0.04 * H)
         aspect = (self.ylim[1] - self.ylim[0]) / (self.xlim[1] - self.xlim[0])
         self.fig = Figure(figsize=(11.0, min(8.0, 0.98 * 11.0 * aspect + 1.24)), dpi=dpi)

@@ -140,6 +140,11 @@ class SideLayout:
         return self.E * np.asarray(y_true, float)
 
     @property
+    def drive_len(self) -> float:
+        """The display length of the drive's arrow or spring at the block's front (mm)."""
+        return max(0.6 * self.slot, 0.06 * self.width)
+
+    @property
     def width(self) -> float:
         return self.n_show * self.slot
 

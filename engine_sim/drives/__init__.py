@@ -116,7 +116,7 @@ class Drive:
     def side(self, scene, lay) -> dict:
         """The side view's drive (display mm): an arrow on the block's front, labelled with the force."""
         x0, y = lay.width / 2 - 0.05 * lay.slot, lay.block_bottom + 0.5 * lay.block
-        x1 = x0 + 0.6 * lay.slot
+        x1 = x0 + lay.drive_len
         head = 0.06 * lay.slot
         return {"drive": ("segments", [np.array([(x0, y), (x1, y)]), np.array([(x1 - head, y + head / 2), (x1, y),
                                                                                (x1 - head, y - head / 2)])],

@@ -42,7 +42,7 @@ class Velocity(Drive):
         from ..side_view import zigzag
 
         x0, y = lay.width / 2 - 0.05 * lay.slot, lay.block_bottom + 0.5 * lay.block
-        x1 = x0 + 0.6 * lay.slot
+        x1 = x0 + lay.drive_len
         d = 0.12 * lay.block
         shapes = super().side(scene, lay)
         shapes["drive"] = ("segments", [zigzag((x0, y), (x1, y), coils=4, width=0.15 * lay.block),
