@@ -10,7 +10,7 @@ import pytest
 
 import engine_sim
 from engine_sim.arrangements import LT
-from engine_sim.regime import GRAIN_RESIDUAL, HANG_FRACTION, limits
+from engine_sim.regime import HANG_FRACTION, limits
 from engine_sim.scenario import ScenarioError, load_scenario, scenario_from_dict, shipped_scenarios
 from frictionnoise import G
 
@@ -97,13 +97,12 @@ def test_relief_limit_on_a_rough_track_is_the_gaussian_quantile():
         scenario_from_dict(_with("pads_rough_profile", pads={"k_normal": 2000.0}))
 
 
-def test_wear_grains_need_the_iterations_their_mass_ratio_asks():
-    sc = load_scenario("pads_with_wear")
-    ratio = sc.wear.min_mass / sc.pads.mass
-    need = math.ceil(math.log(1 / GRAIN_RESIDUAL) / math.log1p(ratio))
-    assert need == 17  # (1.1)^-17 = 0.198 <= 0.2 < (1.1)^-16 = 0.218
-    with pytest.raises(ScenarioError, match=f"run.iterations = 10 is below the limit {need}"):
-        scenario_from_dict(_with("pads_with_wear", run={"iterations": 10}))
+def test_no_iteration_limit_refuses_the_wear_studys_light_grains():
+    """The wear study's grains (1e-5 kg, 0.01 of a pad) at 20 iterations load: the one-step Gauss-Seidel bound
+    (162 iterations) is not a limit of the scene (pymunk warm-starts contact impulses; measured light-grain forces
+    hold at 20: docs/explanation/wear_mass_limit.md)."""
+    sc = scenario_from_dict(_with("pads_with_wear", wear={"min_mass": 1e-5}))
+    assert sc.run.iterations == 20 and all(lim.field != "run.iterations" for lim in limits(sc))
 
 
 def test_time_step_against_the_sole_block_on_its_feet():
