@@ -3,7 +3,8 @@
 A scenario file has a top-level ``name`` and ``description`` and the sections ``[block]``, ``[pads]``,
 ``[friction]``, ``[substrate]``, ``[drive]``, ``[wear]`` and ``[run]``; every key is optional (defaults below, SI units).
 Unknown sections or keys, wrong types and out-of-range values raise :class:`ScenarioError` naming the
-file, the field and the limit, including the time-step limit that the pad springs impose.
+file, the field and the limit, including the time-step limit that the pad springs impose and the regimes of the
+scene (:mod:`engine_sim.regime`: what its springs' lengths and pymunk's solver can carry).
 """
 from __future__ import annotations
 
