@@ -8,7 +8,8 @@ what to draw as named shapes in scene units, ``name -> (kind, data, style)`` wit
 "segments" (list of point pairs), "polys" (list of vertex lists), "line" ((xs, ys)), "circle" ((centre, radius)),
 "rect" ((corner, width, height)), "text" ((position, string)), "caption" (a string added to the time line above
 the axes, for a part's numbers that would cover the scene); style is passed to matplotlib, and a shape whose
-style has a "label" gets an entry in the key. The only matplotlib importer of engine_sim.
+style has a "label" gets an entry in the key. With :mod:`engine_sim.side_render` (the side view), one of the two
+matplotlib importers of engine_sim (an import contract in pyproject.toml).
 """
 from __future__ import annotations
 

@@ -13,6 +13,7 @@ from frictionnoise import package_version
 from .checkpoint import Checkpoint, CheckpointError, round_trip
 from .epoch import default_epoch
 from .record import EngineTrace, Recorder
+from .regime import LOST_CONTACT_S
 from .scenario import Scenario, load_scenario
 from .scene import Scene, describe
 
@@ -113,14 +114,18 @@ def _start(sc, seed, n_warm: int, n_out: int, epoch, interrupts):
 
 def _record(scene, rec, k: int, n_out: int, e_out: int, interrupts, checkpoint, report=None):
     """The recorded loop from sample k: sample, maintain, step; at every epoch the round trip
-    (:func:`engine_sim.checkpoint.round_trip`). Returns (scene, recorder, partial, round-trip wall seconds);
-    partial: stopped by SIGINT/SIGTERM (the latest epoch offered to the checkpoint)."""
+    (:func:`engine_sim.checkpoint.round_trip`). Returns (scene, recorder, stop, round-trip wall seconds); stop:
+    None (the whole run), "interrupt" (stopped by SIGINT/SIGTERM, the latest epoch offered to the checkpoint) or
+    "contact_lost" (:class:`ContactWatch`)."""
     n_sub = scene.n_sub
     round_trip_s = 0.0
+    watch = ContactWatch(scene.sc.run.dt_out)
     try:
         while k < n_out:
             interrupts.check()  # the one place a signal takes effect: here k == rec.k
             rec.sample()
+            if watch.lost(rec.n_contact[rec.k - 1]):
+                return scene, rec, "contact_lost", round_trip_s
             # maintenance (substrate streaming, particle recycling) right after a sample and before the next steps:
             # pymunk recomputes a cached arbiter's contact points from the bodies' current positions, so a particle
             # moved between a step and a sample would report a bogus overlap
@@ -142,8 +147,22 @@ def _record(scene, rec, k: int, n_out: int, e_out: int, interrupts, checkpoint, 
         if rec.k == 0:
             raise  # nothing recorded yet
         checkpoint.on_interrupt()
-        return scene, rec, True, round_trip_s
-    return scene, rec, False, round_trip_s
+        return scene, rec, "interrupt", round_trip_s
+    return scene, rec, None, round_trip_s
+
+
+class ContactWatch:
+    """Counts the recorded samples with no pad on its track: more than :data:`engine_sim.regime.LOST_CONTACT_S`
+    of them in a row and the run has lost its load (the block lifted off, or every pad thrown off its track):
+    the run stops there, its trace marked partial (``metadata["stopped_by"] = "contact_lost"``)."""
+
+    def __init__(self, dt_out: float):
+        self.limit = max(1, int(round(LOST_CONTACT_S / dt_out)))
+        self.run = 0
+
+    def lost(self, n_contact) -> bool:
+        self.run = self.run + 1 if n_contact == 0 else 0
+        return self.run > self.limit
 
 
 def run(scenario, duration: float | None = None, seed: int | None = None, progress=None, *,
@@ -163,7 +182,10 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     the same scenario, duration, seed, epoch and version resumes from it. A checkpoint of another run or a
     corrupt one raises :class:`CheckpointError`. SIGINT or SIGTERM (KeyboardInterrupt) stops at the next output
     step, writes the latest epoch as checkpoint if one is configured and returns the trace so far with
-    ``metadata["partial"] = True``.
+    ``metadata["partial"] = True`` (``metadata["stopped_by"] = "interrupt"``). A run whose pads all leave their
+    tracks for longer than :data:`engine_sim.regime.LOST_CONTACT_S` (0.1 s) of recorded time stops there and
+    returns the trace so far, marked partial, ``metadata["stopped_by"] = "contact_lost"`` and
+    ``metadata["stop_reason"]`` saying when.
 
     Parameters
     ----------
@@ -214,7 +236,8 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
         if on_plan is not None:
             on_plan(e_out * dt_out, ckpt.every * dt_out if ckpt.every else None)
         report = None if progress is None else (lambda k: progress((n_warm + k) * dt_out, total))
-        scene, rec, partial, round_trip_s = _record(scene, rec, k0, n_out, e_out, intr, ckpt, report)
+        scene, rec, stop, round_trip_s = _record(scene, rec, k0, n_out, e_out, intr, ckpt, report)
+    partial = stop is not None
     wall = time.perf_counter() - t0
     if progress is not None and not partial:
         progress(total, total)
@@ -228,7 +251,14 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
         "epoch_s": e_out * dt_out, "epoch_given": epoch is not None, "round_trips_s": round_trip_s,
         "checkpoint_every_s": ckpt.every * dt_out if ckpt.every else None,
     }
-    if partial:
+    if stop == "contact_lost":
+        t_lost = rec.t[rec.k - 1 - ContactWatch(dt_out).limit] - rec.t[0]
+        meta["stopped_by"] = "contact_lost"
+        meta["stop_reason"] = (f"contact lost: no pad touched its track from t = {t_lost:.3f} s for longer than "
+                               f"{LOST_CONTACT_S:g} s (the block lifted off, or its pads thrown off their tracks); "
+                               "the run stopped")
+    elif partial:
+        meta["stopped_by"] = "interrupt"
         meta["interrupted_by"] = signal.Signals(intr.signum).name if intr.signum else "KeyboardInterrupt"
         meta["checkpoint_at_s"] = ckpt.saved_k * dt_out if (ckpt.path is not None and ckpt.saved_k) else None
     meta.update(scene.wear.run_metadata())

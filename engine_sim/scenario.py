@@ -3,7 +3,8 @@
 A scenario file has a top-level ``name`` and ``description`` and the sections ``[block]``, ``[pads]``,
 ``[friction]``, ``[substrate]``, ``[drive]``, ``[wear]`` and ``[run]``; every key is optional (defaults below, SI units).
 Unknown sections or keys, wrong types and out-of-range values raise :class:`ScenarioError` naming the
-file, the field and the limit, including the time-step limit that the pad springs impose.
+file, the field and the limit, including the time-step limit that the pad springs impose and the regimes of the
+scene (:mod:`engine_sim.regime`: what its springs' lengths and pymunk's solver can carry).
 """
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ from .arrangements import ARRANGEMENTS, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSp
 from .drives import DRIVES, DriveSpec
 from .drives.force import ForceSpec
 from .laws import LAWS, FrictionSpec
+from .regime import check_regimes
 from .substrates import SUBSTRATES, SubstrateSpec
 from .substrates.patches import PatchesSpec
 from .vibration import Vibration, VibrationSpec
@@ -329,6 +331,11 @@ def scenario_from_dict(data: dict, where: str = "", strict: bool = True) -> Scen
             raise _err(where, f"{key} must be a string (got {type(data[key]).__name__})")
     sc = Scenario(name=data.get("name", "unnamed"), description=data.get("description", ""), **parts)
     _check_consistency(sc, where)
+    if strict:  # a trace's metadata is read as recorded, whatever regime it ran in
+        try:
+            check_regimes(sc)
+        except ValueError as e:
+            raise _err(where, str(e)) from None
     return sc
 
 

@@ -226,6 +226,13 @@ class NoWear:
         """Shapes to draw (``render.py``: name -> (kind, data, style)), scene units."""
         return {}
 
+    side_exaggeration = 1000  # the largest vertical exaggeration the side view may use (grains: discs drawn E:1)
+    side_pads = 1000  # the most pads the side view shows
+
+    def side(self, scene, lay, states) -> dict:
+        """Shapes of the side view (``engine_sim.side_view``, display mm): none without particles."""
+        return {}
+
 
 class _NoStates:
     states = np.zeros(0, dtype=int)
@@ -397,6 +404,26 @@ class Wear(NoWear):
     def draw(self, states) -> dict:
         xy, r = self.snapshot()
         return {"grains": ("discs", (xy, 2 * r, STATE_COLORS[states]), {"zorder": 4})}
+
+    side_exaggeration = 2  # grains of tens of um: ellipses at most 2:1
+    side_pads = 4  # four pads, each over its grains, large enough to see them
+
+    def side(self, scene, lay, states):
+        """The grains on the shown pads' tracks, within their slots, at the view's exaggeration (ellipses: a disc
+        of radius r drawn r wide and E r tall), coloured by state."""
+        xy, r = self.snapshot()
+        bx = scene.block.position.x
+        th = np.linspace(0, 2 * np.pi, 25)
+        polys, colours = [], []
+        for j, (x, y) in enumerate(xy):
+            i = int(self.track[j])
+            if i >= lay.n_show or abs(x - bx) > 0.48 * lay.pad_win - r[j]:
+                continue
+            cx, cy = x - bx + lay.x0[i] + lay.pad_at, lay.y(y - scene.track_surface[i])
+            polys.append(np.column_stack([cx + r[j] * np.cos(th), cy + lay.E * r[j] * np.sin(th)]))
+            colours.append(STATE_COLORS[states[j]])
+        return {"grains": ("polys", polys, {"facecolors": colours or "none", "edgecolors": "k", "linewidths": 0.3,
+                                            "zorder": 5})}
 
     def snapshot(self):
         """(positions (n, 2), radii) in scene units, for rendering. A grain's state (idle, trapped, moving) is the

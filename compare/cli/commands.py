@@ -221,11 +221,12 @@ def cmd_render(args) -> int:
         raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
     from engine_sim import Scene
     from engine_sim.render import SceneRenderer
+    from engine_sim.side_render import SideRenderer
 
     out = output_dir(args.output, f"render-{sc.name}",
                       "frame_000.png, frame_001.png, ... and with --gif animation.gif")
     scene = Scene(sc, args.seed)
-    renderer = SceneRenderer(scene)
+    renderer = (SideRenderer if args.view == "side" else SceneRenderer)(scene)
     n_out = max(1, int(round(args.duration / sc.run.dt_out / args.frames)))  # output steps between frames
     images = []
     with atomic_folder(out) as tmp:
@@ -319,12 +320,11 @@ def _run_into(args, sc, out, ck) -> int:
     out.mkdir(parents=True, exist_ok=True)
     path = save_trace(tr, out / "trace.npz")
     meta = tr.metadata
-    if meta["partial"]:
-        at = meta.get("checkpoint_at_s")
-        print(f"frictionnoise: interrupted ({meta['interrupted_by']}) at t = {tr.t[-1]:.3f} s: partial trace "
-              f"(marked partial) written to {path}" + (f"; rerun the same command to resume from t = {at:g} s" if at else ""),
-              file=sys.stderr)
-        return 143 if meta["interrupted_by"] == "SIGTERM" else 130
+    if meta["partial"]:  # interrupted, or stopped when the scene lost every contact (exit 1)
+        at, why = meta.get("checkpoint_at_s"), meta.get("stop_reason") or f"interrupted ({meta['interrupted_by']})"
+        print(f"frictionnoise: {why} at t = {tr.t[-1]:.3f} s: partial trace (marked partial) written to {path}"
+              + (f"; rerun the same command to resume from t = {at:g} s" if at else ""), file=sys.stderr)
+        return 1 if "stop_reason" in meta else 143 if meta["interrupted_by"] == "SIGTERM" else 130
     if ck is not None and ck.exists():
         ck.unlink()
     print(f"wrote {path} and {path.with_suffix('.json')} ({len(tr.t)} samples, {meta['wall_s']:.1f} s wall)")
@@ -399,7 +399,7 @@ def cmd_compare(args) -> int:
     out = output_dir(args.output, f"compare-{sc.name}", "index.html, summary.json and figures/")
     note = None
     if trace is not None and trace.metadata.get("partial"):
-        note = f"{src} is a partial trace (interrupted at t = {trace.t[-1]:.3f} s)"
+        note = f"{src} is a partial trace ({trace.metadata.get('stop_reason') or 'interrupted'} at t = {trace.t[-1]:.3f} s)"
     from .compile_notice import compile_notice
 
     try:

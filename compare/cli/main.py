@@ -28,8 +28,9 @@ def _exit_now(status: int):
 
 
 def main(argv=None) -> int:
-    """Run the command line. Exit status: 0 done, 1 some work failed (sweep tasks), 2 a user error (one line),
-    130 interrupted by Ctrl-C (SIGINT; SIGTERM likewise, 143 when a run stopped on it), no traceback."""
+    """Run the command line. Exit status: 0 done, 1 some work failed (sweep tasks; a run that lost its contacts,
+    partial trace written), 2 a user error (one line), 130 interrupted by Ctrl-C (SIGINT; SIGTERM likewise, 143 when
+    a run stopped on it), no traceback."""
     import signal
     import threading
 

@@ -88,6 +88,9 @@ def build_parser() -> argparse.ArgumentParser:
     ren.add_argument("--frames", type=int, default=12, help="number of frames (default: %(default)s)")
     ren.add_argument("--duration", type=float, default=0.6, help="simulated seconds spanned (default: %(default)s)")
     ren.add_argument("--gif", action="store_true", help="also write animation.gif")
+    ren.add_argument("--view", choices=("side", "tracks"), default="side",
+                     help="side: the block on its spring-mounted pads over the substrate, its vertical exaggeration "
+                          "printed (default); tracks: every pad's track as a map, coloured by friction")
     ren.add_argument("--seed", type=int, default=None,
                      help="random seed of the substrate and the scene (default: the scenario's [run] seed)")
     ren.set_defaults(func=cmd_render)

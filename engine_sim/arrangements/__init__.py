@@ -68,7 +68,97 @@ class PadSpec:
     arrangement: str = "tracks"
 
 
-class Arrangement:
+class SideMixin:
+    """The side view of pads on tracks of their own (``engine_sim.side_view``): the first ``SIDE_PADS`` pads side
+    by side, each in a slot over the piece of its own track under it, hung from the block by a normal spring
+    (vertical) and a tangential spring (horizontal, from a post under the block), all in display millimetres."""
+
+    SIDE_PADS: ClassVar[int] = 8
+
+    def side_layout(self, scene):
+        """The layout (:class:`engine_sim.side_view.SideLayout`): the exaggeration that shows the substrate's
+        relief at about half a display millimetre, slots of 8 pad radii."""
+        from ..side_view import SideLayout, nice_exaggeration
+
+        p = self.spec
+        R = p.radius * U.LENGTH
+        relief = scene.substrate.relief(p.radius) * U.LENGTH
+        E = min(nice_exaggeration(relief, 0.5), scene.wear.side_exaggeration)
+        n_show = min(p.N, self.SIDE_PADS, scene.wear.side_pads)
+        hc = min(R, 0.3 / E)  # true height of the pad's arc drawn (mm)
+        # a slot reaches at most as far behind the pad as its track is kept (Scene.behind)
+        slot = 2 * min(4 * R, 0.98 * scene.behind)
+        return SideLayout(E=E, slot=slot, n_show=n_show, contact=E * (relief + hc),
+                          body=0.15 * slot, spring=0.6 * slot, block=0.3 * slot, floor=-max(0.25 * slot, E * relief))
+
+    def side_tracks(self, scene, lay, n_points: int = 400):
+        """Per shown pad: (slot centre, the pad's track index, its datum height, x of the points in scene units)."""
+        bx = scene.block.position.x
+        xs = bx + np.linspace(-0.48 * lay.pad_win, 0.48 * lay.pad_win, n_points)  # a gap between neighbouring tracks
+        return [(lay.x0[i] + lay.pad_at, i, scene.track_surface[i], xs) for i in range(lay.n_show)]
+
+    def side(self, scene, lay, q_pad) -> dict:
+        """Shapes of the side view (display mm): substrate pieces, their surface (coloured by friction where it
+        varies), the pads (true contact arcs, schematic bodies), their springs and the block."""
+        from ..side_view import cap_outline, zigzag
+
+        bx = scene.block.position.x
+        R = self.spec.radius * U.LENGTH
+        hc = min(R, 0.3 / lay.E)
+        lo, hi = scene.substrate.mu_range(self.sc.friction.mu0)
+        coloured = hi > lo
+        fills, lines, band, mus, pucks, normal, tangential, posts = [], [], [], [], [], [], [], []
+        for x0, i, datum, xs in self.side_tracks(scene, lay):
+            top, spans = scene.substrate.side(scene.tracks[i], xs[0], xs[-1], xs, q_pad)
+            xd = xs - bx + x0
+            yd = np.maximum(lay.y(top - datum), lay.floor)
+            fills.append(np.column_stack([np.r_[xd[0], xd, xd[-1]], np.r_[lay.floor, yd, lay.floor]]))
+            lines.append(np.column_stack([xd, yd]))
+            for xa, xb, mu in spans if coloured else ():  # the friction as a band under the surface, span by span
+                m = (xs >= max(xa, xs[0])) & (xs <= min(xb, xs[-1]))
+                if m.sum() >= 2:
+                    band.append(np.vstack([np.column_stack([xd[m], yd[m]]),
+                                           np.column_stack([xd[m], yd[m] - 0.08])[::-1]]))
+                    mus.append(mu)
+            pad = scene.pads[i]
+            px, py = pad.position.x - bx + x0, pad.position.y - datum
+            arc = cap_outline(px, py, R, hc)
+            arc[:, 1] = lay.y(arc[:, 1])
+            y_top = arc[-1, 1] + lay.body
+            pucks.append(np.vstack([arc, [(arc[-1, 0], y_top), (arc[0, 0], y_top)]]))
+            normal.append(zigzag((px, y_top), (px, lay.block_bottom), coils=5, width=0.05 * lay.pad_win))
+            post_x = x0 - 0.42 * lay.pad_win
+            y_mid = arc[-1, 1] + 0.5 * lay.body
+            posts.append(np.array([(post_x, lay.block_bottom), (post_x, y_mid)]))
+            tangential.append(zigzag((post_x, y_mid), (arc[0, 0], y_mid), coils=4, width=0.025 * lay.pad_win))
+        shapes = {
+            "substrate": ("polys", fills, {"facecolors": "0.82", "edgecolors": "none", "zorder": 1,
+                                           "label": "substrate (each pad's own track)"}),
+            "surface": ("segments", lines, {"colors": "k", "linewidths": 0.8, "zorder": 2}),
+            "friction": ("polys", band, {"array": np.array(mus), "edgecolors": "none", "zorder": 1.5}),
+            "posts": ("segments", posts, {"colors": "0.3", "linewidths": 1.2, "zorder": 3}),
+            "tangential": ("segments", tangential, {"colors": "tab:green", "linewidths": 1.0, "zorder": 3,
+                                                    "label": f"tangential spring k0 = {self.spec.k0:.4g} N/m"}),
+            "normal": ("segments", normal, {"colors": "tab:purple", "linewidths": 1.0, "zorder": 3,
+                                            "label": f"normal spring k_normal = {self.spec.k_normal:.4g} N/m"}),
+            "pads": ("polys", pucks, {"facecolors": "tab:orange", "edgecolors": "k", "linewidths": 0.8, "zorder": 4,
+                                      "label": f"pad (radius {self.spec.radius * 1e3:.3g} mm)"}),
+        }
+        shapes["block"] = ("rect", ((-lay.width / 2 + 0.05 * lay.slot, lay.block_bottom), lay.width - 0.1 * lay.slot,
+                                    lay.block), {"facecolor": "tab:blue", "alpha": 0.45, "edgecolor": "tab:blue",
+                                                 "zorder": 2, "label": f"block M = {self.sc.block.M:.4g} kg"})
+        return shapes
+
+    def side_note(self, lay) -> str:
+        """What the side view shows of the arrangement, in a line."""
+        n = self.spec.N
+        if n == 1:
+            return "one pad on its track"
+        shown = f"pads 1-{lay.n_show} of {n}" if lay.n_show < n else f"all {n} pads"
+        return f"{shown}, each over its own track"
+
+
+class Arrangement(SideMixin):
     """One pad arrangement (the base holds what tracks and sole share)."""
 
     name: ClassVar[str] = ""
@@ -137,6 +227,70 @@ class Arrangement:
         """Entries of the arrangement's own in ``metadata["scene"]``."""
         return {}
 
+    # ------------------------------------------------------------------ regimes (SI; engine_sim.regime)
+    preloaded: ClassVar[bool] = True  # normal springs pre-compressed to carry the load (else relaxed, as a sole's)
+
+    def column_friction(self, load: float) -> float:
+        """The largest steady friction of one pad column under the column load ``load`` (N): the friction law's
+        force at the steady speed with the Coulomb part raised to the stickiest patch's mu (N)."""
+        sc = self.sc
+        mu0 = sc.friction.mu0
+        mu_hi = sc.substrate_part.mu_range(mu0)[1]
+        v = max(sc.steady_velocity, 0.0)
+        return sc.law_part.force(v, load, sc.friction.c) + (mu_hi - mu0) * load
+
+    def contact_load(self, load: float) -> float:
+        """The normal load on a pad's own contact (N) under the column load ``load``."""
+        return load
+
+    def limits(self) -> list:
+        """The pads' regime limits (:class:`engine_sim.regime.Limit`): the tangential spring's length LT against
+        the pad's largest friction; for pre-compressed normal springs, their compression against their length LN
+        and their softening F_s / LN against k0, and the load against the relief under the pad; the contact's
+        thickness against a step's fall under the load; run.dt against the block's modes on its pads."""
+        from ..regime import HANG_FRACTION, SOFTENING, Limit, dt_limit, load_limit, mass_limit
+
+        sc, p = self.sc, self.spec
+        L, M = sc.normal_load_per_pad, sc.block.M
+        col_w = self.column_mass * G
+        lt, ln = LT / U.LENGTH, LN / U.LENGTH  # m
+        out = []
+
+        def by_mass(L_max, why):
+            return Limit("block.M", M, mass_limit(sc, L_max), "kg", why)
+
+        f = self.column_friction(L)
+        L_lag = load_limit(self.column_friction, p.k0 * lt)
+        out.append(by_mass(L_lag, f"a pad column's largest friction {f:.4g} N stretches its tangential spring "
+                                  f"(k0 = {p.k0:.4g} N/m) by {f / p.k0 * 1e3:.3g} mm; beyond its length "
+                                  f"{lt * 1e3:.3g} mm the pad passes the spring's anchor"))
+        if self.preloaded:
+            F_s = L - col_w
+            out.append(by_mass(ln * p.k_normal + col_w, f"the normal spring's pre-compression {F_s / p.k_normal * 1e3:.3g} "
+                                                       f"mm (load / k_normal) must stay below its length {ln * 1e3:.3g} mm"))
+            out.append(by_mass(SOFTENING * p.k0 * ln + col_w,
+                               f"the pre-compressed normal spring (force {F_s:.4g} N, length {ln * 1e3:.3g} mm) softens "
+                               f"the pad's tangential stiffness by F_s / LN = {F_s / ln:.4g} N/m, more than "
+                               f"{SOFTENING:g} k0"))
+            depth = sc.substrate_part.pad_depth(HANG_FRACTION, p.radius)
+            if depth > 0:
+                N_pad = self.contact_load(L)
+                out.append(Limit("pads.k_normal", p.k_normal, N_pad / depth, "N/m",
+                                 f"a pad's load {N_pad:.4g} N / k_normal = {N_pad / p.k_normal * 1e6:.3g} um must "
+                                 f"cover the depth it follows below the track's datum, {depth * 1e6:.3g} um on "
+                                 f"{100 * (1 - HANG_FRACTION):g} % of its path, or it hangs over the valleys"))
+        if sc.substrate_part.pad_depth(HANG_FRACTION, p.radius) > 0:
+            dt = sc.run.dt / _substeps(sc)
+            rs = sc.substrate.segment_radius
+            N_pad = self.contact_load(L)
+            out.append(by_mass(load_limit(self.contact_load, rs * p.mass / dt**2),
+                               f"a pad falls (N_pad / m) dt^2 = {N_pad / p.mass * dt * dt * 1e6:.3g} um in one step "
+                               f"under its load; beyond the segment radius {rs * 1e6:.3g} um a pad leaving a rough "
+                               "track for a step lands past the segment's centre line"))
+        out.append(dt_limit("run.dt", sc, math.sqrt(p.N * p.k0 / M), p.N * p.c0 / M,
+                            f"the block on its {p.N} tangential pad springs"))
+        return out
+
     # ------------------------------------------------------------------ scene side (scene units)
     def build(self, scene) -> None:
         raise NotImplementedError
@@ -198,6 +352,11 @@ class Arrangement:
         return {"springs": ("segments", [((a.x, a.y), (q[0], q[1])) for a, q in zip(anchors, pads)],
                             {"colors": "0.4", "linewidths": 0.6, "label": "pad spring"}),
                 "pads": ("points", pads, {"s": 18, "c": "tab:red", "zorder": 3, "label": "pad"})}
+
+
+def _substeps(sc) -> int:
+    from ..wear import grain_step
+    return grain_step(sc)["substeps"]
 
 
 def arrangement_kind(name: str):

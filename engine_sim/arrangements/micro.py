@@ -123,6 +123,40 @@ class Micro(Tracks):
         law, p = self.sc.law_part, self.spec
         return law.slope(v, self.pad_load(), self.sc.friction.c) + p.n_micro * law.slope(v, self.micro_load(), p.micro_c)
 
+    def column_friction(self, load):
+        """The pad's friction under N1 and its micro-pads' under N2, each on its stickiest patch (N)."""
+        return self._pad_friction((1 - self.spec.micro_share) * load) + self.spec.n_micro * self._micro_friction(load)
+
+    def _pad_friction(self, n1):
+        sc = self.sc
+        mu0 = sc.friction.mu0
+        v = max(sc.steady_velocity, 0.0)
+        return sc.law_part.force(v, n1, sc.friction.c) + (sc.substrate_part.mu_range(mu0)[1] - mu0) * n1
+
+    def _micro_friction(self, load):
+        """One micro-pad's largest friction under the column load ``load`` (N): its micro-track's stickiest patch."""
+        sc, p = self.sc, self.spec
+        n2 = p.micro_share * load / p.n_micro
+        v = max(sc.steady_velocity, 0.0)
+        return sc.law_part.force(v, n2, p.micro_c) + sc.friction.mu0 * p.micro_alpha / 2 * n2
+
+    def contact_load(self, load):
+        return (1 - self.spec.micro_share) * load
+
+    def limits(self):
+        """The pads' limits, and the micro-pads' tangential spring (micro_k) against their largest friction."""
+        from ..regime import Limit, load_limit, mass_limit
+
+        out = super().limits()
+        sc, p = self.sc, self.spec
+        f = self._micro_friction(sc.normal_load_per_pad)
+        L_max = load_limit(self._micro_friction, p.micro_k * LT / U.LENGTH)
+        out.append(Limit("block.M", sc.block.M, mass_limit(sc, L_max), "kg",
+                         f"a micro-pad's largest friction {f:.4g} N stretches its tangential spring (micro_k = "
+                         f"{p.micro_k:.4g} N/m) by {f / p.micro_k * 1e3:.3g} mm; beyond its length "
+                         f"{LT / U.LENGTH * 1e3:.3g} mm the micro-pad passes the spring's anchor"))
+        return out
+
     def sliders(self, sc):
         return [(self.pad_load(), self.spec.mass), (self.micro_load(), self.spec.micro_mass)]
 
@@ -209,6 +243,70 @@ class Micro(Tracks):
             tr.maintain(b.position.x, self.micro_ahead, self.micro_behind)
 
     # ------------------------------------------------------------------ drawing
+    SIDE_PADS = 4
+
+    def side_layout(self, scene):
+        """Slots holding a pad's window and, to its right, one window per micro-pad over its own micro-track."""
+        lay = super().side_layout(scene)
+        ms = 8 * self.spec.micro_radius * U.LENGTH
+        win = lay.slot
+        lay.slot = win + self.spec.n_micro * ms
+        lay.pad_win, lay.pad_at = win, -0.5 * self.spec.n_micro * ms
+        lay.__post_init__()
+        return lay
+
+    def side(self, scene, lay, q_pad):
+        """The pads' side view, and each pad's micro-pads (true contact arcs) over pieces of their micro-tracks, hung
+        from an arm on the pad by their normal springs."""
+        from ..side_view import cap_outline, zigzag
+
+        shapes = super().side(scene, lay, q_pad)
+        p = self.spec
+        n, bx = p.n_micro, scene.block.position.x
+        r2 = p.micro_radius * U.LENGTH
+        ms = 8 * r2
+        hc = min(r2, 0.3 / lay.E)
+        fills, lines, pucks, springs, arms = shapes["substrate"][1], shapes["surface"][1], [], [], []
+        band, mus = shapes["friction"][1], list(shapes["friction"][2]["array"])
+        for i in range(lay.n_show):
+            pad_poly = shapes["pads"][1][i]
+            arm_y = pad_poly[-1, 1] - 0.3 * lay.body
+            x_right = pad_poly[:, 0].max()
+            first = lay.x0[i] + lay.pad_at + lay.pad_win / 2
+            arms.append(np.array([(x_right, arm_y), (first + (n - 0.5) * ms, arm_y)]))
+            for j in range(n):
+                body, tr = self.micro_pads[i * n + j], self.micro_tracks[i * n + j]
+                datum = tr.y + tr.radius
+                c = first + (j + 0.5) * ms
+                xs = bx + np.linspace(-0.46 * ms, 0.46 * ms, 200)
+                top, spans = scene.substrate.side(tr, xs[0], xs[-1], xs, q_pad)
+                xd, yd = xs - bx + c, np.maximum(lay.y(top - datum), lay.floor)
+                fills.append(np.column_stack([np.r_[xd[0], xd, xd[-1]], np.r_[lay.floor, yd, lay.floor]]))
+                lines.append(np.column_stack([xd, yd]))
+                for xa, xb, mu in spans if p.micro_alpha > 0 else ():  # the micro-patches' friction, as the pads'
+                    m = (xs >= xa) & (xs <= xb)
+                    if m.sum() >= 2:
+                        band.append(np.vstack([np.column_stack([xd[m], yd[m]]),
+                                               np.column_stack([xd[m], yd[m] - 0.08])[::-1]]))
+                        mus.append(mu)
+                px = body.position.x - bx + c
+                arc = cap_outline(px, body.position.y - datum, r2, hc)
+                arc[:, 1] = lay.y(arc[:, 1])
+                y_top = arc[-1, 1] + 0.5 * lay.body
+                pucks.append(np.vstack([arc, [(arc[-1, 0], y_top), (arc[0, 0], y_top)]]))
+                springs.append(zigzag((px, y_top), (px, arm_y), coils=3, width=0.08 * ms))
+        shapes["friction"][2]["array"] = np.array(mus)
+        shapes["micro_arm"] = ("segments", arms, {"colors": "0.3", "linewidths": 1.2, "zorder": 3})
+        shapes["micro_springs"] = ("segments", springs, {"colors": "tab:pink", "linewidths": 0.9, "zorder": 3,
+                                                         "label": f"micro-pad normal spring {p.micro_k_normal:.4g} N/m"})
+        shapes["micro_pads"] = ("polys", pucks, {"facecolors": "gold", "edgecolors": "k", "linewidths": 0.6,
+                                                 "zorder": 4, "label": f"micro-pad (radius {p.micro_radius * 1e3:.3g} mm)"})
+        return shapes
+
+    def side_note(self, lay):
+        return (f"pads 1-{lay.n_show} of {self.spec.N}, each over its own track, with its {self.spec.n_micro} micro-pads "
+                "over theirs")
+
     def view(self, scene):
         """The whole block (every pad on its track, as "tracks" draws it) and a second panel enlarging column 1:
         its pad, micro-pads and micro-tracks, 40 a2 either side of the block."""

@@ -2,6 +2,9 @@
 redistribution: the block's weight is shared by whichever feet stand on asperities; section 7)."""
 from __future__ import annotations
 
+import math
+
+import numpy as np
 import pymunk
 
 from .. import units as U
@@ -16,6 +19,17 @@ class Sole(Arrangement):
     name = "sole"
     Spec = PadSpec
     guided = False
+
+    preloaded = False  # relaxed normal springs: the feet that stand on bumps carry the block
+
+    def limits(self):
+        """The feet's tangential springs and contact thickness (the mean foot load), and run.dt against the block's
+        vertical mode on its N normal springs."""
+        from ..regime import dt_limit
+
+        p, M = self.spec, self.sc.block.M
+        return super().limits() + [dt_limit("run.dt", self.sc, math.sqrt(p.N * p.k_normal / M), p.N * p.c_normal / M,
+                                            f"the block on its {p.N} normal foot springs")]
 
     def contact_width(self):
         return self.spec.N * self.spec.foot_length
@@ -57,6 +71,62 @@ class Sole(Arrangement):
     def maintain(self, scene):
         scene.tracks[0].maintain(scene.block.position.x, scene.ahead, scene.behind)
 
+    def side_layout(self, scene):
+        """The whole sole over its one track, at the exaggeration that shows h_max at about half a display mm."""
+        from ..side_view import SideLayout, nice_exaggeration
+
+        p = self.spec
+        relief = scene.substrate.relief(p.radius) * U.LENGTH
+        E = nice_exaggeration(relief, 0.5)
+        w = scene.width
+        hc = min(p.radius * U.LENGTH, 0.3 / E)
+        lay = SideLayout(E=E, slot=w / p.N, n_show=p.N, contact=E * (relief + hc), body=0.025 * w,
+                         spring=0.1 * w, block=0.05 * w, floor=-0.04 * w)
+        lay.x0 = np.zeros(p.N)  # one continuous track: true positions, no slots
+        return lay
+
+    def side(self, scene, lay, q_pad):
+        """The feet as pymunk has them (capsules: flat undersides, rounded ends) up to the contact zone's top, their
+        normal springs to the block, and the asperities under them, in true positions across the whole sole."""
+        from ..side_view import capsule_outline, zigzag
+
+        bx = scene.block.position.x
+        tr = scene.tracks[0]
+        half = 0.5 * lay.width + 0.05 * lay.width
+        xs = bx + np.linspace(-half, half, 2000)
+        top, _ = scene.substrate.side(tr, xs[0], xs[-1], xs, q_pad)
+        xd = xs - bx
+        yd = np.maximum(lay.y(top - tr.y), lay.floor)
+        fill = np.column_stack([np.r_[xd[0], xd, xd[-1]], np.r_[lay.floor, yd, lay.floor]])
+        feet, springs = [], []
+        R = self.spec.radius * U.LENGTH
+        hc = min(R, 0.3 / lay.E)
+        for pad in scene.pads:
+            for sh in pad.shapes:
+                a, b = pad.local_to_world(sh.a), pad.local_to_world(sh.b)
+                out = capsule_outline(a.x - bx, b.x - bx, 0.5 * (a.y + b.y) - tr.y, R, hc)
+                out[:, 1] = lay.y(out[:, 1])
+                y_top = out[0, 1] + lay.body
+                feet.append(np.vstack([out, [(out[-1, 0], y_top), (out[0, 0], y_top)]]))
+                xm = 0.5 * (a.x + b.x) - bx
+                springs.append(zigzag((xm, y_top), (xm, lay.block_bottom), coils=4, width=0.3 * lay.slot))
+        return {
+            "substrate": ("polys", [fill], {"facecolors": "0.82", "edgecolors": "none", "zorder": 1,
+                                            "label": "substrate: asperity caps (pymunk's circles)"}),
+            "surface": ("segments", _pieces(xd, yd, yd > lay.floor), {"colors": "k", "linewidths": 0.8, "zorder": 2}),
+            "normal": ("segments", springs, {"colors": "tab:purple", "linewidths": 0.8, "zorder": 3,
+                                             "label": f"normal spring k_normal = {self.spec.k_normal:.4g} N/m"}),
+            "pads": ("polys", feet, {"facecolors": "tab:orange", "edgecolors": "k", "linewidths": 0.6, "zorder": 4,
+                                     "label": f"foot ({self.spec.foot_length * 1e3:.3g} mm, rounded ends)"}),
+            "block": ("rect", ((-lay.width / 2, lay.block_bottom), lay.width, lay.block),
+                      {"facecolor": "tab:blue", "alpha": 0.45, "edgecolor": "tab:blue", "zorder": 2,
+                       "label": f"block M = {self.sc.block.M:.4g} kg, free vertically"}),
+        }
+
+    def side_note(self, lay):
+        return (f"the whole sole: {self.spec.N} feet on one track (tangential springs k0 = {self.spec.k0:.4g} N/m not "
+                "drawn)")
+
     def view(self, scene):
         """Micrometre relief under a centimetre sole: the axes zoom onto the interface."""
         h = scene.substrate.top()
@@ -76,3 +146,10 @@ class Sole(Arrangement):
                 feet.append([(a.x, bot), (b.x, bot), (b.x, top), (a.x, top)])
         return {"feet": ("polys", feet, {"facecolors": (0.84, 0.15, 0.16, 0.35), "edgecolors": "tab:red",
                                          "linewidths": 1.5, "zorder": 3, "label": "foot of the sole"})}
+
+
+def _pieces(x, y, keep) -> list:
+    """The runs of the polyline (x, y) where ``keep`` holds, as (n, 2) arrays: the caps' envelope drawn where a cap
+    reaches above the drawing's base, none between (the scene has no floor there)."""
+    edges = np.flatnonzero(np.diff(np.r_[0, keep.astype(int), 0]))
+    return [np.column_stack([x[a:b], y[a:b]]) for a, b in zip(edges[::2], edges[1::2]) if b - a >= 2]

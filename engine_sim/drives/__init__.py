@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import ClassVar
 
+import numpy as np
 import pymunk
 
 from .. import units as U
@@ -54,6 +55,11 @@ class Drive:
         if cls.constant_force and not sc.steady_velocity > 0:
             raise ValueError(f"drive force {sc.drive_force:.4g} N does not exceed the kinetic friction "
                              f"{sc.pads.N * sc.column_force(0.0):.4g} N: the block would not slide")
+
+    def limits(self) -> list:
+        """The drive's regime limits (:class:`engine_sim.regime.Limit`; none for a constant force, whose far spring
+        changes by 1e-6 over a metre)."""
+        return []
 
     def load_factor(self) -> float:
         """The share of the block's weight pressing on the pads (cos theta on a slope)."""
@@ -106,6 +112,21 @@ class Drive:
     def draw(self, scene, lo: float, hi: float) -> dict:
         """Shapes to draw (see ``render.py``: name -> (kind, data, style)), scene units."""
         return {}
+
+    def side(self, scene, lay) -> dict:
+        """The side view's drive (display mm): an arrow on the block's front, labelled with the force."""
+        x0, y = lay.width / 2 - 0.05 * lay.slot, lay.block_bottom + 0.5 * lay.block
+        x1 = x0 + lay.drive_len
+        head = 0.06 * lay.slot
+        return {"drive": ("segments", [np.array([(x0, y), (x1, y)]), np.array([(x1 - head, y + head / 2), (x1, y),
+                                                                               (x1 - head, y - head / 2)])],
+                          {"colors": "k", "linewidths": 1.5, "zorder": 5}),
+                "drive_label": ("text", ((x0 + 0.05 * lay.slot, lay.top + 0.05), f"drive: {self.side_label()}"),
+                                {"fontsize": 8, "ha": "right", "va": "bottom", "zorder": 5})}
+
+    def side_label(self) -> str:
+        """The drive in a few words for the side view."""
+        return f"F = {self.force():.3g} N"
 
     def describe(self) -> dict:
         return {}

@@ -33,6 +33,9 @@ class Leonardo(Drive):
     Spec = LeonardoSpec
     positive = frozenset({"v", "hanging_mass", "rope_length"})
 
+    def side_label(self):
+        return f"rope to a hanging mass {self.extra_mass:.3g} kg: F = {self.force():.3g} N"
+
     def force(self):
         s = self.spec
         if s.hanging_mass is not None:

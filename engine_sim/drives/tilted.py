@@ -31,5 +31,8 @@ class Tilted(Drive):
     def load_factor(self):
         return math.cos(self.spec.theta) if self.spec.theta else 1.0
 
+    def side_label(self):
+        return f"slope {self.spec.theta:.3g} rad: F = M g sin(theta) = {self.force():.3g} N"
+
     def force(self):
         return self.sc.block.M * G * math.sin(self.spec.theta)

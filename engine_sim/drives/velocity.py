@@ -1,7 +1,10 @@
 """A constant pulling speed: the block is pulled through a spring whose far end moves at v."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+
+import numpy as np
 
 import pymunk
 
@@ -26,6 +29,30 @@ class Velocity(Drive):
     Spec = VelocitySpec
     positive = frozenset({"v", "k_drive"})
     constant_force = False
+
+    def limits(self):
+        """run.dt against the drive spring on the block (omega = sqrt(k_drive / M))."""
+        from ..regime import dt_limit
+
+        return [dt_limit("run.dt", self.sc, math.sqrt(self.spec.k_drive / self.sc.block.M), 0.0,
+                         "the block on its drive spring")]
+
+    def side(self, scene, lay):
+        """The drive spring (schematic length) from the block's front to its anchor, which moves at v."""
+        from ..side_view import zigzag
+
+        x0, y = lay.width / 2 - 0.05 * lay.slot, lay.block_bottom + 0.5 * lay.block
+        x1 = x0 + lay.drive_len
+        d = 0.12 * lay.block
+        shapes = super().side(scene, lay)
+        shapes["drive"] = ("segments", [zigzag((x0, y), (x1, y), coils=4, width=0.15 * lay.block),
+                                        np.array([(x1, y - d), (x1 + 2 * d, y - d), (x1 + 2 * d, y + d), (x1, y + d),
+                                                  (x1, y - d)])],
+                           {"colors": "k", "linewidths": 1.2, "zorder": 5})
+        return shapes
+
+    def side_label(self):
+        return f"pulled at v = {self.spec.v * 1e3:.3g} mm/s through k_drive = {self.spec.k_drive:.4g} N/m"
 
     def force(self):
         return self.sc.pads.N * self.sc.column_force(self.spec.v)

@@ -10,6 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import ClassVar
 
+import numpy as np
+
 from .. import units as U
 from ..parts import Registry
 
@@ -74,6 +76,11 @@ class Substrate:
         """The highest point of the substrate above its datum (mm): feet on a sole start above it."""
         return 0.0
 
+    def pad_depth(self, fraction: float, pad_radius: float) -> float:
+        """How far below the track's datum (m) the lowest point of a pad of ``pad_radius`` (m) follows the track
+        on ``fraction`` of its path (0: a flat track; engine_sim.regime compares it with the pad's deflection)."""
+        return 0.0
+
     def floor_depth(self) -> float:
         """How far below its surface a particle may sit on this track (mm; pits)."""
         return 0.0
@@ -94,6 +101,23 @@ class Substrate:
     def x_start(self, scene) -> float:
         """Where a track begins (mm)."""
         return -4.0 * self.sc.pads.radius * U.LENGTH
+
+    def relief(self, pad_radius: float) -> float:
+        """The height range a side view must show (m): the depth the pads follow on 99 % of their path, twice."""
+        return 2 * self.pad_depth(0.01, pad_radius)
+
+    def side(self, track, lo: float, hi: float, xs, q_pad: float) -> tuple:
+        """The side view of a track within [lo, hi] (scene units): (the surface a pad touches at the points xs,
+        the upper envelope of the track's shapes, -inf where none reaches; spans (x0, x1, mu) of the friction
+        along it)."""
+        from ..side_view import capsule_envelope
+
+        segs = [sh for sh in track.segments if sh.b.x >= lo - 1 and sh.a.x <= hi + 1]
+        a = np.array([(sh.a.x, sh.a.y) for sh in segs]).reshape(-1, 2)
+        b = np.array([(sh.b.x, sh.b.y) for sh in segs]).reshape(-1, 2)
+        r = segs[0].radius if segs else 0.0
+        spans = [(sh.a.x, sh.b.x, sh.friction * q_pad) for sh in segs if sh.b.x > sh.a.x]
+        return capsule_envelope(a, b, r, xs), spans
 
     def draw(self, track, lo: float, hi: float, q_pad: float):
         """Polylines (lists of (x, y) points, mm) and their friction coefficients within [lo, hi]."""

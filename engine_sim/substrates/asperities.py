@@ -44,6 +44,10 @@ class Asperities(Substrate):
         if p.foot_length < 2.5 * p.radius:
             raise ValueError(f"pads.foot_length = {p.foot_length!r} m must exceed 2.5 pad radii = {2.5 * p.radius:.3g} m")
 
+    def pad_depth(self, fraction, pad_radius):
+        """The asperity tops reach h_max above the datum; a foot between them follows them down to it (m)."""
+        return self.spec.h_max
+
     def top(self):
         return self.spec.h_max * U.LENGTH
 
@@ -58,6 +62,19 @@ class Asperities(Substrate):
         s = self.spec
         return BumpTrack(space, y, s.cell * U.LENGTH, s.p, s.bump_radius * U.LENGTH, s.h_max * U.LENGTH, mu,
                          shape_filter, rng, x_start=x_start)
+
+    def relief(self, pad_radius):
+        return self.spec.h_max
+
+    def side(self, track, lo, hi, xs, q_pad):
+        """The bumps as pymunk has them, whole circles: their upper envelope (below the datum between bumps, where
+        the scene has no floor), one friction everywhere."""
+        from ..side_view import circle_envelope
+
+        caps = [sh for sh in track.segments if abs(sh.offset.x - 0.5 * (lo + hi)) < 0.5 * (hi - lo) + sh.radius]
+        c = np.array([(sh.offset.x, sh.offset.y) for sh in caps]).reshape(-1, 2)
+        r = np.array([sh.radius for sh in caps])
+        return circle_envelope(c, r, xs), []
 
     def draw(self, track, lo, hi, q_pad):
         """Each bump as its cap above the datum (the part of its circle a foot can touch, closed on the datum

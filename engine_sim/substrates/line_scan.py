@@ -272,6 +272,12 @@ class LineScan(Substrate):
         self.profile = read_profile(spec, scenario.pads.radius)
         self.dx, self.h = self.profile.dx * U.LENGTH, self.profile.h * U.LENGTH
 
+    def pad_depth(self, fraction, pad_radius):
+        """The depth below the datum exceeded on ``fraction`` of the pad's path over the track's profile (m; the
+        path of the lowest point of the pad's disc, with the track's thickness, :func:`pad_path`)."""
+        path = pad_path(self.profile.h, self.profile.dx, pad_radius + self.spec.segment_radius, self.spec.extend)
+        return max(0.0, -float(np.quantile(path, fraction)))
+
     def notes(self) -> list:
         return [self.profile.note]
 

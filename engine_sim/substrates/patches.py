@@ -1,6 +1,7 @@
 """Friction patches on flat tracks (model I's substrate, section 3), optionally with cavities for wear particles."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from .. import units as U
@@ -38,6 +39,20 @@ class Patches(Substrate):
                              f"(got {s.pit_p!r}, {s.pit_width_min!r}, {s.pit_width_max!r} m)")
         if s.alpha >= 2:
             raise ValueError(f"substrate.alpha = {s.alpha!r} must be < 2 (patch friction stays positive)")
+
+    def pad_depth(self, fraction, pad_radius):
+        """The dip of a pad into the widest pit: it rests on the pit's rims (a disc of the pad's plus the walls'
+        radius across the opening) or, in a pit wider than that disc, on its floor (m)."""
+        s = self.spec
+        if s.pit_p <= 0:
+            return 0.0
+        r, half = pad_radius + s.segment_radius, s.pit_width_max / 2
+        dip = r - math.sqrt(r * r - half * half) if half < r else s.pit_depth
+        return min(dip, s.pit_depth)
+
+    def relief(self, pad_radius):
+        """Pits (their depth) or a flat track; grains need no exaggeration of their own."""
+        return self.spec.pit_depth if self.spec.pit_p > 0 else 0.0
 
     def floor_depth(self):
         return (self.spec.pit_depth if self.spec.pit_p > 0 else 0.0) * U.LENGTH
