@@ -26,12 +26,9 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["ProfileError", "LineScanFile", "read_line_scan", "LENGTH_UNITS", "unit_factor"]
+from .quantities import UnitError, parse_unit, split_header
 
-# metres per unit; the micro sign (U+00B5) and the Greek mu (U+03BC) are both written for micro
-LENGTH_UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "micron": 1e-6,
-                "microns": 1e-6, "micrometer": 1e-6, "micrometre": 1e-6, "nm": 1e-9, "A": 1e-10, "Å": 1e-10,
-                "Angstrom": 1e-10, "angstrom": 1e-10, "pm": 1e-12}
+__all__ = ["ProfileError", "LineScanFile", "read_line_scan", "unit_factor"]
 
 _MIN_POINTS = 8
 
@@ -58,8 +55,8 @@ class LineScanFile:
 
 
 def unit_factor(unit: str) -> float:
-    """Metres per ``unit`` (KeyError if not a length unit)."""
-    return LENGTH_UNITS[unit]
+    """Metres per ``unit`` (any length unit pint reads, :mod:`engine_sim.quantities`; a UnitError otherwise)."""
+    return parse_unit(unit, "length").factor
 
 
 def _fail(path, msg, line=None):
@@ -113,21 +110,18 @@ def _numbers(cells) -> tuple | None:
         return None
 
 
-_BRACKETED = re.compile(r"[\(\[\{]\s*([^\)\]\}]*?)\s*[\)\]\}]")
-_SUFFIX = re.compile(r"(?:^|[_\s/])(" + "|".join(sorted(map(re.escape, LENGTH_UNITS), key=len, reverse=True)) + r")$")
-
-
 def _unit_in_name(name: str):
-    """(unit, unknown) stated by a column name: a bracketed unit ('Lateral(µm)', 'z [nm]'), a trailing one
-    ('x_mm', 'Lateral um'); ``unknown`` is a bracketed token that is not a length unit ('Height (V)')."""
-    for tok in _BRACKETED.findall(name):
-        tok = tok.strip()
-        if tok in LENGTH_UNITS:
-            return tok, None
-        if tok:
-            return None, tok
-    m = _SUFFIX.search(name.strip())
-    return (m.group(1), None) if m else (None, None)
+    """(unit, unknown) stated by a column name (:func:`engine_sim.quantities.split_header`): a bracketed unit
+    ('Lateral(µm)', 'z [nm]') or a trailing one ('x_mm', 'Lateral um', 'Raw Micrometer'); ``unknown`` is a stated
+    unit that is not a length ('Height (V)')."""
+    _, unit, _ = split_header(name)
+    if unit is None:
+        return None, None
+    try:
+        parse_unit(unit, "length")
+    except UnitError:
+        return None, unit
+    return unit, None
 
 
 def _read_table(path: Path, text: str, encoding: str):
@@ -193,8 +187,8 @@ def _header_units(path, header):
     for col, name in enumerate(cells[:2]):
         unit, unknown = _unit_in_name(name)
         if unknown is not None:
-            raise _fail(path, f"column {col + 1} ({name!r}) is in {unknown!r}, not a length unit (known: "
-                              f"{', '.join(u for u in LENGTH_UNITS if len(u) <= 2 or u == 'Angstrom')})", line)
+            raise _fail(path, f"column {col + 1} ({name!r}) is in {unknown!r}, not a length unit (any length unit "
+                              "pint reads: m, mm, um, µm, nm, A, in, ...)", line)
         out.append(unit)
     return out + [None] * (2 - len(out))
 
@@ -233,12 +227,20 @@ def _st_units(path: Path):
 
 
 # ----------------------------------------------------------------------------------------------------- the reader
+def _length_factor(unit: str) -> float:
+    """Metres per ``unit`` (engine_sim.quantities: any length unit pint reads; A is the angstrom)."""
+    return parse_unit(unit, "length").factor
+
+
 def _resolve_unit(path, what, file_unit, declared, line):
     field_name = "x_unit" if what == "positions" else "height_unit"
-    if file_unit is not None and file_unit not in LENGTH_UNITS:
-        raise _fail(path, f"the file gives the {what} in {file_unit!r}, not a length unit this reader knows", line)
     if file_unit is not None:
-        if declared and LENGTH_UNITS[declared] != LENGTH_UNITS[file_unit]:
+        try:
+            _length_factor(file_unit)
+        except UnitError as e:
+            raise _fail(path, f"the file gives the {what} in {file_unit!r}: {e.reason}", line) from None
+    if file_unit is not None:
+        if declared and not np.isclose(_length_factor(declared), _length_factor(file_unit), rtol=1e-12, atol=0):
             raise _fail(path, f"the header gives the {what} in {file_unit} but substrate.{field_name} = "
                               f"{declared!r}; remove substrate.{field_name} or correct it", line)
         return file_unit, f"the file (line {line})"
@@ -314,7 +316,7 @@ def read_line_scan(path, x_unit: str = "", height_unit: str = "") -> LineScanFil
             xu, xfrom = _resolve_unit(path, "positions", fx, x_unit, hline)
             hu, hfrom = _resolve_unit(path, "heights", fh, height_unit, hline)
             reader = f"table ({enc} text, data lines {rows[0]}-{rows[-1]})"
-    x, h = xy[:, 0] * LENGTH_UNITS[xu], xy[:, 1] * LENGTH_UNITS[hu]
+    x, h = xy[:, 0] * _length_factor(xu), xy[:, 1] * _length_factor(hu)
     where = (lambda i: int(rows[i])) if rows is not None else (lambda i: None)
     point = (lambda i: "") if rows is not None else (lambda i: f"point {i + 1}: ")
     if x.size < _MIN_POINTS:

@@ -95,7 +95,7 @@ def cmd_analyze(args) -> int:
     force = args.force_col is not None
     _check_analyze_numbers(args)
     if not force:
-        for flag in ("normal_col", "direction_col", "speed", "cut", "force_unit"):
+        for flag in ("normal_col", "direction_col", "speed", "cut", "force_unit", "mu_col", "contact_area"):
             if getattr(args, flag) is not None:
                 raise UserError(f"--{flag.replace('_', '-')} applies to force data only (give --force-col)")
     if len(args.data) > 1:
@@ -145,7 +145,7 @@ def _read_record(path, args):
         data = read_measured(path, time_col=args.time_col, x_col=args.x_col, force_col=args.force_col,
                              normal_col=args.normal_col, direction_col=args.direction_col, time_unit=args.time_unit,
                              x_unit=args.x_unit, force_unit=args.force_unit, require_x=args.force_col is None,
-                             resample=args.resample)
+                             resample=args.resample, mu_col=args.mu_col, contact_area=args.contact_area)
     except DataFileError as e:
         raise UserError(str(e)) from None
     if data.warning:

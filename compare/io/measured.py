@@ -27,17 +27,10 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = [
-    "MeasuredData", "DataFileError", "read_measured", "read_displacement_csv", "units_line",
-    "TIME_UNITS", "X_UNITS", "FORCE_UNITS",
-]
+from engine_sim.quantities import UnitError, parse_unit, split_header
 
-TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "min": 60.0, "h": 3600.0}
-X_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "nm": 1e-9}
-FORCE_UNITS = {"N": 1.0, "mN": 1e-3, "kN": 1e3}
-_KINDS = {"time": TIME_UNITS, "x": X_UNITS, "force": FORCE_UNITS}
-_ALIASES = {"µm": "um", "μm": "um", "micron": "um", "microns": "um", "µs": "us", "μs": "us", "sec": "s",
-            "msec": "ms", "newton": "N"}
+__all__ = ["MeasuredData", "DataFileError", "read_measured", "read_displacement_csv", "units_line"]
+
 _JITTER_OK = 1e-6  # relative step spread below which no resampling is needed
 _MIN_ROWS = 64
 _SEPARATORS = (";", "\t", ",")
@@ -65,6 +58,7 @@ class MeasuredData:
     F: np.ndarray | None = None
     N: np.ndarray | None = None
     direction: np.ndarray | None = None
+    mu: np.ndarray | None = None  # a friction-coefficient column as written (a pure number)
     units: dict = field(default_factory=dict)
     layout: dict = field(default_factory=dict)
     timeline: object = None  # compare.analysis.timeline.Timeline of the time stamps as written
@@ -77,32 +71,16 @@ class MeasuredData:
 
 
 # ----------------------------------------------------------------------------- parsing helpers
-def _norm_unit(u: str) -> str:
-    u = u.strip().strip("[]()").strip()
-    return _ALIASES.get(u, _ALIASES.get(u.lower(), u))
-
-
-def _unit_kind(u: str) -> str | None:
-    u = _norm_unit(u)
-    for kind, table in _KINDS.items():
-        if u in table:
-            return kind
-    return None
-
-
-_BRACKET = re.compile(r"^(?P<name>.*?)\s*[\[(](?P<unit>[^\])]+)[\])]\s*$")
-_SLASH = re.compile(r"^(?P<name>.+?)\s*/\s*(?P<unit>[^/\s]+)$")
-_UNDERSCORE = re.compile(r"^(?P<name>.+)_(?P<unit>[^_]+)$")
-
-
-def _split_header(h: str) -> tuple[str, str | None]:
-    """(bare name, unit or None) from a column header: ``x [mm]``, ``F(N)``, ``t/s``, ``x_um``."""
-    h = h.strip()
-    for pat in (_BRACKET, _SLASH, _UNDERSCORE):
-        m = pat.match(h)
-        if m and _unit_kind(m.group("unit")) is not None:
-            return m.group("name").strip(), _norm_unit(m.group("unit"))
-    return h, None
+def _unitish(cell: str) -> bool:
+    """Whether a units-row cell reads as a unit (blank, a pure-number mark, or any unit pint knows)."""
+    c = cell.strip().strip("[](){}").strip()
+    if not c:
+        return True
+    try:
+        parse_unit(c, ("length", "force", "stress", "time", "velocity", "dimensionless"))
+        return True
+    except UnitError as e:
+        return "not a unit pint knows" not in str(e)
 
 
 def _to_float(cell: str, decimal_comma: bool) -> float:
@@ -210,8 +188,8 @@ def _table(lines: list, src: str) -> _Table:
     if above:
         last = above[-1]
         cells = _split(lines[last], sep)
-        unitish = [(not c) or _unit_kind(c) is not None or (c[0] in "[(" and c[-1] in "])") for c in cells]
-        known = sum(1 for c in cells if c and _unit_kind(c) is not None)
+        unitish = [_unitish(c) or (c[0] in "[(" and c[-1] in "])") for c in cells]
+        known = sum(1 for c in cells if c and _unitish(c))
         if len(cells) == tab.width and len(above) >= 2 and known >= 1 and (all(unitish) or 2 * known >= tab.width):
             units_i = last
             header_i = above[-2]
@@ -226,7 +204,7 @@ def _table(lines: list, src: str) -> _Table:
         raise DataFileError(f"{src}, line {header_i + 1}: the header has {len(tab.header)} columns, the data "
                             f"{tab.width} (separator {sep!r})")
     tab.units_row = _split(lines[units_i], sep) if units_i is not None else [""] * tab.width
-    tab.parsed = [_split_header(h) for h in tab.header]
+    tab.parsed = [split_header(h) for h in tab.header]
     return tab
 
 
@@ -246,32 +224,58 @@ def _find(tab: _Table, name: str | None, default: int | None, what: str) -> int 
                         f"{', '.join(tab.header)}")
 
 
-def _unit_scale(tab: _Table, k: int, kind: str, given: str | None, flag: str, key: str) -> float:
-    """The SI factor of column ``k``, from its header, the units row or the ``given`` argument (exactly one of
-    them, or agreeing ones); records the choice in ``tab.units[key]``."""
+_ROLE = {"time": "time", "x": "length", "force": "force", "mu": "dimensionless"}
+_EXAMPLES = {"time": "s, ms, min", "length": "m, mm, um, in", "force": "N, mN, gf, kip"}
+
+
+def _unit_scale(tab: _Table, k: int, kind: str, given: str | None, flag: str, key: str,
+                area: float | None = None) -> float:
+    """The SI factor of column ``k`` (role ``kind``: time, x, force or mu), from its header, the units row or the
+    ``given`` option (engine_sim.quantities: pint, with the column's role fixing the dimension); an option that
+    differs from a unit the file states is an error, never an override. A stress on a force column becomes a
+    force only with the contact ``area`` (m^2). Records the choice in ``tab.units[key]``."""
     src, header = tab.src, tab.header
-    hname, hunit = tab.parsed[k]
-    origin = "header"
-    if hunit is None and tab.units_row[k]:
-        ru = _norm_unit(tab.units_row[k])
-        if _unit_kind(ru) is None:
-            raise DataFileError(f"{src}, line {tab.units_i + 1}: unit {tab.units_row[k]!r} of column {header[k]!r} "
-                                f"is not a {kind} unit ({', '.join(_KINDS[kind])})")
-        hunit, origin = ru, "units row"
-    line = (tab.units_i if origin == "units row" else tab.header_i) + 1
-    if hunit is not None and _unit_kind(hunit) != kind:
-        raise DataFileError(f"{src}, line {line}: column {header[k]!r} is in {hunit}, not a {kind} unit "
-                            f"({', '.join(_KINDS[kind])})")
-    g = None if given is None else _norm_unit(given)
-    if hunit is not None and g is not None and g != hunit:
-        raise DataFileError(f"{src}, line {line}: the {origin} gives column {header[k]!r} in {hunit} but {flag} "
-                            f"{g} was given")
-    if hunit is None and g is None:
+    role = _ROLE[kind]
+    roles = (role, "stress") if role == "force" else (role,)
+    _, hunit, _ = tab.parsed[k]
+    origin, line = "header", tab.header_i + 1
+    if hunit is None and tab.units_row[k].strip():
+        hunit, origin, line = tab.units_row[k], "units row", tab.units_i + 1
+    file_u = given_u = None
+    if hunit is not None:
+        try:
+            file_u = parse_unit(hunit, roles)
+        except UnitError as e:
+            raise DataFileError(f"{src}, line {line}: column {header[k]!r} is in {e.unit}, {e.reason}") from None
+    if given is not None:
+        try:
+            given_u = parse_unit(given, roles)
+        except UnitError as e:
+            raise DataFileError(f"{flag} {given}: {e}") from None
+    if file_u is not None and given_u is not None and (
+            file_u.role != given_u.role or not math.isclose(file_u.factor, given_u.factor, rel_tol=1e-12)):
+        raise DataFileError(f"{src}, line {line}: the {origin} gives column {header[k]!r} in {file_u.written} "
+                            f"but {flag} {given} was given; an option never overrides a unit the file states")
+    if file_u is None and given_u is None:
+        if role == "dimensionless":  # a friction coefficient is a pure number
+            tab.units[key] = {"column": header[k], "unit": "1", "from": "role"}
+            return 1.0
         raise DataFileError(f"{src}, line {tab.header_i + 1}: column {header[k]!r} names no unit (no units row "
-                            f"either); give {flag} ({', '.join(_KINDS[kind])})")
-    u = hunit if hunit is not None else g
-    tab.units[key] = {"column": header[k], "unit": u, "from": origin if hunit is not None else "argument"}
-    return _KINDS[kind][u]
+                            f"either); give {flag} (any {role} unit: {_EXAMPLES[role]})")
+    u = file_u if file_u is not None else given_u
+    factor = u.factor
+    entry = {"column": header[k], "unit": u.written, "from": origin if file_u is not None else "argument"}
+    if u.rule:
+        entry["rule"] = u.rule
+    if u.role == "stress":
+        if area is None:
+            raise DataFileError(f"{src}, line {line}: column {header[k]!r} is a stress ({u.written}), not a "
+                                "force; a stress becomes a force only with the contact area: give --contact-area "
+                                "(m^2)")
+        factor *= area
+        entry["rule"] = f"stress x contact area {area:g} m^2"
+    tab.units[key] = entry
+    return factor
 
 
 def _rows(tab: _Table, cols: dict) -> tuple[dict, list]:
@@ -352,7 +356,8 @@ def _uniform(src: str, t: np.ndarray, arr: dict, line_of: list, resample: float 
 def read_measured(path, *, time_col: str | None = None, x_col: str | None = None, force_col: str | None = None,
                   normal_col: str | None = None, direction_col: str | None = None,
                   time_unit: str | None = None, x_unit: str | None = None, force_unit: str | None = None,
-                  require_x: bool = True, resample: float | None = None) -> MeasuredData:
+                  require_x: bool = True, resample: float | None = None, mu_col: str | None = None,
+                  contact_area: float | None = None) -> MeasuredData:
     """Read a measured record: time and displacement and/or friction force (optional normal force, direction).
 
     Parameters
@@ -362,9 +367,15 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
     time_col, x_col, force_col, normal_col, direction_col : str, optional
         Column names (the full header text or its name without the unit: ``"F"`` finds ``F [N]``). Defaults:
         time is the first column; with ``require_x`` and no ``force_col``, displacement is the second.
+    mu_col : str, optional
+        A friction-coefficient column (a pure number, or a units row's ``%``): analysed as mu.
     time_unit, x_unit, force_unit : str, optional
-        Units, required when neither the header nor a units row names them (see :data:`TIME_UNITS`,
-        :data:`X_UNITS`, :data:`FORCE_UNITS`). ``normal_col`` uses the force unit rules.
+        Units, required when neither the header nor a units row names them: any unit pint reads whose dimension
+        fits the column (``s``, ``ms``; ``mm``, ``in``; ``N``, ``gf``, ``kip``); a unit the file states and a
+        different one given here is an error. ``normal_col`` uses the force unit rules; a mass unit on a force
+        column is its weight (``g`` is gram-force, :mod:`engine_sim.quantities`).
+    contact_area : float, optional
+        The contact area (m^2) that turns a stress column (``MPa``) into a force; without it a stress is refused.
     resample : float, optional
         A uniform step (s) to put the whole record on, behind a stated anti-alias filter, when its time stamps
         break (rate changes, gaps, repeated or backward stamps); without it such a record is returned as written,
@@ -382,22 +393,24 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
         raise DataFileError(f"the resampling step must be a positive number of seconds (got {resample!r})")
     path = Path(path)
     src = str(path)
-    for kind, u in (("time", time_unit), ("x", x_unit), ("force", force_unit)):
-        if u is not None and _norm_unit(u) not in _KINDS[kind]:
-            raise DataFileError(f"{kind} unit must be one of {', '.join(_KINDS[kind])} (got {u!r})")
+    if contact_area is not None and not (contact_area > 0 and math.isfinite(contact_area)):
+        raise DataFileError(f"the contact area must be a positive number of m^2 (got {contact_area!r})")
     tab = _table(_read_lines(path, src), src)
     it = _find(tab, time_col, 0, "time")
     ix = _find(tab, x_col, 1 if (require_x and force_col is None) else None, "displacement")
     iF = _find(tab, force_col, None, "force")
     iN = _find(tab, normal_col, None, "normal force")
     iD = _find(tab, direction_col, None, "direction")
+    iM = _find(tab, mu_col, None, "friction coefficient")
     cols = {"t": (it, _unit_scale(tab, it, "time", time_unit, "--time-unit", "time"))}
     if ix is not None:
         cols["x"] = (ix, _unit_scale(tab, ix, "x", x_unit, "--x-unit", "x"))
     if iF is not None:
-        cols["F"] = (iF, _unit_scale(tab, iF, "force", force_unit, "--force-unit", "force"))
+        cols["F"] = (iF, _unit_scale(tab, iF, "force", force_unit, "--force-unit", "force", contact_area))
     if iN is not None:
-        cols["N"] = (iN, _unit_scale(tab, iN, "force", force_unit, "--force-unit", "normal"))
+        cols["N"] = (iN, _unit_scale(tab, iN, "force", force_unit, "--force-unit", "normal", contact_area))
+    if iM is not None:
+        cols["mu"] = (iM, _unit_scale(tab, iM, "mu", None, "--mu-col", "mu"))
     if iD is not None:
         cols["direction"] = (iD, 1.0)
     values, line_of = _rows(tab, cols)
@@ -409,6 +422,7 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
               "first_data_line": tab.first + 1}
     return MeasuredData(t=t - t[0], x=arr.get("x"), source=src, resampled=resampled, warning=warning,
                         n_rows=len(line_of), F=arr.get("F"), N=arr.get("N"), direction=arr.get("direction"),
+                        mu=arr.get("mu"),
                         units=tab.units, layout=layout, timeline=timeline)
 
 
@@ -420,8 +434,9 @@ def read_displacement_csv(path, time_col: str | None = None, x_col: str | None =
 
 def units_line(data: MeasuredData) -> str:
     """One line saying which unit each column was read in and where the unit came from."""
-    parts = [f"{v['column']!r} in {v['unit']} (from the {v['from']})" if v["from"] != "argument"
-             else f"{v['column']!r} in {v['unit']} (as given)" for v in data.units.values()]
+    said = {"argument": "as given", "role": "a pure number"}
+    parts = [f"{v['column']!r} in {v['unit']} ({said.get(v['from'], 'from the ' + v['from'])}"
+             + (f"; {v['rule']}" if v.get("rule") else "") + ")" for v in data.units.values()]
     line = "read " + ", ".join(parts)
     skipped = (data.layout or {}).get("preamble_lines") or 0
     if skipped:
