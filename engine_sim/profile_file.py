@@ -19,7 +19,6 @@ NPY file states none).
 """
 from __future__ import annotations
 
-import codecs
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -27,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from .quantities import UnitError, parse_unit, split_header
+from .text_file import decode, split_lines
 
 __all__ = ["ProfileError", "LineScanFile", "read_line_scan", "unit_factor"]
 
@@ -65,23 +65,6 @@ def _fail(path, msg, line=None):
 
 
 # ----------------------------------------------------------------------------------------------------- text tables
-def _decode(raw: bytes):
-    """(text, encoding) of a text file, or None for a binary one: a BOM names UTF-8 or UTF-16; else UTF-8 if it
-    decodes, else latin-1 (the micro sign is byte 0xB5 there)."""
-    if raw.startswith(codecs.BOM_UTF8):
-        return raw[3:].decode("utf-8", errors="strict"), "utf-8 (BOM)"
-    if raw.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
-        return raw.decode("utf-16"), "utf-16"
-    if b"\x00" in raw[:4096]:
-        return None
-    try:
-        return raw.decode("utf-8"), "utf-8"
-    except UnicodeDecodeError:
-        text = raw.decode("latin-1")
-        ctrl = sum(1 for c in text[:4096] if ord(c) < 32 and c not in "\r\n\t\f\v")
-        return (None if ctrl > 0.01 * min(len(text), 4096) else (text, "latin-1"))
-
-
 _SEP = re.compile(r"\s*[,;\t]\s*|\s+")
 
 
@@ -126,7 +109,7 @@ def _unit_in_name(name: str):
 
 def _read_table(path: Path, text: str, encoding: str):
     """Positions and heights (file units), their line numbers, the header line and the preamble of a text table."""
-    lines = text.splitlines()  # \n, \r\n and \r alike
+    lines = split_lines(text)  # numbered as grep -n numbers them (CR CR LF is one line end)
     rows, nums, first = [], [], None
     preamble = []
     for i, line in enumerate(lines, 1):
@@ -290,7 +273,7 @@ def read_line_scan(path, x_unit: str = "", height_unit: str = "") -> LineScanFil
         hu, hfrom = _resolve_unit(path, "heights", None, height_unit, None)
         xy, reader, meta = arr.astype(float), "numpy (.npy)", {}
     else:
-        dec = _decode(raw)
+        dec = decode(raw)
         if dec is None:  # a binary instrument format
             t = _surface_topography(path, "not a text table")
             if t.dim != 1:

@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from engine_sim.quantities import UnitError, parse_unit, split_header
+from engine_sim.text_file import decode, split_lines
 
 __all__ = ["MeasuredData", "DataFileError", "read_measured", "read_displacement_csv", "units_line"]
 
@@ -145,16 +146,16 @@ def _read_lines(path: Path, src: str) -> list:
         raise DataFileError(f"{src}: no such file")
     if path.is_dir():
         raise DataFileError(f"{src}: is a folder, not a data file")
-    raw = path.read_bytes()
+    try:
+        raw = path.read_bytes()
+    except OSError as e:
+        raise DataFileError(f"{src}: cannot be read ({e.strerror or e})") from None
     if not raw.strip():
         raise DataFileError(f"{src}: empty file")
-    if b"\x00" in raw[:4096]:
-        raise DataFileError(f"{src}: binary file (NUL bytes), not a text table")
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        text = raw.decode("latin-1")  # instrument exports in Windows code pages (a micro sign as 0xB5)
-    return text.splitlines()
+    dec = decode(raw)  # UTF-8, UTF-16 with a BOM, else latin-1 (a micro sign as 0xB5)
+    if dec is None:
+        raise DataFileError(f"{src}: binary file (NUL bytes or control characters), not a text table")
+    return split_lines(dec[0])  # numbered as grep -n numbers them: CR CR LF is one line end
 
 
 @dataclass
@@ -174,6 +175,13 @@ class _Table:
     parsed: list = field(default_factory=list)
     units_row: list = field(default_factory=list)
     units: dict = field(default_factory=dict)  # what each column was read in and where the unit came from
+
+    def data_lines(self):
+        """Indices of the data rows: from the first numeric row on, blank and ``#`` lines skipped."""
+        for i in range(self.first, len(self.lines)):
+            s = self.lines[i].strip()
+            if s and not s.startswith("#"):
+                yield i
 
 
 def _table(lines: list, src: str) -> _Table:
@@ -278,16 +286,14 @@ def _unit_scale(tab: _Table, k: int, kind: str, given: str | None, flag: str, ke
     return factor
 
 
-def _rows(tab: _Table, cols: dict) -> tuple[dict, list]:
-    """({key: values in the file's units}, [line index of each row]): every data row's numbers, checked finite
-    (the time stamps as written: compare.analysis.timeline reads their breaks)."""
+def _rows(tab: _Table, cols: dict) -> tuple[dict, list, list]:
+    """({key: values in the file's units}, [line index of each row], [line index of each row dropped]): every data
+    row's numbers. A row with NaN in a used column is dropped and counted (its time step then shows as a gap in
+    compare.analysis.timeline, which splits the record there); an infinite or non-numeric value is an error."""
     src, lines = tab.src, tab.lines
     values = {k: [] for k in cols}
-    line_of = []
-    for i in range(tab.first, len(lines)):
-        s = lines[i].strip()
-        if not s or s.startswith("#"):
-            continue
+    line_of, dropped = [], []
+    for i in tab.data_lines():
         cells = _split(lines[i], tab.sep)
         row = {}
         for key, (k, _) in cols.items():
@@ -298,15 +304,20 @@ def _rows(tab: _Table, cols: dict) -> tuple[dict, list]:
             except ValueError:
                 raise DataFileError(f"{src}, line {i + 1}: non-numeric value {cells[k]!r} in column "
                                     f"{tab.header[k]!r}") from None
-            if not math.isfinite(v):
-                raise DataFileError(f"{src}, line {i + 1}: NaN or infinite value in column {tab.header[k]!r}")
+            if math.isinf(v):
+                raise DataFileError(f"{src}, line {i + 1}: infinite value in column {tab.header[k]!r}")
             row[key] = v
+        if any(math.isnan(v) for v in row.values()):
+            dropped.append(i)
+            continue
         for key, v in row.items():
             values[key].append(v)
         line_of.append(i)
     if len(line_of) < _MIN_ROWS:
-        raise DataFileError(f"{src}: only {len(line_of)} data rows; need at least {_MIN_ROWS} for a spectrum")
-    return values, line_of
+        raise DataFileError(f"{src}: only {len(line_of)} data rows"
+                            + (f" ({len(dropped)} more with NaN dropped)" if dropped else "")
+                            + f"; need at least {_MIN_ROWS} for a spectrum")
+    return values, line_of, dropped
 
 
 def _uniform(src: str, t: np.ndarray, arr: dict, line_of: list, resample: float | None):
@@ -348,8 +359,10 @@ def _uniform(src: str, t: np.ndarray, arr: dict, line_of: list, resample: float 
             arr[key] = arr[key][np.clip(np.searchsorted(t, tu, side="right") - 1, 0, len(t) - 1)]
         else:
             arr[key] = np.interp(tu, t, arr[key])
-    warning = (f"{src}: non-uniform sampling (steps deviate from the median {med:.4g} s by up to "
-               f"{100 * spread:.2g} %); resampled onto a uniform grid by linear interpolation")
+    warning = (f"{src}: jittering clock, no samples missing: steps {steps.min():.4g}-{steps.max():.4g} s around "
+               f"the median {med:.4g} s (spread {100 * spread:.2g} %); resampled onto a uniform {med:.4g} s grid by "
+               "linear interpolation, which low-passes a steep spectrum near the Nyquist frequency (--resample DT: "
+               "a grid of your choosing behind a stated filter)")
     return tu, arr, warning, True, tl
 
 
@@ -413,13 +426,20 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
         cols["mu"] = (iM, _unit_scale(tab, iM, "mu", None, "--mu-col", "mu"))
     if iD is not None:
         cols["direction"] = (iD, 1.0)
-    values, line_of = _rows(tab, cols)
+    values, line_of, dropped = _rows(tab, cols)
     arr = {key: np.asarray(values[key]) * cols[key][1] for key in cols}
     t, arr, warning, resampled, timeline = _uniform(src, arr.pop("t"), arr, line_of, resample)
     layout = {"separator": {";": "semicolon", "\t": "tab", ",": "comma"}[tab.sep], "decimal_comma": tab.dc,
               "preamble_lines": sum(1 for i in range(tab.header_i) if tab.lines[i].strip()),
               "header_line": tab.header_i + 1, "units_row_line": None if tab.units_i is None else tab.units_i + 1,
-              "first_data_line": tab.first + 1}
+              "first_data_line": tab.first + 1, "nan_rows_dropped": len(dropped),
+              "resampling": warning[len(src) + 2:] if resampled and warning else None,
+              "nan_lines": [i + 1 for i in dropped[:20]]}
+    if dropped:
+        said = (f"{src}: {len(dropped)} row{'s' if len(dropped) > 1 else ''} with NaN dropped (line"
+                f"{'s' if len(dropped) > 1 else ''} {', '.join(str(i + 1) for i in dropped[:5])}"
+                f"{', ...' if len(dropped) > 5 else ''})")
+        warning = said if warning is None else f"{said}; {warning}"
     return MeasuredData(t=t - t[0], x=arr.get("x"), source=src, resampled=resampled, warning=warning,
                         n_rows=len(line_of), F=arr.get("F"), N=arr.get("N"), direction=arr.get("direction"),
                         mu=arr.get("mu"),
