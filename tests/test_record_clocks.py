@@ -38,8 +38,8 @@ def test_nan_rows_are_dropped_and_counted(tmp_path):
     f = tmp_path / "nan.csv"
     f.write_text("t_s,x_m\n" + "\n".join(rows) + "\n")
     d = read_measured(f)
-    assert d.n_rows == 297 and d.layout["nan_rows_dropped"] == 3 and d.layout["nan_lines"] == [52, 53, 202]
-    assert "3 rows with NaN dropped (lines 52, 53, 202)" in d.warning
+    assert d.n_rows == 297 and d.layout["nan_rows_dropped"] == 3 and d.layout["nan_places"] == ["line 52", "line 53", "line 202"]
+    assert "3 rows with NaN dropped (line 52, line 53, line 202)" in d.warning
     # the rows dropped leave gaps in the time stamps: the record is split there, each piece analysed
     assert [e.kind for e in d.timeline.events] == ["gap", "gap"] and d.segmented
     rows[100] = f"{t[100]:.2f},inf"

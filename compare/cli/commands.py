@@ -136,9 +136,10 @@ def _read_record(path, args):
     """One measured record as the analyze options describe it (a UserError for what cannot be read)."""
     from ..io.inputs import input_file, sniff
     from ..io.measured import DataFileError, read_measured
+    from ..io.sheets import binary_layout, is_many
 
     path = shipped_file(path)
-    if sniff(input_file(path)) != "text":  # kind, emptiness, binary; the format is read by compare.io.measured
+    if not is_many(path) and sniff(input_file(path)) != "text" and binary_layout(path) is None:
         hint = "; a trace of `frictionnoise run` goes to `frictionnoise compare`" if str(path).endswith(".npz") else ""
         raise UserError(f"{path}: binary data, not a CSV text file{hint}")
     try:

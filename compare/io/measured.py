@@ -1,40 +1,37 @@
-"""Measured series (displacement-sensor logs, tribometer force exports) read from text files and checked.
+"""Measured series (displacement-sensor logs, tribometer force exports) read from instrument files and checked.
 
-What is read (instrument exports as they come):
+The table is read by its layout (:mod:`compare.io.sheets`: delimited text with preambles, units rows and
+several blocks, the look program's ASCII export, a folder of per-stroke files, xlsx, TDMS); here its columns are
+given their roles (time, displacement, friction force, normal force, friction coefficient, direction) and their
+units (:mod:`engine_sim.quantities`, pint: from the header, the units row or an option; a unit the file states
+and a different option is an error; ``units`` on the result says which unit was used for each column and where
+it came from).
 
-- metadata preamble lines before the header row (anything that is not a numeric table), ignored and counted;
-- a header row naming the columns, optionally followed by a units row (``s;mm;N`` or ``[s] [mm] [N]``);
-- ``,``, ``;`` or tab separators (the one that splits the numeric rows consistently); decimal commas when the
-  separator is ``;`` or tab;
-- units of time, position and force from the column header when it names one (``x_um``, ``x [mm]``,
-  ``F(N)``, ``t/s``) or from the units row; otherwise the unit must be given (``time_unit``, ``x_unit``,
-  ``force_unit``); a header unit that contradicts a given unit is an error naming both. ``units`` on the result
-  says which unit was used for each column and where it came from.
-
-Only what cannot be read is refused, with a :class:`DataFileError` naming the file, the line and the reason:
-a non-numeric or missing value in a column that is used. Time stamps are kept as written and their breaks found
-(:mod:`compare.analysis.timeline`: rate changes, gaps, repeated or backward stamps, each with its line, time and
-size): such a record is analysed segment by segment, or put on one grid on request (``resample``) behind a stated
-anti-alias filter. Jitter without breaks is resampled onto a uniform grid by linear interpolation, with a warning
-that says how much it was. Blank lines and ``#`` comments inside the table are skipped.
+Only what cannot be read is refused, with a :class:`DataFileError` naming the file, the place (line, cell,
+channel) and the reason: a non-numeric or infinite value in a column that is used. A row with NaN in a used column
+is dropped and counted. Time stamps are kept as written (from the first sample's) and their breaks found
+(:mod:`compare.analysis.timeline`: rate changes, gaps, repeated or backward stamps, a new block of the export,
+each with its line, time and size): such a record is analysed segment by segment, or put on one grid on request
+(``resample``) behind a stated anti-alias filter. A jittering clock without breaks is resampled onto a uniform
+grid by linear interpolation, with a one-line warning giving the steps' spread; the resampling is kept in
+``layout``.
 """
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from engine_sim.quantities import UnitError, parse_unit, split_header
-from engine_sim.text_file import decode, split_lines
+from engine_sim.quantities import UnitError, parse_unit
+
+from .sheets import Sheet, SheetError, read_sheet, to_float
 
 __all__ = ["MeasuredData", "DataFileError", "read_measured", "read_displacement_csv", "units_line"]
 
 _JITTER_OK = 1e-6  # relative step spread below which no resampling is needed
 _MIN_ROWS = 64
-_SEPARATORS = (";", "\t", ",")
 
 
 class DataFileError(ValueError):
@@ -71,164 +68,20 @@ class MeasuredData:
         return self.timeline is not None and bool(self.timeline.events) and not self.resampled
 
 
-# ----------------------------------------------------------------------------- parsing helpers
-def _unitish(cell: str) -> bool:
-    """Whether a units-row cell reads as a unit (blank, a pure-number mark, or any unit pint knows)."""
-    c = cell.strip().strip("[](){}").strip()
-    if not c:
-        return True
-    try:
-        parse_unit(c, ("length", "force", "stress", "time", "velocity", "dimensionless"))
-        return True
-    except UnitError as e:
-        return "not a unit pint knows" not in str(e)
-
-
-def _to_float(cell: str, decimal_comma: bool) -> float:
-    c = cell.strip()
-    if decimal_comma:
-        c = c.replace(",", ".")
-    return float(c)
-
-
-def _is_numeric(cell: str, decimal_comma: bool) -> bool:
-    try:
-        _to_float(cell, decimal_comma)
-        return True
-    except ValueError:
-        return False
-
-
-def _split(line: str, sep: str) -> list[str]:
-    return [c.strip().strip('"') for c in line.split(sep)]
-
-
-def _detect_layout(lines: list[str]) -> tuple[str, bool, int]:
-    """(separator, decimal_comma, index of the first numeric data row) or raise ValueError with the reason.
-
-    For each separator (and decimal mark), the table starts at the first run of rows that are fully numeric
-    with the same width >= 2 and at least 5 rows long (or the longest run, in a short file); the separator
-    whose table is longest, then widest, wins.
-    """
-    rows = [(i, line) for i, line in enumerate(lines) if line.strip() and not line.strip().startswith("#")]
-    best = None
-    for sep in _SEPARATORS:
-        for dc in ((False, True) if sep != "," else (False,)):
-            run_start, run_len, width = None, 0, None
-            found = None  # (length, width, start)
-            for i, line in rows:
-                cells = _split(line, sep)
-                ok = len(cells) >= 2 and any(cells) and all(_is_numeric(c, dc) for c in cells if c)
-                if ok and width is not None and len(cells) == width:
-                    run_len += 1
-                elif ok:
-                    run_start, run_len, width = i, 1, len(cells)
-                else:
-                    run_start, run_len, width = None, 0, None
-                if run_len and (found is None or run_len > found[0]):
-                    found = (run_len, width, run_start)
-                if found and found[0] >= 5:
-                    break
-            if found is None:
-                continue
-            key = (min(found[0], 5), found[1], -found[2])
-            if best is None or key > best[0]:
-                best = (key, sep, dc, found[2])
-    if best is None:
-        raise ValueError("no table of numbers with at least two columns found")
-    return best[1], best[2], best[3]
-
-
-# ----------------------------------------------------------------------------- the reader
-def _read_lines(path: Path, src: str) -> list:
-    """The file's lines, decoded (UTF-8, else Latin-1); DataFileError for a missing, empty or binary file."""
-    if not path.exists():
-        raise DataFileError(f"{src}: no such file")
-    if path.is_dir():
-        raise DataFileError(f"{src}: is a folder, not a data file")
-    try:
-        raw = path.read_bytes()
-    except OSError as e:
-        raise DataFileError(f"{src}: cannot be read ({e.strerror or e})") from None
-    if not raw.strip():
-        raise DataFileError(f"{src}: empty file")
-    dec = decode(raw)  # UTF-8, UTF-16 with a BOM, else latin-1 (a micro sign as 0xB5)
-    if dec is None:
-        raise DataFileError(f"{src}: binary file (NUL bytes or control characters), not a text table")
-    return split_lines(dec[0])  # numbered as grep -n numbers them: CR CR LF is one line end
-
-
-@dataclass
-class _Table:
-    """The layout of a text table: its lines, separator, decimal comma, first numeric row (0-based), width, and
-    the header row and optional units row above it."""
-
-    src: str
-    lines: list
-    sep: str
-    dc: bool
-    first: int
-    width: int
-    header_i: int = 0
-    units_i: int | None = None
-    header: list = field(default_factory=list)
-    parsed: list = field(default_factory=list)
-    units_row: list = field(default_factory=list)
-    units: dict = field(default_factory=dict)  # what each column was read in and where the unit came from
-
-    def data_lines(self):
-        """Indices of the data rows: from the first numeric row on, blank and ``#`` lines skipped."""
-        for i in range(self.first, len(self.lines)):
-            s = self.lines[i].strip()
-            if s and not s.startswith("#"):
-                yield i
-
-
-def _table(lines: list, src: str) -> _Table:
-    """Locate the table, its header row and an optional units row above the first numeric row."""
-    try:
-        sep, dc, first = _detect_layout(lines)
-    except ValueError as e:
-        raise DataFileError(f"{src}: {e}") from None
-    tab = _Table(src, lines, sep, dc, first, len(_split(lines[first], sep)))
-    above = [i for i in range(first) if lines[i].strip() and not lines[i].strip().startswith("#")]
-    header_i = units_i = None
-    if above:
-        last = above[-1]
-        cells = _split(lines[last], sep)
-        unitish = [_unitish(c) or (c[0] in "[(" and c[-1] in "])") for c in cells]
-        known = sum(1 for c in cells if c and _unitish(c))
-        if len(cells) == tab.width and len(above) >= 2 and known >= 1 and (all(unitish) or 2 * known >= tab.width):
-            units_i = last
-            header_i = above[-2]
-        else:
-            header_i = last
-    if header_i is None:
-        raise DataFileError(f"{src}, line {first + 1}: expected a header row naming the columns above the "
-                            "first row of numbers")
-    tab.header_i, tab.units_i = header_i, units_i
-    tab.header = _split(lines[header_i], sep)
-    if len(tab.header) != tab.width:
-        raise DataFileError(f"{src}, line {header_i + 1}: the header has {len(tab.header)} columns, the data "
-                            f"{tab.width} (separator {sep!r})")
-    tab.units_row = _split(lines[units_i], sep) if units_i is not None else [""] * tab.width
-    tab.parsed = [split_header(h) for h in tab.header]
-    return tab
-
-
-def _find(tab: _Table, name: str | None, default: int | None, what: str) -> int | None:
+# ----------------------------------------------------------------------------- columns of a sheet
+def _find(tab: Sheet, name: str | None, default: int | None, what: str) -> int | None:
     """The index of the column ``name`` (its full header or its name without the unit), else ``default``."""
     if name is None:
         if default is None:
             return None
         if tab.width <= default:
-            raise DataFileError(f"{tab.src}, line {tab.header_i + 1}: need at least {default + 1} columns for the "
+            raise DataFileError(f"{tab.where(tab.header_key)}: need at least {default + 1} columns for the "
                                 f"{what} (found {tab.width})")
         return default
     for k, h in enumerate(tab.header):
         if name == h or name == tab.parsed[k][0]:
             return k
-    raise DataFileError(f"{tab.src}, line {tab.header_i + 1}: no {what} column {name!r}; columns are: "
+    raise DataFileError(f"{tab.where(tab.header_key)}: no {what} column {name!r}; columns are: "
                         f"{', '.join(tab.header)}")
 
 
@@ -236,25 +89,25 @@ _ROLE = {"time": "time", "x": "length", "force": "force", "mu": "dimensionless"}
 _EXAMPLES = {"time": "s, ms, min", "length": "m, mm, um, in", "force": "N, mN, gf, kip"}
 
 
-def _unit_scale(tab: _Table, k: int, kind: str, given: str | None, flag: str, key: str,
+def _unit_scale(tab: Sheet, k: int, kind: str, given: str | None, flag: str, key: str,
                 area: float | None = None) -> float:
     """The SI factor of column ``k`` (role ``kind``: time, x, force or mu), from its header, the units row or the
     ``given`` option (engine_sim.quantities: pint, with the column's role fixing the dimension); an option that
     differs from a unit the file states is an error, never an override. A stress on a force column becomes a
     force only with the contact ``area`` (m^2). Records the choice in ``tab.units[key]``."""
-    src, header = tab.src, tab.header
+    header = tab.header
     role = _ROLE[kind]
     roles = (role, "stress") if role == "force" else (role,)
     _, hunit, _ = tab.parsed[k]
-    origin, line = "header", tab.header_i + 1
+    origin, where = "header", tab.where(tab.header_key, k)
     if hunit is None and tab.units_row[k].strip():
-        hunit, origin, line = tab.units_row[k], "units row", tab.units_i + 1
+        hunit, origin, where = tab.units_row[k], "units row", tab.where(tab.units_key, k)
     file_u = given_u = None
     if hunit is not None:
         try:
             file_u = parse_unit(hunit, roles)
         except UnitError as e:
-            raise DataFileError(f"{src}, line {line}: column {header[k]!r} is in {e.unit}, {e.reason}") from None
+            raise DataFileError(f"{where}: column {header[k]!r} is in {e.unit}, {e.reason}") from None
     if given is not None:
         try:
             given_u = parse_unit(given, roles)
@@ -262,13 +115,13 @@ def _unit_scale(tab: _Table, k: int, kind: str, given: str | None, flag: str, ke
             raise DataFileError(f"{flag} {given}: {e}") from None
     if file_u is not None and given_u is not None and (
             file_u.role != given_u.role or not math.isclose(file_u.factor, given_u.factor, rel_tol=1e-12)):
-        raise DataFileError(f"{src}, line {line}: the {origin} gives column {header[k]!r} in {file_u.written} "
+        raise DataFileError(f"{where}: the {origin} gives column {header[k]!r} in {file_u.written} "
                             f"but {flag} {given} was given; an option never overrides a unit the file states")
     if file_u is None and given_u is None:
         if role == "dimensionless":  # a friction coefficient is a pure number
             tab.units[key] = {"column": header[k], "unit": "1", "from": "role"}
             return 1.0
-        raise DataFileError(f"{src}, line {tab.header_i + 1}: column {header[k]!r} names no unit (no units row "
+        raise DataFileError(f"{tab.where(tab.header_key, k)}: column {header[k]!r} names no unit (no units row "
                             f"either); give {flag} (any {role} unit: {_EXAMPLES[role]})")
     u = file_u if file_u is not None else given_u
     factor = u.factor
@@ -277,7 +130,7 @@ def _unit_scale(tab: _Table, k: int, kind: str, given: str | None, flag: str, ke
         entry["rule"] = u.rule
     if u.role == "stress":
         if area is None:
-            raise DataFileError(f"{src}, line {line}: column {header[k]!r} is a stress ({u.written}), not a "
+            raise DataFileError(f"{where}: column {header[k]!r} is a stress ({u.written}), not a "
                                 "force; a stress becomes a force only with the contact area: give --contact-area "
                                 "(m^2)")
         factor *= area
@@ -286,50 +139,73 @@ def _unit_scale(tab: _Table, k: int, kind: str, given: str | None, flag: str, ke
     return factor
 
 
-def _rows(tab: _Table, cols: dict) -> tuple[dict, list, list]:
-    """({key: values in the file's units}, [line index of each row], [line index of each row dropped]): every data
-    row's numbers. A row with NaN in a used column is dropped and counted (its time step then shows as a gap in
+def _rows(tab: Sheet, cols: dict) -> tuple[dict, list, list]:
+    """({key: values in the file's units}, [row index kept], [row index dropped]): every data row's numbers. A row
+    with NaN in a used column is dropped and counted (its time step then shows as a gap in
     compare.analysis.timeline, which splits the record there); an infinite or non-numeric value is an error."""
-    src, lines = tab.src, tab.lines
     values = {k: [] for k in cols}
-    line_of, dropped = [], []
-    for i in tab.data_lines():
-        cells = _split(lines[i], tab.sep)
+    kept, dropped = [], []
+    for r, cells in enumerate(tab.rows):
         row = {}
         for key, (k, _) in cols.items():
             try:
-                v = _to_float(cells[k], tab.dc)
+                v = to_float(cells[k], tab.dc)
             except IndexError:
-                raise DataFileError(f"{src}, line {i + 1}: {len(cells)} fields, column {tab.header[k]!r} missing") from None
+                raise DataFileError(f"{tab.where(tab.keys[r])}: {len(cells)} fields, column {tab.header[k]!r} "
+                                    "missing") from None
             except ValueError:
-                raise DataFileError(f"{src}, line {i + 1}: non-numeric value {cells[k]!r} in column "
+                raise DataFileError(f"{tab.where(tab.keys[r], k)}: non-numeric value {cells[k]!r} in column "
                                     f"{tab.header[k]!r}") from None
             if math.isinf(v):
-                raise DataFileError(f"{src}, line {i + 1}: infinite value in column {tab.header[k]!r}")
+                raise DataFileError(f"{tab.where(tab.keys[r], k)}: infinite value in column {tab.header[k]!r}")
             row[key] = v
         if any(math.isnan(v) for v in row.values()):
-            dropped.append(i)
+            dropped.append(r)
             continue
         for key, v in row.items():
             values[key].append(v)
-        line_of.append(i)
-    if len(line_of) < _MIN_ROWS:
-        raise DataFileError(f"{src}: only {len(line_of)} data rows"
+        kept.append(r)
+    if len(kept) < _MIN_ROWS:
+        raise DataFileError(f"{tab.src}: only {len(kept)} data rows"
                             + (f" ({len(dropped)} more with NaN dropped)" if dropped else "")
                             + f"; need at least {_MIN_ROWS} for a spectrum")
-    return values, line_of, dropped
+    return values, kept, dropped
 
 
-def _uniform(src: str, t: np.ndarray, arr: dict, line_of: list, resample: float | None):
+def _timeline(t: np.ndarray, lines, blocks: list):
+    """The time line of stamps ``t`` (compare.analysis.timeline), each block of the export on its own: a block
+    boundary ((row, title) pairs) is a break of kind "block" whatever the stamps do across it."""
+    from dataclasses import replace
+
+    from ..analysis.timeline import MIN_ROWS, Segment, TimeEvent, Timeline, find_segments
+
+    if not blocks:
+        return find_segments(t, lines=lines)
+    starts = [0] + [r for r, _ in blocks] + [t.size]
+    titles = [""] + [title for _, title in blocks]
+    segs, events = [], []
+    for j, (a, b) in enumerate(zip(starts[:-1], starts[1:])):
+        if b <= a:
+            continue
+        tl = find_segments(t[a:b], lines=None if lines is None else lines[a:b])
+        if a > 0:
+            events.append(TimeEvent("block", a, None if lines is None else int(lines[a]), float(t[a - 1]),
+                                    float(t[a] - t[a - 1]), f"{titles[j] or 'a new block'} begins: read on its own"))
+        segs += [Segment(s.start + a, s.stop + a, s.dt, s.spread) for s in tl.segments]
+        events += [replace(e, row=e.row + a) for e in tl.events]
+    return Timeline(tuple(segs), tuple(events), tuple(k for k, s in enumerate(segs) if s.n < MIN_ROWS))
+
+
+def _uniform(src: str, t: np.ndarray, arr: dict, lines, resample: float | None, blocks: list = ()):
     """(t, arr, warning, resampled, timeline). Breaks in the time stamps (compare.analysis.timeline: rate changes,
     gaps, repeated or backward stamps) leave the record as written, in uniform segments, unless ``resample`` (s)
     asks for one grid (compare.analysis.segments.resample_record, its filter stated in the warning); a jittered
     grid without breaks is resampled onto a uniform one (linear interpolation; a direction label takes the
     nearest earlier sample)."""
     from ..analysis.segments import resample_record
-    from ..analysis.timeline import MIN_ROWS, find_segments
+    from ..analysis.timeline import MIN_ROWS
 
-    tl = find_segments(t, lines=np.asarray(line_of) + 1)
+    tl = _timeline(t, lines, list(blocks))
     if resample is not None:
         label = arr.pop("direction", None)
         tu, arr, statement = resample_record(t, arr, tl, resample)
@@ -408,7 +284,10 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
     src = str(path)
     if contact_area is not None and not (contact_area > 0 and math.isfinite(contact_area)):
         raise DataFileError(f"the contact area must be a positive number of m^2 (got {contact_area!r})")
-    tab = _table(_read_lines(path, src), src)
+    try:
+        tab = read_sheet(path)
+    except SheetError as e:
+        raise DataFileError(str(e)) from None
     it = _find(tab, time_col, 0, "time")
     ix = _find(tab, x_col, 1 if (require_x and force_col is None) else None, "displacement")
     iF = _find(tab, force_col, None, "force")
@@ -426,22 +305,24 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
         cols["mu"] = (iM, _unit_scale(tab, iM, "mu", None, "--mu-col", "mu"))
     if iD is not None:
         cols["direction"] = (iD, 1.0)
-    values, line_of, dropped = _rows(tab, cols)
+    values, kept, dropped = _rows(tab, cols)
     arr = {key: np.asarray(values[key]) * cols[key][1] for key in cols}
-    t, arr, warning, resampled, timeline = _uniform(src, arr.pop("t"), arr, line_of, resample)
-    layout = {"separator": {";": "semicolon", "\t": "tab", ",": "comma"}[tab.sep], "decimal_comma": tab.dc,
-              "preamble_lines": sum(1 for i in range(tab.header_i) if tab.lines[i].strip()),
-              "header_line": tab.header_i + 1, "units_row_line": None if tab.units_i is None else tab.units_i + 1,
-              "first_data_line": tab.first + 1, "nan_rows_dropped": len(dropped),
-              "resampling": warning[len(src) + 2:] if resampled and warning else None,
-              "nan_lines": [i + 1 for i in dropped[:20]]}
+    keys = [tab.keys[r] for r in kept]
+    lines = np.asarray(keys) if tab.layout in ("delimited", "look-ascii") else None  # text: breaks by line
+    blocks = [(int(np.searchsorted(kept, r)), title) for r, _, title in tab.blocks]
+    t_file = arr.pop("t")
+    t0 = float(t_file[0])  # one time origin everywhere: the first sample kept, the breaks' times included
+    t, arr, warning, resampled, timeline = _uniform(src, t_file - t0, arr, lines, resample, blocks)
+    layout = dict(tab.info, layout=tab.layout, time_origin_s=t0, nan_rows_dropped=len(dropped),
+                  nan_places=[tab.place(tab.keys[r]) for r in dropped[:20]],
+                  resampling=warning[len(src) + 2:] if resampled and warning else None)
     if dropped:
-        said = (f"{src}: {len(dropped)} row{'s' if len(dropped) > 1 else ''} with NaN dropped (line"
-                f"{'s' if len(dropped) > 1 else ''} {', '.join(str(i + 1) for i in dropped[:5])}"
-                f"{', ...' if len(dropped) > 5 else ''})")
+        places = [tab.place(tab.keys[r]) for r in dropped[:5]]
+        said = (f"{src}: {len(dropped)} row{'s' if len(dropped) > 1 else ''} with NaN dropped ("
+                f"{', '.join(places)}{', ...' if len(dropped) > 5 else ''})")
         warning = said if warning is None else f"{said}; {warning}"
     return MeasuredData(t=t - t[0], x=arr.get("x"), source=src, resampled=resampled, warning=warning,
-                        n_rows=len(line_of), F=arr.get("F"), N=arr.get("N"), direction=arr.get("direction"),
+                        n_rows=len(kept), F=arr.get("F"), N=arr.get("N"), direction=arr.get("direction"),
                         mu=arr.get("mu"),
                         units=tab.units, layout=layout, timeline=timeline)
 
