@@ -69,3 +69,17 @@ def test_line_numbers_are_grep_n_numbers(tmp_path, end):
     with pytest.raises(DataFileError) as e:
         read_measured(g)
     assert f", line {_grep_n(g, 'zz')}:" in str(e.value)
+
+
+@pytest.mark.parametrize("target", ["/proc/frictionnoise-out", "/proc/self/out", "FILE/out"])
+def test_unwritable_output_refused_before_reading(tmp_path, capsys, target):
+    """-o into /proc, under a file, ...: one line, exit 2, before the record is read (a file that does not
+    exist is not named: the output is checked first)."""
+    from compare.cli import main
+
+    f = tmp_path / "f"
+    f.write_text("x")
+    target = target.replace("FILE", str(f))
+    assert main(["analyze", str(tmp_path / "missing.csv"), "-o", target]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"frictionnoise: error: {target}: ") and "Traceback" not in err

@@ -107,8 +107,8 @@ def cmd_analyze(args) -> int:
     if args.omega is not None:
         raise UserError("--omega compares C_x across several records: give two or more displacement files")
     args.data = args.data[0]
-    data = _read_record(args.data, args)
     out = output_dir(args.output, f"analyze-{Path(args.data).stem}", "index.html and summary.json")
+    data = _read_record(args.data, args)
     band = tuple(args.band) if args.band else None
     try:
         if force:
