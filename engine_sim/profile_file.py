@@ -52,6 +52,31 @@ class LineScanFile:
     reader: str
     data_lines: tuple = ()  # (first, last) line numbers of the data in a text file
     metadata: dict = field(default_factory=dict)
+    spacing: float | None = None  # the point spacing (m) the preamble states, if it states one
+    sha256: str = ""  # of the file's bytes
+
+
+_SPACING_KEYS = re.compile(r"^(resolution|spacing|sampling interval|x[ _-]?step|step size|x[ _-]?spacing|dx)\b",
+                           re.IGNORECASE)
+_PER_POINT = re.compile(r"\s*/\s*(pt|point|pts|points|sample)\s*$", re.IGNORECASE)
+
+
+def spacing_from_metadata(meta: dict):
+    """The point spacing (m) a preamble states (``Resolution,0.156,µm/pt``, ``Spacing: 20 nm``), or None."""
+    for key, value in meta.items():
+        if not _SPACING_KEYS.match(str(key).strip()):
+            continue
+        parts = str(value).replace(",", " ").split(None, 1)
+        if len(parts) != 2:
+            continue
+        try:
+            number = float(parts[0])
+            unit = parse_unit(_PER_POINT.sub("", parts[1]).strip(), "length")
+        except (ValueError, UnitError):
+            continue
+        if number > 0:
+            return number * unit.factor
+    return None
 
 
 def unit_factor(unit: str) -> float:
@@ -317,5 +342,8 @@ def read_line_scan(path, x_unit: str = "", height_unit: str = "") -> LineScanFil
         i = back[0] + 1
         raise _fail(path, f"{point(i)}position {xy[i, 0]:g} does not increase (previous {xy[i - 1, 0]:g}; "
                           f"{back.size} of {x.size - 1} steps); positions must increase strictly", where(i))
+    import hashlib
+
     return LineScanFile(str(path), x, h, xu, hu, xfrom, hfrom, reader,
-                        (int(rows[0]), int(rows[-1])) if rows is not None else (), meta)
+                        (int(rows[0]), int(rows[-1])) if rows is not None else (), meta,
+                        spacing_from_metadata(meta), hashlib.sha256(raw).hexdigest())

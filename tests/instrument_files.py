@@ -122,3 +122,19 @@ def tdms_file(path, n=300, seed=4):
                          ChannelObject("Friction", "Ff", F, dict(props, unit_string="N")),
                          ChannelObject("Friction", "Fn", N, dict(props, unit_string="N"))])
     return {"t": t, "F": F, "N": N}
+
+
+def dektak_export(n=12821, with_resolution=True, rows=None, seed=2026):
+    """A Dektak-like stylus export: a preamble of scan parameters (the spacing as ``Resolution,0.156,um/pt``
+    unless ``with_resolution`` is False), the header ``Lateral um,Raw Micrometer``, positions rounded to 0.1 um
+    (so the median step of the positions as written is 0.2 um, the scan's 0.156 um), CR CR LF line ends. Returns
+    (bytes, heights in um as written). ``rows`` replaces the data rows as written."""
+    from tests.stylus_export import stylus_heights
+
+    h = 1e6 * stylus_heights(n, seed=seed)
+    x = 0.156 * np.arange(n)
+    pre = ["Dektak-like export (frictionnoise synthetic test file)", "Scan Length,2000.0,um", "Scan Duration,60,s",
+           f"Data Points,{n}", "Stylus Type,Radius: 2.0 um"] + (["Resolution,0.156,um/pt"] if with_resolution else [])
+    data = rows if rows is not None else [f"{a:.1f},{b:.4f}" for a, b in zip(x, h)]
+    written = np.array([float(r.split(",")[1]) for r in data]) if rows is None else None
+    return "\r\r\n".join(pre + ["", "Lateral um,Raw Micrometer"] + data + [""]).encode("latin-1"), written

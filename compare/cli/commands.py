@@ -342,8 +342,9 @@ def _compare_model(args) -> int:
     from .compile_notice import compile_notice
 
     check_seed(args.seed)
-    if args.duration is not None and not 0 < args.duration < float("inf"):
-        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
+    if args.duration is not None and not 0 < args.duration < float("inf") or args.band:
+        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})" if not args.band
+                        else "--band applies to a scene or a trace, not to a reduced model against its closed form")
     out = output_dir(args.output, f"compare-{args.source}", "index.html, summary.json and figures/")
     try:
         with compile_notice():  # the model's kernels compile on its first run after an install
@@ -360,13 +361,10 @@ def _compare_model(args) -> int:
 
 
 def cmd_compare(args) -> int:
-
     from ..report.html import write_report
     from ..report.build import build_scene_report
     from ..io.traces import TraceFileError, load_trace
-
     from ..io.inputs import input_file, sniff
-
     from reduced_models import MODELS
 
     if _registered_model(args.source):
@@ -380,6 +378,8 @@ def cmd_compare(args) -> int:
         raise UserError(f"{src}: not a .npz trace file (text, not a zip archive)")
     if args.duration is not None and not 0 < args.duration < float("inf"):
         raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
+    if args.band and not 0 < args.band[0] < args.band[1] < float("inf"):
+        raise UserError(f"--band must be two finite frequencies LO < HI in rad/s (got {args.band[0]} {args.band[1]})")
     trace = None
     if kind == "npz":
         from engine_sim import ScenarioError, scenario_from_dict
@@ -408,9 +408,9 @@ def cmd_compare(args) -> int:
                                            runs=scene_runs(sc))
                 with bar:
                     sections, summary = build_scene_report(sc, duration=args.duration, seed=args.seed,
-                                                           progress=update)
+                                                           progress=update, band=args.band)
             else:
-                sections, summary = build_scene_report(sc, trace=trace)
+                sections, summary = build_scene_report(sc, trace=trace, band=args.band)
     except ValueError as e:  # e.g. a record too short for the fit band
         raise UserError(f"{src}: {e}" + (f"; {note}" if note else "")) from None
     if note:

@@ -79,6 +79,9 @@ def build_parser() -> argparse.ArgumentParser:
     cmp_.add_argument("--duration", type=float, default=None, help="simulated seconds when running a scenario or a model (default: its own)")
     cmp_.add_argument("--seed", type=int, default=None,
                       help="random seed of the scene run and of the reduced model's run (default: the scenario's)")
+    cmp_.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"),
+                      help="fit band (rad/s) of a scene compared with model I, instead of 3-30 v/a (a scan shorter "
+                           "than the renewal length, a short trace)")
     cmp_.set_defaults(func=cmd_compare)
 
     ren = add("render", "render a scenario headless to PNG frames (and an animated GIF)")

@@ -129,6 +129,7 @@ class TrackProfile:
     native_dx: float
     path_error: float
     note: str
+    sha256: str = ""  # of the profile file's bytes
 
 
 def _spacing_from_pad(closed, path, dx, radius, tol, cap, extend):
@@ -183,22 +184,39 @@ def _cover(src: str, grid: np.ndarray, hg: np.ndarray, need: float, what: str, s
                       f"is repeated {copies} times (substrate.short_scan = \"repeat\")")
 
 
+def _native_spacing(f) -> tuple:
+    """(spacing (m), uniform, note) of a scan's positions: the spacing the preamble states when the positions
+    agree with it (their span within 1 % of (n - 1) spacings), else their mean step (the median of positions
+    rounded in the export is the rounding's step, not the scan's). Positions within half a step of that uniform
+    grid are the grid as written with rounding (the heights kept as they are); others are interpolated onto it."""
+    x = f.x
+    span = float(x[-1] - x[0])
+    mean = span / (x.size - 1)
+    native, said = mean, "their mean step"
+    if f.spacing is not None and abs(f.spacing * (x.size - 1) - span) <= 0.01 * span:
+        native, said = f.spacing, "the spacing the file states"
+    off = float(np.max(np.abs(x - (x[0] + native * np.arange(x.size)))))
+    if off <= 1e-6 * native:
+        return native, True, ""
+    if off < 0.5 * native:
+        return native, True, (f" (positions as written stray up to {_um(off)} from a uniform grid at {said}, "
+                              f"{_um(native)}: rounding in the export, read as that grid)")
+    return native, False, f" (non-uniform positions interpolated to {said}, {_um(native)})"
+
+
 @functools.lru_cache(maxsize=8)
 def _profile(path: str, stamp: tuple, x_unit: str, height_unit: str, dx: float, detrend: str, extend: str,
              radius: float, tol: float, cap: float, a: float = 0.0, short_scan: str = "refuse") -> TrackProfile:
     f = read_line_scan(path, x_unit, height_unit)
     x, h = f.x, f.h
-    steps = np.diff(x)
-    native = float(np.median(steps))
-    uniform = np.max(np.abs(steps - native)) <= 1e-6 * native
-    grid = x[0] + native * np.arange(int(np.floor((x[-1] - x[0]) / native + 1e-9)) + 1)
-    hg = h.copy() if uniform and grid.size == x.size else np.interp(grid, x, h)
+    native, uniform, how = _native_spacing(f)
+    grid = x[0] + native * np.arange(x.size if uniform else int(np.floor((x[-1] - x[0]) / native + 1e-9)) + 1)
+    hg = h.copy() if uniform else np.interp(grid, x, h)
     if detrend == "linear":
         hg = hg - np.polyval(np.polyfit(grid - grid[0], hg, 1), grid - grid[0])
     elif detrend == "mean":
         hg = hg - hg.mean()
     name = Path(path).name
-    how = "" if uniform else f" (non-uniform positions interpolated to their median spacing {_um(native)})"
     need, what = 2 * radius, "a pad's diameter with the track's thickness"  # a point probe (radius 0) needs none
     if radius > 0 and a > need:
         need, what = a, "the renewal length substrate.a"
@@ -206,10 +224,11 @@ def _profile(path: str, stamp: tuple, x_unit: str, height_unit: str, dx: float, 
     how += repeated
     if radius <= 0:  # a point probe: the file's heights on the grid
         step = dx if dx > 0 else native
-        out = np.interp(x[0] + step * np.arange(int(np.floor((x[-1] - x[0]) / step + 1e-9)) + 1), grid, hg)
+        out = hg.copy() if dx <= 0 else np.interp(
+            grid[0] + step * np.arange(int(np.floor((grid[-1] - grid[0]) / step + 1e-9)) + 1), grid, hg)
         note = f"{name}: profile on a {_um(step)} grid{how}"
         out.setflags(write=False)
-        return TrackProfile(float(step), out, native, 0.0, note)
+        return TrackProfile(float(step), out, native, 0.0, note, f.sha256)
     file_dx = native
     width = 2 * _reach(radius, hg) / native  # points under the disc: the closing costs n x width
     if hg.size * width > _CLOSING_WORK:  # a pad touches only peaks: keep each bin's highest point
@@ -265,7 +284,7 @@ def _profile(path: str, stamp: tuple, x_unit: str, height_unit: str, dx: float, 
     note = (f"{name}: profile {what}{how}; the pad (radius {_um(radius)} with the track's thickness) bridges the "
             f"valleys under {100 * filled:.0f} % of the points")
     out.setflags(write=False)
-    return TrackProfile(float(step), out, file_dx, err, note)
+    return TrackProfile(float(step), out, file_dx, err, note, f.sha256)
 
 
 def read_profile(spec: LineScanSpec, pad_radius: float = 0.0) -> TrackProfile:
@@ -332,6 +351,11 @@ class LineScan(Substrate):
 
     def notes(self) -> list:
         return [self.profile.note]
+
+    def provenance(self) -> dict:
+        p = self.profile
+        return {"profile": {"file": self.spec.file, "sha256": p.sha256, "file_spacing_m": p.native_dx,
+                            "track_spacing_m": p.dx, "path_error_m": p.path_error, "resampling": p.note}}
 
     def build(self, space, y, shape_filter, rng, mu, x_start):
         return ProfileTrack(space, y, self.h, self.dx, self.spec.extend, mu, self.spec.segment_radius * U.LENGTH,
