@@ -9,6 +9,14 @@ from pathlib import Path
 from .sheets import (Sheet, SheetError, detect_separator, first_run, is_pattern, is_text, SEPARATOR_NAMES,
                      tabulate, layout, text_lines)
 
+def _needs(src, what, package, extra) -> SheetError:
+    return SheetError(f"{src}: {what}; reading it needs {package} (pip install 'frictionnoise[{extra}]')")
+
+
+def _unreadable(src, what, e) -> SheetError:
+    return SheetError(f"{src}: not a readable {what} ({type(e).__name__}: {' '.join(str(e).split())[:160]})")
+
+
 @layout("folder", "a folder or glob of per-stroke text files")
 class _Folder:
     @staticmethod
@@ -59,13 +67,11 @@ class _Tdms:
         try:
             from nptdms import TdmsFile
         except ImportError:
-            raise SheetError(f"{src}: a LabVIEW TDMS file; reading it needs npTDMS (pip install "
-                             "'frictionnoise[tdms]')") from None
+            raise _needs(src, "a LabVIEW TDMS file", "npTDMS", "tdms") from None
         try:
             f = TdmsFile.read(str(path))
         except Exception as e:  # npTDMS raises many kinds on a damaged file; the user gets one line
-            raise SheetError(f"{src}: not a readable TDMS file ({type(e).__name__}: {' '.join(str(e).split())[:160]})"
-                             ) from None
+            raise _unreadable(src, "TDMS file", e) from None
         for g in f.groups():
             chans = [c for c in g.channels() if len(c) > 0]
             if len(chans) >= 1 and len({len(c) for c in chans}) == 1:
@@ -112,13 +118,11 @@ class _Xlsx:
             import openpyxl
             from openpyxl.utils import get_column_letter
         except ImportError:
-            raise SheetError(f"{src}: an xlsx workbook; reading it needs openpyxl (pip install "
-                             "'frictionnoise[xlsx]')") from None
+            raise _needs(src, "an xlsx workbook", "openpyxl", "xlsx") from None
         try:
             wb = openpyxl.load_workbook(path, read_only=True, data_only=True)
         except Exception as e:  # openpyxl raises many kinds on a damaged workbook
-            raise SheetError(f"{src}: not a readable xlsx workbook ({type(e).__name__}: "
-                             f"{' '.join(str(e).split())[:160]})") from None
+            raise _unreadable(src, "xlsx workbook", e) from None
         errors = []
         for ws in wb.worksheets:
             records = []
