@@ -216,3 +216,23 @@ def test_real_files_read_or_refused_in_one_line():
         except SheetError as e:
             print(f"refused: {e}")
             assert "\n" not in str(e) and str(e).startswith(str(p))
+
+
+@given(data=st.data())
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture],
+          phases=_NO_SHRINK)
+def test_fuzzed_stroke_folders_exit_0_or_2_in_one_line(tmp_path, data, capsys):
+    """Budget: 20 folders of stroke files with one file damaged, through the command line: exit 0, or 2 with one
+    line naming the folder (and the file and line when the problem has a place)."""
+    from compare.cli import main
+
+    folder = tmp_path / "strokes"
+    stroke_files(folder, n=120)
+    victim = folder / f"stroke_{data.draw(st.integers(1, 4)):03d}.csv"
+    victim.write_bytes(_mutate(victim.read_bytes(), data))
+    code = main(["analyze", str(folder), "--force-col", "Ff", "-o", str(tmp_path / "o")])
+    err = capsys.readouterr().err
+    assert code in (0, 2) and "Traceback" not in err
+    if code == 2:
+        line = [ln for ln in err.splitlines() if ln.startswith("frictionnoise: error:")]
+        assert len(line) == 1 and line[0].startswith(f"frictionnoise: error: {folder}"), err
