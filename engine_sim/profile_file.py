@@ -19,19 +19,16 @@ NPY file states none).
 """
 from __future__ import annotations
 
-import codecs
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["ProfileError", "LineScanFile", "read_line_scan", "LENGTH_UNITS", "unit_factor"]
+from .quantities import UnitError, parse_unit, split_header
+from .text_file import decode, split_lines
 
-# metres per unit; the micro sign (U+00B5) and the Greek mu (U+03BC) are both written for micro
-LENGTH_UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "micron": 1e-6,
-                "microns": 1e-6, "micrometer": 1e-6, "micrometre": 1e-6, "nm": 1e-9, "A": 1e-10, "Å": 1e-10,
-                "Angstrom": 1e-10, "angstrom": 1e-10, "pm": 1e-12}
+__all__ = ["ProfileError", "LineScanFile", "read_line_scan", "unit_factor"]
 
 _MIN_POINTS = 8
 
@@ -55,11 +52,36 @@ class LineScanFile:
     reader: str
     data_lines: tuple = ()  # (first, last) line numbers of the data in a text file
     metadata: dict = field(default_factory=dict)
+    spacing: float | None = None  # the point spacing (m) the preamble states, if it states one
+    sha256: str = ""  # of the file's bytes
+
+
+_SPACING_KEYS = re.compile(r"^(resolution|spacing|sampling interval|x[ _-]?step|step size|x[ _-]?spacing|dx)\b",
+                           re.IGNORECASE)
+_PER_POINT = re.compile(r"\s*/\s*(pt|point|pts|points|sample)\s*$", re.IGNORECASE)
+
+
+def spacing_from_metadata(meta: dict):
+    """The point spacing (m) a preamble states (``Resolution,0.156,µm/pt``, ``Spacing: 20 nm``), or None."""
+    for key, value in meta.items():
+        if not _SPACING_KEYS.match(str(key).strip()):
+            continue
+        parts = str(value).replace(",", " ").split(None, 1)
+        if len(parts) != 2:
+            continue
+        try:
+            number = float(parts[0])
+            unit = parse_unit(_PER_POINT.sub("", parts[1]).strip(), "length")
+        except (ValueError, UnitError):
+            continue
+        if number > 0:
+            return number * unit.factor
+    return None
 
 
 def unit_factor(unit: str) -> float:
-    """Metres per ``unit`` (KeyError if not a length unit)."""
-    return LENGTH_UNITS[unit]
+    """Metres per ``unit`` (any length unit pint reads, :mod:`engine_sim.quantities`; a UnitError otherwise)."""
+    return parse_unit(unit, "length").factor
 
 
 def _fail(path, msg, line=None):
@@ -68,23 +90,6 @@ def _fail(path, msg, line=None):
 
 
 # ----------------------------------------------------------------------------------------------------- text tables
-def _decode(raw: bytes):
-    """(text, encoding) of a text file, or None for a binary one: a BOM names UTF-8 or UTF-16; else UTF-8 if it
-    decodes, else latin-1 (the micro sign is byte 0xB5 there)."""
-    if raw.startswith(codecs.BOM_UTF8):
-        return raw[3:].decode("utf-8", errors="strict"), "utf-8 (BOM)"
-    if raw.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
-        return raw.decode("utf-16"), "utf-16"
-    if b"\x00" in raw[:4096]:
-        return None
-    try:
-        return raw.decode("utf-8"), "utf-8"
-    except UnicodeDecodeError:
-        text = raw.decode("latin-1")
-        ctrl = sum(1 for c in text[:4096] if ord(c) < 32 and c not in "\r\n\t\f\v")
-        return (None if ctrl > 0.01 * min(len(text), 4096) else (text, "latin-1"))
-
-
 _SEP = re.compile(r"\s*[,;\t]\s*|\s+")
 
 
@@ -113,26 +118,23 @@ def _numbers(cells) -> tuple | None:
         return None
 
 
-_BRACKETED = re.compile(r"[\(\[\{]\s*([^\)\]\}]*?)\s*[\)\]\}]")
-_SUFFIX = re.compile(r"(?:^|[_\s/])(" + "|".join(sorted(map(re.escape, LENGTH_UNITS), key=len, reverse=True)) + r")$")
-
-
 def _unit_in_name(name: str):
-    """(unit, unknown) stated by a column name: a bracketed unit ('Lateral(µm)', 'z [nm]'), a trailing one
-    ('x_mm', 'Lateral um'); ``unknown`` is a bracketed token that is not a length unit ('Height (V)')."""
-    for tok in _BRACKETED.findall(name):
-        tok = tok.strip()
-        if tok in LENGTH_UNITS:
-            return tok, None
-        if tok:
-            return None, tok
-    m = _SUFFIX.search(name.strip())
-    return (m.group(1), None) if m else (None, None)
+    """(unit, unknown) stated by a column name (:func:`engine_sim.quantities.split_header`): a bracketed unit
+    ('Lateral(µm)', 'z [nm]') or a trailing one ('x_mm', 'Lateral um', 'Raw Micrometer'); ``unknown`` is a stated
+    unit that is not a length ('Height (V)')."""
+    _, unit, _ = split_header(name)
+    if unit is None:
+        return None, None
+    try:
+        parse_unit(unit, "length")
+    except UnitError:
+        return None, unit
+    return unit, None
 
 
 def _read_table(path: Path, text: str, encoding: str):
     """Positions and heights (file units), their line numbers, the header line and the preamble of a text table."""
-    lines = text.splitlines()  # \n, \r\n and \r alike
+    lines = split_lines(text)  # numbered as grep -n numbers them (CR CR LF is one line end)
     rows, nums, first = [], [], None
     preamble = []
     for i, line in enumerate(lines, 1):
@@ -193,8 +195,8 @@ def _header_units(path, header):
     for col, name in enumerate(cells[:2]):
         unit, unknown = _unit_in_name(name)
         if unknown is not None:
-            raise _fail(path, f"column {col + 1} ({name!r}) is in {unknown!r}, not a length unit (known: "
-                              f"{', '.join(u for u in LENGTH_UNITS if len(u) <= 2 or u == 'Angstrom')})", line)
+            raise _fail(path, f"column {col + 1} ({name!r}) is in {unknown!r}, not a length unit (any length unit "
+                              "pint reads: m, mm, um, µm, nm, A, in, ...)", line)
         out.append(unit)
     return out + [None] * (2 - len(out))
 
@@ -233,12 +235,20 @@ def _st_units(path: Path):
 
 
 # ----------------------------------------------------------------------------------------------------- the reader
+def _length_factor(unit: str) -> float:
+    """Metres per ``unit`` (engine_sim.quantities: any length unit pint reads; A is the angstrom)."""
+    return parse_unit(unit, "length").factor
+
+
 def _resolve_unit(path, what, file_unit, declared, line):
     field_name = "x_unit" if what == "positions" else "height_unit"
-    if file_unit is not None and file_unit not in LENGTH_UNITS:
-        raise _fail(path, f"the file gives the {what} in {file_unit!r}, not a length unit this reader knows", line)
     if file_unit is not None:
-        if declared and LENGTH_UNITS[declared] != LENGTH_UNITS[file_unit]:
+        try:
+            _length_factor(file_unit)
+        except UnitError as e:
+            raise _fail(path, f"the file gives the {what} in {file_unit!r}: {e.reason}", line) from None
+    if file_unit is not None:
+        if declared and not np.isclose(_length_factor(declared), _length_factor(file_unit), rtol=1e-12, atol=0):
             raise _fail(path, f"the header gives the {what} in {file_unit} but substrate.{field_name} = "
                               f"{declared!r}; remove substrate.{field_name} or correct it", line)
         return file_unit, f"the file (line {line})"
@@ -288,7 +298,7 @@ def read_line_scan(path, x_unit: str = "", height_unit: str = "") -> LineScanFil
         hu, hfrom = _resolve_unit(path, "heights", None, height_unit, None)
         xy, reader, meta = arr.astype(float), "numpy (.npy)", {}
     else:
-        dec = _decode(raw)
+        dec = decode(raw)
         if dec is None:  # a binary instrument format
             t = _surface_topography(path, "not a text table")
             if t.dim != 1:
@@ -314,7 +324,7 @@ def read_line_scan(path, x_unit: str = "", height_unit: str = "") -> LineScanFil
             xu, xfrom = _resolve_unit(path, "positions", fx, x_unit, hline)
             hu, hfrom = _resolve_unit(path, "heights", fh, height_unit, hline)
             reader = f"table ({enc} text, data lines {rows[0]}-{rows[-1]})"
-    x, h = xy[:, 0] * LENGTH_UNITS[xu], xy[:, 1] * LENGTH_UNITS[hu]
+    x, h = xy[:, 0] * _length_factor(xu), xy[:, 1] * _length_factor(hu)
     where = (lambda i: int(rows[i])) if rows is not None else (lambda i: None)
     point = (lambda i: "") if rows is not None else (lambda i: f"point {i + 1}: ")
     if x.size < _MIN_POINTS:
@@ -332,5 +342,8 @@ def read_line_scan(path, x_unit: str = "", height_unit: str = "") -> LineScanFil
         i = back[0] + 1
         raise _fail(path, f"{point(i)}position {xy[i, 0]:g} does not increase (previous {xy[i - 1, 0]:g}; "
                           f"{back.size} of {x.size - 1} steps); positions must increase strictly", where(i))
+    import hashlib
+
     return LineScanFile(str(path), x, h, xu, hu, xfrom, hfrom, reader,
-                        (int(rows[0]), int(rows[-1])) if rows is not None else (), meta)
+                        (int(rows[0]), int(rows[-1])) if rows is not None else (), meta,
+                        spacing_from_metadata(meta), hashlib.sha256(raw).hexdigest())

@@ -262,4 +262,5 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
         meta["interrupted_by"] = signal.Signals(intr.signum).name if intr.signum else "KeyboardInterrupt"
         meta["checkpoint_at_s"] = ckpt.saved_k * dt_out if (ckpt.path is not None and ckpt.saved_k) else None
     meta.update(scene.wear.run_metadata())
+    meta.update(scene.substrate.provenance())
     return rec.trace(meta)

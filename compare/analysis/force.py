@@ -77,7 +77,7 @@ class ForceAnalysis:
         if self.fit_mu is not None:
             s["fit_mu"] = self.fit_mu.to_dict()
             s["mu_rms"] = rms_from_spectrum(self.C_mu)
-            s["mean_abs_mu"] = float(np.mean(np.abs(d.F / d.N)))
+            s["mean_abs_mu"] = float(np.mean(np.abs(_mu(d))))
         if self.fit_x_equiv is not None:
             s["mass_kg"] = self.mass
             s["equivalent_free_block_Cx"] = {"label": "equivalent C_x of a free block, C_F / (M^2 omega^4), eq. (3); "
@@ -100,11 +100,21 @@ def _piece_rows(t, ss: SegmentSpectra, numbers, band, method) -> list:
     return rows
 
 
+def _mu(data):
+    """The friction coefficient: the file's own mu column when it has one, else F / N (None when N is absent or
+    zero somewhere)."""
+    if getattr(data, "mu", None) is not None:
+        return np.asarray(data.mu, float)
+    if data.N is None or np.any(np.asarray(data.N) == 0):
+        return None
+    return np.asarray(data.F, float) / np.asarray(data.N, float)
+
+
 def _spectra(data, strokes, prewhiten, nperseg, band, method):
     """(C_F, C_mu or None, pieces or None, piece rows or None, notes): stroke-averaged, or over the uniform pieces
     of a record whose time stamps break."""
     t, F = np.asarray(data.t, float), np.asarray(data.F, float)
-    mu = None if data.N is None or np.any(np.asarray(data.N) == 0) else F / np.asarray(data.N, float)
+    mu = _mu(data)
     if not getattr(data, "segmented", False):
         C_F = stroke_spectrum(t, F, strokes, "F", "N^2 s", prewhiten, nperseg)
         C_mu = None if mu is None else stroke_spectrum(t, mu, strokes, "mu", "s", prewhiten, nperseg)
@@ -185,7 +195,7 @@ def analyze_force(data, *, band=None, mass: float | None = None, speed: float | 
     elif data.N is not None:
         notes.append("the normal force is zero somewhere; C_mu not computed")
     else:
-        notes.append("no normal-force column: C_mu not computed")
+        notes.append("no normal-force or friction-coefficient column: C_mu not computed")
     C_x = fit_x = None
     if mass is not None:
         C_x = rescaled(C_F, lambda w: 1.0 / (mass**2 * w**4), "x", "m^2 s",

@@ -8,7 +8,9 @@ the spectra of the strokes are averaged (:func:`compare.analysis.spectra.average
 (pin-on-disc) record is one stroke.
 
 Strokes are found, in this order of preference, from a direction column (runs of equal value), from the
-position (turning points between crossings of the 10 % and 90 % levels of its range) or, for force-only files,
+position (the velocity's reversals, with hysteresis: a turn counts once the position has come back from its
+extreme by 2 % of the range, and by ten times its noise; an amplitude that ramps up and down is followed) or,
+for force-only files,
 from the sign of the friction force (with hysteresis at half its median magnitude: the friction force opposes
 the motion). These are row labels, whatever the time stamps; the cut and the stroke lengths are times. In a record
 whose time stamps break (:mod:`compare.analysis.timeline`) a stroke's duration is read on its clock (a gap inside
@@ -63,30 +65,51 @@ def _hysteresis(y: np.ndarray, lo: float, hi: float) -> np.ndarray:
     return state
 
 
-def _position_boundaries(x: np.ndarray) -> np.ndarray:
-    """Turning points of a back-and-forth position: the extreme between successive 10 %/90 % level crossings."""
+def _reversal_distance(x: np.ndarray) -> float:
+    """How far (file units) the position must come back from an extreme for the turn to count as a reversal: 2 %
+    of its range, and at least ten times its noise (the noise from the second difference, which a smooth motion
+    leaves near zero: for white noise of rms s its rms is sqrt(6) s)."""
     p1, p99 = np.percentile(x, [1, 99])
-    amp = p99 - p1
-    state = _hysteresis(x, p1 + 0.1 * amp, p1 + 0.9 * amp)
-    runs = _runs(state)
+    d2 = np.diff(x, 2)
+    noise = 1.4826 * float(np.median(np.abs(d2 - np.median(d2)))) / np.sqrt(6.0) if d2.size else 0.0
+    return max(0.02 * float(p99 - p1), 10.0 * noise)
+
+
+def _position_boundaries(x: np.ndarray) -> np.ndarray:
+    """Turning points of a back-and-forth position: the velocity's reversals, with hysteresis. Walking the
+    record, the extreme reached in the current direction is kept; once the position has come back from it by the
+    reversal distance (:func:`_reversal_distance`) the extreme is a turning point and the direction flips. Strokes
+    of any amplitude above that distance are found (an amplitude that ramps up and down, too), and no stroke holds
+    a reversal."""
+    h = _reversal_distance(x)
     bounds = [0]
-    for a, b in zip(runs[1:-1], runs[2:]):  # a state run [a, b) begins at a crossing; the turn lies before a
-        prev = bounds[-1]
-        seg = x[prev:a]
-        if len(seg) == 0:
-            continue
-        turn = prev + (int(np.argmax(seg)) if state[a] < 0 else int(np.argmin(seg)))
-        if turn > prev:
-            bounds.append(turn)
-    # a last partial stroke: the extreme in the direction of the last state, if the position came back from it
-    prev = bounds[-1]
-    seg = x[prev:]
-    if len(seg) > 1:
-        turn = int(np.argmax(seg)) if state[-1] > 0 else int(np.argmin(seg))
-        if 0 < turn < len(seg) - 1 and abs(seg[-1] - seg[turn]) > 0.05 * amp:
-            bounds.append(prev + turn)
-    bounds.append(len(x))
-    return np.asarray(bounds)
+    ext_i, state = 0, 0  # state: +1 moving up, -1 moving down, 0 not yet known
+    lo_i = hi_i = 0
+    for i in range(1, x.size):
+        v = x[i]
+        if state >= 0 and v > x[hi_i]:
+            hi_i = i
+        if state <= 0 and v < x[lo_i]:
+            lo_i = i
+        if state == 0:
+            if x[hi_i] - v >= h and hi_i > 0:
+                state, ext_i, lo_i = -1, hi_i, i
+                bounds.append(hi_i)
+            elif v - x[lo_i] >= h and lo_i > 0:
+                state, ext_i, hi_i = 1, lo_i, i
+                bounds.append(lo_i)
+            elif x[hi_i] - x[0] >= h:
+                state = 1
+            elif x[0] - x[lo_i] >= h:
+                state = -1
+        elif state > 0 and x[hi_i] - v >= h:
+            bounds.append(hi_i)
+            state, lo_i = -1, i
+        elif state < 0 and v - x[lo_i] >= h:
+            bounds.append(lo_i)
+            state, hi_i = 1, i
+    bounds.append(x.size)
+    return np.unique(np.asarray(bounds))
 
 
 def _monotone(x: np.ndarray) -> bool:

@@ -4,7 +4,9 @@ Recorders change their sample rate within a run, drop samples and, now and then,
 (a clock reset, two buffers written in the wrong order). :func:`find_segments` walks the time stamps once and
 splits the record where the step leaves its segment's own step by more than the jitter allowed: a **gap** (one long
 step, then the old step again: samples missing), a **rate change** (a new step that lasts), a **repeated** stamp
-(step 0), a **backward** one (step < 0) or one **short step** (then the old step again). Each event is reported
+(step 0), a **backward** one (step < 0) or one **short step** (then the old step again). One step within half a
+step of the rate, the rate kept after it, is the clock's jitter (a logger's step wandering by 20 %), not a break:
+no sample is missing. Each event is reported
 with its row, its time and its size; the stretches between are analysed on their own and together
 (:mod:`compare.analysis.segments`).
 """
@@ -83,6 +85,17 @@ def _typical(steps: np.ndarray) -> float:
     return float(np.median(pos)) if pos.size else float("nan")
 
 
+def _jitter(step: float, ref: float, after: np.ndarray, jitter: float) -> bool:
+    """Whether one step off its segment's rate is the clock's jitter, not a break: longer than 0.6 ``ref`` and
+    shorter than 1.5 ``ref`` (no sample missing: a gap starts at 1.5, where rounding counts one; a half step is a
+    sample too many, a short step), and the steps after it keep the rate (their median within ``jitter``). A
+    logger wandering by +-20 % steps between 0.67 and 1.5 times its neighbours' step."""
+    if not (step > 0 and np.isfinite(ref) and 0.6 < step / ref < 1.5):
+        return False
+    nxt = _typical(after)
+    return bool(np.isfinite(nxt) and abs(nxt / ref - 1.0) <= jitter)
+
+
 def find_segments(t, lines=None, *, jitter: float = JITTER, min_rows: int = MIN_ROWS) -> Timeline:
     """Split time stamps ``t`` (s, in file order) into uniformly sampled segments.
 
@@ -121,6 +134,9 @@ def find_segments(t, lines=None, *, jitter: float = JITTER, min_rows: int = MIN_
                 continue
             if not np.isfinite(ref) and step > 0:  # a one-row segment so far: take this step as its rate
                 ref = step
+                i += 1
+                continue
+            if _jitter(step, ref, d[i + 1:i + 1 + _LOOK], jitter):
                 i += 1
                 continue
             break

@@ -101,7 +101,7 @@ def cmd_analyze(args) -> int:
     force = args.force_col is not None
     _check_analyze_numbers(args)
     if not force:
-        for flag in ("normal_col", "direction_col", "speed", "cut", "force_unit"):
+        for flag in ("normal_col", "direction_col", "speed", "cut", "force_unit", "mu_col", "contact_area"):
             if getattr(args, flag) is not None:
                 raise UserError(f"--{flag.replace('_', '-')} applies to force data only (give --force-col)")
     if len(args.data) > 1:
@@ -113,8 +113,8 @@ def cmd_analyze(args) -> int:
     if args.omega is not None:
         raise UserError("--omega compares C_x across several records: give two or more displacement files")
     args.data = args.data[0]
-    data = _read_record(args.data, args)
     out = output_dir(args.output, f"analyze-{Path(args.data).stem}", "index.html and summary.json")
+    data = _read_record(args.data, args)
     band = tuple(args.band) if args.band else None
     try:
         if force:
@@ -142,16 +142,17 @@ def _read_record(path, args):
     """One measured record as the analyze options describe it (a UserError for what cannot be read)."""
     from ..io.inputs import input_file, sniff
     from ..io.measured import DataFileError, read_measured
+    from ..io.sheets import binary_layout, is_many
 
     path = shipped_file(path)
-    if sniff(input_file(path)) != "text":  # kind, emptiness, binary; the format is read by compare.io.measured
+    if not is_many(path) and sniff(input_file(path)) != "text" and binary_layout(path) is None:
         hint = "; a trace of `frictionnoise run` goes to `frictionnoise compare`" if str(path).endswith(".npz") else ""
         raise UserError(f"{path}: binary data, not a CSV text file{hint}")
     try:
         data = read_measured(path, time_col=args.time_col, x_col=args.x_col, force_col=args.force_col,
                              normal_col=args.normal_col, direction_col=args.direction_col, time_unit=args.time_unit,
                              x_unit=args.x_unit, force_unit=args.force_unit, require_x=args.force_col is None,
-                             resample=args.resample)
+                             resample=args.resample, mu_col=args.mu_col, contact_area=args.contact_area)
     except DataFileError as e:
         raise UserError(str(e)) from None
     if data.warning:
@@ -347,8 +348,9 @@ def _compare_model(args) -> int:
     from .compile_notice import compile_notice
 
     check_seed(args.seed)
-    if args.duration is not None and not 0 < args.duration < float("inf"):
-        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
+    if args.duration is not None and not 0 < args.duration < float("inf") or args.band:
+        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})" if not args.band
+                        else "--band applies to a scene or a trace, not to a reduced model against its closed form")
     out = output_dir(args.output, f"compare-{args.source}", "index.html, summary.json and figures/")
     try:
         with compile_notice():  # the model's kernels compile on its first run after an install
@@ -365,13 +367,10 @@ def _compare_model(args) -> int:
 
 
 def cmd_compare(args) -> int:
-
     from ..report.html import write_report
     from ..report.build import build_scene_report
     from ..io.traces import TraceFileError, load_trace
-
     from ..io.inputs import input_file, sniff
-
     from reduced_models import MODELS
 
     if _registered_model(args.source):
@@ -385,6 +384,8 @@ def cmd_compare(args) -> int:
         raise UserError(f"{src}: not a .npz trace file (text, not a zip archive)")
     if args.duration is not None and not 0 < args.duration < float("inf"):
         raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
+    if args.band and not 0 < args.band[0] < args.band[1] < float("inf"):
+        raise UserError(f"--band must be two finite frequencies LO < HI in rad/s (got {args.band[0]} {args.band[1]})")
     trace = None
     if kind == "npz":
         from engine_sim import ScenarioError, scenario_from_dict
@@ -413,9 +414,9 @@ def cmd_compare(args) -> int:
                                            runs=scene_runs(sc))
                 with bar:
                     sections, summary = build_scene_report(sc, duration=args.duration, seed=args.seed,
-                                                           progress=update)
+                                                           progress=update, band=args.band)
             else:
-                sections, summary = build_scene_report(sc, trace=trace)
+                sections, summary = build_scene_report(sc, trace=trace, band=args.band)
     except ValueError as e:  # e.g. a record too short for the fit band
         raise UserError(f"{src}: {e}" + (f"; {note}" if note else "")) from None
     if note:

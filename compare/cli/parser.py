@@ -79,6 +79,9 @@ def build_parser() -> argparse.ArgumentParser:
     cmp_.add_argument("--duration", type=float, default=None, help="simulated seconds when running a scenario or a model (default: its own)")
     cmp_.add_argument("--seed", type=int, default=None,
                       help="random seed of the scene run and of the reduced model's run (default: the scenario's)")
+    cmp_.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"),
+                      help="fit band (rad/s) of a scene compared with model I, instead of 3-30 v/a (a scan shorter "
+                           "than the renewal length, a short trace)")
     cmp_.set_defaults(func=cmd_compare)
 
     ren = add("render", "render a scenario headless to PNG frames (and an animated GIF)")
@@ -125,12 +128,20 @@ def build_parser() -> argparse.ArgumentParser:
     an.add_argument("--force-col", default=None, help="friction-force column: analyse force data (C_F, force exponent)")
     an.add_argument("--normal-col", default=None, help="normal-force column (force data): adds C_mu of F/N")
     an.add_argument("--direction-col", default=None, help="direction column of a reciprocating test (strokes)")
-    an.add_argument("--time-unit", default=None, choices=["s", "ms", "us", "min", "h"], type=_micro,
-                    help="time unit, when neither the header nor a units row names it")
-    an.add_argument("--x-unit", default=None, choices=["nm", "um", "mm", "m"], type=_micro,
-                    help="displacement unit, when neither the header (x_um, x [mm]) nor a units row names it")
-    an.add_argument("--force-unit", default=None, choices=["mN", "N", "kN"],
-                    help="force unit, when neither the header (F(N)) nor a units row names it")
+    an.add_argument("--mu-col", default=None,
+                    help="friction-coefficient column (force data): analysed as mu (C_mu) instead of F/N")
+    an.add_argument("--time-unit", default=None, type=_micro,
+                    help="time unit (s, ms, min, ...), when neither the header nor a units row names it; a unit the "
+                         "file states and a different one given here is an error")
+    an.add_argument("--x-unit", default=None, type=_micro,
+                    help="displacement unit (nm, um, mm, m, in, ...), when neither the header (x_um, x [mm]) nor a "
+                         "units row names it")
+    an.add_argument("--force-unit", default=None,
+                    help="force unit (N, mN, kN, gf, kip, ...; a mass unit such as g is read as its weight), when "
+                         "neither the header (F(N)) nor a units row names it")
+    an.add_argument("--contact-area", type=float, default=None, metavar="M2",
+                    help="contact area (m^2) that turns a stress column (MPa, ...) into a force; without it a stress "
+                         "is refused")
     an.add_argument("--speed", type=float, default=None, metavar="V",
                     help="imposed sliding speed (m/s), force data: distance-domain spectrum and stroke length")
     an.add_argument("--cut", type=float, default=None, metavar="S",

@@ -17,6 +17,7 @@ def analyze_series(args, read) -> int:
     from ..report.series_report import build_series_report
 
     band = tuple(args.band) if args.band else None
+    out = output_dir(args.output, f"analyze-series-{Path(args.data[0]).stem}", "index.html and summary.json")
     analyses = []
     for path in args.data:
         data = read(path, args)
@@ -28,7 +29,6 @@ def analyze_series(args, read) -> int:
         series = velocity_series(analyses, omega=args.omega)
     except ValueError as e:
         raise UserError(str(e)) from None
-    out = output_dir(args.output, f"analyze-series-{Path(args.data[0]).stem}", "index.html and summary.json")
     sections, summary = build_series_report(series, analyses, args.data)
     write_report(out, sections, summary, title=f"frictionnoise analyze: {len(args.data)} records against speed")
     for path, a in zip(args.data, analyses):

@@ -83,7 +83,8 @@ def read_toml(path, what: str = "TOML file") -> dict:
 
 
 def output_folder(path) -> Path:
-    """``path`` as a folder to write into: absent (created later) or a folder; not a file, and not under one."""
+    """``path`` as a folder to write into: absent (created later) or a folder; not a file, and not under one; its
+    nearest existing folder takes a new folder (tried before any work starts)."""
     p = Path(path)
     if p.exists() and not p.is_dir():
         raise InputError(f"{p}: exists and is not a folder")
@@ -93,5 +94,17 @@ def output_folder(path) -> Path:
                 raise InputError(f"{p}: {parent} is a file, not a folder")
             if not os.access(parent, os.W_OK | os.X_OK):
                 raise InputError(f"{p}: {parent} is not writable")
+            _probe(p, parent)
             break
     return p
+
+
+def _probe(p: Path, parent: Path) -> None:
+    """Make and remove a folder in ``parent``: the one test that holds for every file system and user (a
+    superuser passes os.access everywhere, yet /proc or a read-only mount refuses the folder)."""
+    import tempfile
+
+    try:
+        os.rmdir(tempfile.mkdtemp(prefix=".frictionnoise-probe-", dir=parent))
+    except OSError as e:
+        raise InputError(f"{p}: cannot write into {parent} ({e.strerror or e})") from None

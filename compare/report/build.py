@@ -120,8 +120,8 @@ def build_report(quick: bool = False, seed: int = 0, progress=None, workers: int
     return results + [speed] + alone_results, summary
 
 
-def build_scene_report(sc, trace=None, duration=None, seed=None, progress=None):
-    """Results and summary for one scene (``frictionnoise compare``)."""
+def build_scene_report(sc, trace=None, duration=None, seed=None, progress=None, band=None):
+    """Results and summary for one scene (``frictionnoise compare``); ``band`` (rad/s) replaces the fit band."""
     from .studies.scenes import scene_result
 
     header = {"version": package_version(), "quick": False, "seed": seed if seed is not None else sc.run.seed,
@@ -132,7 +132,8 @@ def build_scene_report(sc, trace=None, duration=None, seed=None, progress=None):
 
         trace = run_scene(sc, False, header["seed"], trace, duration, progress)[0]
         extra = beside_results(sc, header["seed"], trace)
-    res = scene_result(sc.name, sc, False, header["seed"], trace=trace, duration=duration, progress=progress)
+    res = scene_result(sc.name, sc, False, header["seed"], trace=trace, duration=duration, progress=progress,
+                       band=band)
     speed = StudyResult("timings", "Speed", list(res.timings), html=table(
         "Run", ["what", "run", "wall (s)", "mean |ln ratio| vs model I"],
         [_row(r) for r in res.timings]))

@@ -99,7 +99,7 @@ def build_measured_report(an: DisplacementAnalysis, data):
     fit, spec, segs = an.fit, an.C_x, an.segments
     summary = {"version": package_version(), "source": data.source, "n_samples": len(data.t),
                "dt_s": float(spec.provenance["dt"]), "resampled": data.resampled, "warning": data.warning,
-               **an.summary()}
+               "layout": data.layout, **an.summary()}
     if data.timeline is not None:
         summary["timeline"] = data.timeline.summary()
     relation = (f"C_F = M^2 omega^4 C_x assumes the block is free (inertial relation, eq. 3), with M = {an.mass:g} kg: "

@@ -72,6 +72,11 @@ class Substrate:
         to print before it starts."""
         return []
 
+    def provenance(self) -> dict:
+        """What a trace's metadata records of the part's input (a measured profile's file, checksum and
+        resampling); empty for a generated substrate."""
+        return {}
+
     def top(self) -> float:
         """The highest point of the substrate above its datum (mm): feet on a sole start above it."""
         return 0.0

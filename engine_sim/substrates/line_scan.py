@@ -31,6 +31,11 @@ _UNITS = ("", "m", "mm", "um", "µm", "nm", "A", "Å")  # "": the unit the file 
 CONTACT_SLOP = 1e-7  # m
 _EVAL_POINTS = 1 << 17  # the spacing rule is judged on at most this many points of the profile (cost bound)
 _CLOSING_WORK = 4e8  # points x disc width above which a profile is first pooled to its bins' maxima (cost bound)
+# segments a track may hold over the stretch the scene keeps around its pad (Substrate.margins: 4 pad radii ahead,
+# 2 behind): the spacing is never finer than 6 R / TRACK_SEGMENTS, so a track's set-up lays at most this many
+# segments however fine the file's grid (pymunk adds some 10^5 static segments a second)
+TRACK_SEGMENTS = 20_000
+_KEPT_RADII = 6.0
 
 
 @dataclass(frozen=True)
@@ -44,7 +49,9 @@ class LineScanSpec(SubstrateSpec):
     how far (rms) the pad's path over the resampled track may stray from its path over the file's profile (default:
     the contact solver's slop, 0.1 um). detrend: "linear" (least-squares line removed), "mean" or "none".
     extend: "mirror" (the profile, then its reflection, repeated: no step at the joins) or "tile" (repeated as is).
-    Every pad's track is the same profile entered at its own random place (its own random stream), so the pads'
+    short_scan: what to do with a scan shorter than a pad's diameter or the renewal length ``a``: "refuse" (an
+    error naming both lengths) or "repeat" (the scan repeated by ``extend`` until it is long enough, with a
+    warning: a pad then slides over the same few points again and again). Every pad's track is the same profile entered at its own random place (its own random stream), so the pads'
     forces are not in step. ``a`` is the renewal length used for the fit band."""
 
     kind: str = "line_scan"
@@ -55,6 +62,7 @@ class LineScanSpec(SubstrateSpec):
     path_tolerance: float = CONTACT_SLOP
     detrend: str = "linear"
     extend: str = "mirror"
+    short_scan: str = "refuse"
 
 
 # ------------------------------------------------------------------------------------ what a pad can feel of a profile
@@ -121,13 +129,17 @@ class TrackProfile:
     native_dx: float
     path_error: float
     note: str
+    sha256: str = ""  # of the profile file's bytes
 
 
 def _spacing_from_pad(closed, path, dx, radius, tol, cap, extend):
     """The largest k (grid spacing k dx <= cap) whose path error is at most tol, by bisection (the error grows
-    with k, up to the profile's own irregularity), and that error."""
+    with k, up to the profile's own irregularity), and that error. k is also bounded by what the profile can
+    judge (two kept points inside its margins), so the error returned is always finite."""
     margin = int(_reach(radius, closed) / dx) + 1
-    k_hi = max(1, int(cap / dx))
+    k_hi = max(1, min(int(cap / dx), (min(closed.size, path.size) - 2 * margin - 1) // 2))
+    if k_hi == 1:
+        return 1, 0.0
     err = {1: 0.0}
     if _path_error(closed, path, k_hi, dx, radius, margin, extend) <= tol:
         return k_hi, _path_error(closed, path, k_hi, dx, radius, margin, extend)
@@ -147,28 +159,76 @@ def _um(v: float) -> str:
     return f"{v * 1e6:.3g} um"
 
 
+def _length(v: float) -> str:
+    return f"{v * 1e3:.3g} mm" if v >= 1e-4 else _um(v)
+
+
+def _cover(src: str, grid: np.ndarray, hg: np.ndarray, need: float, what: str, short_scan: str, extend: str):
+    """(grid, heights, note) of a scan at least ``need`` (m) long: a shorter one refused (a ProfileError naming
+    both lengths) or, with short_scan "repeat", repeated by ``extend`` to twice ``need`` with a warning."""
+    length = float(grid[-1] - grid[0])
+    if length >= need:
+        return grid, hg, ""
+    if short_scan != "repeat":
+        raise ProfileError(f"{src}: the scan is {_length(length)} long, shorter than {what} ({_length(need)}): a "
+                           "pad would slide over the same few points again and again; use a longer scan, or set "
+                           "substrate.short_scan = \"repeat\" to repeat it anyway")
+    copies = int(np.ceil(2 * need / length))
+    back = hg[::-1] if extend == "mirror" else hg
+    parts = [hg if i % 2 == 0 else back for i in range(copies)]
+    parts = [parts[0]] + [p[1:] if extend == "mirror" else p for p in parts[1:]]
+    hg = np.concatenate(parts)
+    dx = (grid[-1] - grid[0]) / (grid.size - 1)
+    grid = grid[0] + dx * np.arange(hg.size)
+    return grid, hg, (f"; WARNING: the scan ({_length(length)}) is shorter than {what} ({_length(need)}) and "
+                      f"is repeated {copies} times (substrate.short_scan = \"repeat\")")
+
+
+def _native_spacing(f) -> tuple:
+    """(spacing (m), uniform, note) of a scan's positions: the spacing the preamble states when the positions
+    agree with it (their span within 1 % of (n - 1) spacings), else their mean step (the median of positions
+    rounded in the export is the rounding's step, not the scan's). Positions within half a step of that uniform
+    grid are the grid as written with rounding (the heights kept as they are); others are interpolated onto it."""
+    x = f.x
+    span = float(x[-1] - x[0])
+    mean = span / (x.size - 1)
+    native, said = mean, "their mean step"
+    if f.spacing is not None and abs(f.spacing * (x.size - 1) - span) <= 0.01 * span:
+        native, said = f.spacing, "the spacing the file states"
+    off = float(np.max(np.abs(x - (x[0] + native * np.arange(x.size)))))
+    if off <= 1e-6 * native:
+        return native, True, ""
+    if off < 0.5 * native:
+        return native, True, (f" (positions as written stray up to {_um(off)} from a uniform grid at {said}, "
+                              f"{_um(native)}: rounding in the export, read as that grid)")
+    return native, False, f" (non-uniform positions interpolated to {said}, {_um(native)})"
+
+
 @functools.lru_cache(maxsize=8)
 def _profile(path: str, stamp: tuple, x_unit: str, height_unit: str, dx: float, detrend: str, extend: str,
-             radius: float, tol: float, cap: float) -> TrackProfile:
+             radius: float, tol: float, cap: float, a: float = 0.0, short_scan: str = "refuse") -> TrackProfile:
     f = read_line_scan(path, x_unit, height_unit)
     x, h = f.x, f.h
-    steps = np.diff(x)
-    native = float(np.median(steps))
-    uniform = np.max(np.abs(steps - native)) <= 1e-6 * native
-    grid = x[0] + native * np.arange(int(np.floor((x[-1] - x[0]) / native + 1e-9)) + 1)
-    hg = h.copy() if uniform and grid.size == x.size else np.interp(grid, x, h)
+    native, uniform, how = _native_spacing(f)
+    grid = x[0] + native * np.arange(x.size if uniform else int(np.floor((x[-1] - x[0]) / native + 1e-9)) + 1)
+    hg = h.copy() if uniform else np.interp(grid, x, h)
     if detrend == "linear":
         hg = hg - np.polyval(np.polyfit(grid - grid[0], hg, 1), grid - grid[0])
     elif detrend == "mean":
         hg = hg - hg.mean()
     name = Path(path).name
-    how = "" if uniform else f" (non-uniform positions interpolated to their median spacing {_um(native)})"
+    need, what = 2 * radius, "a pad's diameter with the track's thickness"  # a point probe (radius 0) needs none
+    if radius > 0 and a > need:
+        need, what = a, "the renewal length substrate.a"
+    grid, hg, repeated = _cover(path, grid, hg, need, what, short_scan, extend)
+    how += repeated
     if radius <= 0:  # a point probe: the file's heights on the grid
         step = dx if dx > 0 else native
-        out = np.interp(x[0] + step * np.arange(int(np.floor((x[-1] - x[0]) / step + 1e-9)) + 1), grid, hg)
+        out = hg.copy() if dx <= 0 else np.interp(
+            grid[0] + step * np.arange(int(np.floor((grid[-1] - grid[0]) / step + 1e-9)) + 1), grid, hg)
         note = f"{name}: profile on a {_um(step)} grid{how}"
         out.setflags(write=False)
-        return TrackProfile(float(step), out, native, 0.0, note)
+        return TrackProfile(float(step), out, native, 0.0, note, f.sha256)
     file_dx = native
     width = 2 * _reach(radius, hg) / native  # points under the disc: the closing costs n x width
     if hg.size * width > _CLOSING_WORK:  # a pad touches only peaks: keep each bin's highest point
@@ -182,6 +242,11 @@ def _profile(path: str, stamp: tuple, x_unit: str, height_unit: str, dx: float, 
     n_eval = min(closed.size, _EVAL_POINTS)
     path_ref = pad_path(hg[:n_eval], native, radius, extend)
     margin = int(_reach(radius, closed) / native) + 1
+    finest = _KEPT_RADII * cap / TRACK_SEGMENTS  # the segment budget's spacing (m)
+    if 0 < dx < finest * (1 - 1e-9):
+        raise ProfileError(f"{path}: substrate.dx = {dx:.3g} m would lay more than {TRACK_SEGMENTS} segments over "
+                           f"the {_length(_KEPT_RADII * cap)} a track keeps around its pad; use at least "
+                           f"{finest:.3g} m")
     if dx > 0:
         k = dx / native
         if abs(k - round(k)) < 1e-6 and round(k) >= 1:
@@ -196,18 +261,30 @@ def _profile(path: str, stamp: tuple, x_unit: str, height_unit: str, dx: float, 
         what = f"resampled from {_um(file_dx)} to {_um(step)} as substrate.dx asks{moved}"
     else:
         k, err = _spacing_from_pad(closed[:n_eval], path_ref, native, radius, tol, cap, extend)
+        k_min = int(np.ceil(finest / native * (1 - 1e-9)))
+        budget = ""
+        if k < k_min:
+            k = k_min
+            err = _path_error(closed[:n_eval], path_ref, k, native, radius, margin, extend)
+            budget = (f"; coarsened to {_um(k * native)} to lay at most {TRACK_SEGMENTS} segments per track (its "
+                      f"path moves {_um(err)} rms)" if np.isfinite(err) else
+                      f"; coarsened to {_um(k * native)} to lay at most {TRACK_SEGMENTS} segments per track")
         step, out = k * native, closed[::k].copy()
-        if k > 1:
+        if budget:
+            what = f"resampled from {_um(file_dx)}{budget}"
+        elif k > 1:
             what = (f"resampled from {_um(file_dx)} to {_um(step)}: the pad cannot resolve shorter wavelengths (its "
                     f"path moves {_um(err)} rms; substrate.path_tolerance {_um(tol)})")
         else:
             e2 = _path_error(closed[:n_eval], path_ref, 2, native, radius, margin, extend)
-            what = (f"kept at its spacing {_um(native)}: the pad feels shorter wavelengths (at {_um(2 * native)} its "
-                    f"path would move {_um(e2)} rms; substrate.path_tolerance {_um(tol)})")
+            said = (f"at {_um(2 * native)} its path would move {_um(e2)} rms" if np.isfinite(e2) else
+                    "the scan is too short to judge a coarser grid")
+            what = (f"kept at its spacing {_um(native)}: the pad feels shorter wavelengths ({said}; "
+                    f"substrate.path_tolerance {_um(tol)})")
     note = (f"{name}: profile {what}{how}; the pad (radius {_um(radius)} with the track's thickness) bridges the "
             f"valleys under {100 * filled:.0f} % of the points")
     out.setflags(write=False)
-    return TrackProfile(float(step), out, file_dx, err, note)
+    return TrackProfile(float(step), out, file_dx, err, note, f.sha256)
 
 
 def read_profile(spec: LineScanSpec, pad_radius: float = 0.0) -> TrackProfile:
@@ -224,7 +301,7 @@ def read_profile(spec: LineScanSpec, pad_radius: float = 0.0) -> TrackProfile:
         raise ProfileError(f"{p}: cannot be read ({e.strerror or e})") from None
     radius = pad_radius + spec.segment_radius if pad_radius > 0 else 0.0
     return _profile(str(p), (st.st_mtime_ns, st.st_size), spec.x_unit, spec.height_unit, spec.dx, spec.detrend,
-                    spec.extend, radius, spec.path_tolerance, pad_radius)
+                    spec.extend, radius, spec.path_tolerance, pad_radius, spec.a, spec.short_scan)
 
 
 def _find(name: str, where: str) -> Path:
@@ -247,7 +324,7 @@ class LineScan(Substrate):
     non_negative = frozenset({"dx"})
     quick_duration = 8.0  # streaming its short segments costs about 1 wall s per simulated s
     choices = {"x_unit": tuple(_UNITS), "height_unit": tuple(_UNITS), "detrend": ("linear", "mean", "none"),
-               "extend": ("mirror", "tile")}
+               "extend": ("mirror", "tile"), "short_scan": ("refuse", "repeat")}
 
     @classmethod
     def prepare(cls, spec, where=""):
@@ -280,6 +357,11 @@ class LineScan(Substrate):
 
     def notes(self) -> list:
         return [self.profile.note]
+
+    def provenance(self) -> dict:
+        p = self.profile
+        return {"profile": {"file": self.spec.file, "sha256": p.sha256, "file_spacing_m": p.native_dx,
+                            "track_spacing_m": p.dx, "path_error_m": p.path_error, "resampling": p.note}}
 
     def build(self, space, y, shape_filter, rng, mu, x_start):
         return ProfileTrack(space, y, self.h, self.dx, self.spec.extend, mu, self.spec.segment_radius * U.LENGTH,

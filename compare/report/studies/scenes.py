@@ -80,8 +80,10 @@ def beside_results(sc, seed, trace) -> list:
     return out
 
 
-def scene_result(name, sc, quick, seed, trace=None, duration=None, progress=None) -> StudyResult:
-    """One scenario against the reduced model its parts name (runs it unless given a trace)."""
+def scene_result(name, sc, quick, seed, trace=None, duration=None, progress=None, band=None) -> StudyResult:
+    """One scenario against the reduced model its parts name (runs it unless given a trace); ``band`` (rad/s),
+    when given, replaces the comparison's own fit band (3-30 v/a for model I) where the comparison takes one."""
+    import inspect
     from importlib import import_module
 
     part = fitting_part(sc)
@@ -89,10 +91,16 @@ def scene_result(name, sc, quick, seed, trace=None, duration=None, progress=None
         raise ValueError(f"scene {name}: no comparison with {part.reduced_model} (comparisons: {', '.join(COMPARISONS)})")
     module, function = COMPARISONS[part.reduced_model]
     compare = getattr(import_module(f".{module}", __package__), function)
-    return compare(name, sc, quick, seed, trace, duration or (part.quick_duration if quick else None), progress)
+    extra = {}
+    if band is not None:
+        if "band" not in inspect.signature(compare).parameters:
+            raise ValueError(f"--band: the comparison with {part.reduced_model} sets its own band")
+        extra["band"] = tuple(band)
+    return compare(name, sc, quick, seed, trace, duration or (part.quick_duration if quick else None), progress,
+                   **extra)
 
 
-def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyResult:
+def _model_I_result(name, sc, quick, seed, trace, duration, progress, band=None) -> StudyResult:
     from reduced_models import spring_block
 
     from .. import plots
@@ -103,7 +111,7 @@ def _model_I_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
     spec = displacement_spectrum(tr.t, tr.x, nperseg=nper)
     ex = model_I_parameters(tr, sc)
     w0 = ex["v"]["value"] / ex["a"]["value"]
-    band = (3 * w0, 30 * w0)
+    band = band or (3 * w0, 30 * w0)  # the renewal band, unless the command gives one (compare --band)
     a_sub = getattr(sc.substrate, "a", None)  # the patches' renewal length (a rough track's roll-off: a longer advice)
     require_band(spec, band, T, float(tr.t[1] - tr.t[0]), 3 * sc.steady_velocity / a_sub if a_sub else None)
     fit = fit_power_law(spec, band=band)
