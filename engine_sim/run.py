@@ -8,7 +8,7 @@ import time
 from contextlib import contextmanager
 from pathlib import Path
 
-from frictionnoise import package_version
+from frictionnoise.base import package_version
 
 from .checkpoint import Checkpoint, CheckpointError, round_trip
 from .epoch import default_epoch

@@ -13,8 +13,8 @@ from dataclasses import dataclass, field, fields, replace
 from importlib import resources
 from pathlib import Path
 
-from frictionnoise import G
-from frictionnoise.checks import check_number
+from frictionnoise.base import G
+from frictionnoise.base import check_number
 
 from .arrangements import ARRANGEMENTS, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSpec  # noqa: F401
 from .drives import DRIVES, DriveSpec

@@ -20,7 +20,7 @@ from dataclasses import asdict, dataclass
 import numba
 import numpy as np
 
-from frictionnoise.checks import check_fields
+from frictionnoise.base import check_fields
 
 from ._version import package_version
 from .trace import ModelTrace

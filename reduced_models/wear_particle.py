@@ -31,7 +31,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 from scipy import integrate
 
-from frictionnoise.checks import check_fields
+from frictionnoise.base import check_fields
 
 from ._version import package_version
 from .wear_particle_kernel import run
