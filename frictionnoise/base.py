@@ -1,6 +1,6 @@
 """The helpers the physics and the application share: the paper's g (:data:`G`), the installed version
 (:func:`package_version`), the atomic file write (:func:`atomic_write`) and the one number check of every parameter
-field (:func:`check_number`, :func:`check_fields`).
+field (:func:`check_number`, :func:`check_fields`, and for a span of time :func:`check_seconds`).
 
 This module imports the standard library only. ``engine_sim``, ``reduced_models`` and ``compare`` take these from
 here, never from the user API around it (``frictionnoise``, whose ``__init__`` imports nothing but the standard
@@ -17,7 +17,7 @@ import os
 from importlib import metadata as _metadata
 from pathlib import Path
 
-__all__ = ["G", "package_version", "atomic_write", "check_number", "check_fields"]
+__all__ = ["G", "package_version", "atomic_write", "check_number", "check_fields", "check_seconds"]
 
 G = 9.81  # m/s^2: the paper's g (standard gravity rounded as in Xu, Zhou & Persson 2025)
 
@@ -108,3 +108,12 @@ def check_fields(obj, *, positive=(), non_negative=(), integer=(), prefix: str =
                            non_negative=name in non_negative or name in integer, integer=name in integer)
         if name in integer:
             object.__setattr__(obj, name, val)
+
+
+def check_seconds(name: str, val) -> float:
+    """``val`` as a span of simulated or recorded time named ``name`` (a run's duration, an epoch, a checkpoint
+    interval; an option's flag on the command line): a positive, finite number of seconds, returned as float.
+    Raises ValueError, one line: "{name} must be a positive number of seconds (got {val!r})"."""
+    if isinstance(val, bool) or not isinstance(val, numbers.Real) or not 0 < val < math.inf:
+        raise ValueError(f"{name} must be a positive number of seconds (got {val!r})")
+    return float(val)

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import os
 
-__all__ = ["UserError", "output_dir", "check_seed", "scenario_path", "shipped_file", "load_scenario_arg", "nearest_names", "data_table",
-           "usable_cores"]
+__all__ = ["UserError", "output_dir", "check_seed", "check_seconds_options", "scenario_path", "shipped_file",
+           "load_scenario_arg", "nearest_names", "data_table", "usable_cores"]
 
 
 class UserError(Exception):
@@ -30,6 +30,20 @@ def output_dir(arg, default, writes: str):
             raise UserError(f"-o/--output {arg}: names a folder, not a {suffix} file (the command writes {writes} into "
                             f"it); give a folder name without the {suffix} suffix")
     return output_folder(arg or default)
+
+
+def check_seconds_options(args, *names):
+    """Each named option of ``args`` that is given, as a span of seconds: the rule is
+    :func:`frictionnoise.base.check_seconds`, the one line names the flag (``--checkpoint-every``)."""
+    from frictionnoise.base import check_seconds
+
+    for name in names:
+        val = getattr(args, name)
+        if val is not None:
+            try:
+                check_seconds("--" + name.replace("_", "-"), val)
+            except ValueError as e:
+                raise UserError(str(e)) from None
 
 
 def check_seed(seed):

@@ -1,0 +1,78 @@
+"""Frames of a scene as it slides, drawn headless at output steps of the one stepping loop
+(:class:`engine_sim.loop.Loop`), for ``frictionnoise render`` and :func:`frictionnoise.render_scene`."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from frictionnoise.base import check_seconds
+
+from .loop import Loop
+from .scene import Scene
+
+__all__ = ["draw_frames"]
+
+
+class _Drawer:
+    """The loop's sampler while drawing: the renderer observes every output step (its grains' states are the
+    recorder's, judged on their mean speed over the output step) and draws every ``every``-th."""
+
+    def __init__(self, renderer, every: int, out, images: list):
+        self.renderer, self.every, self.out, self.images, self.k = renderer, every, out, images, 0
+
+    def sample(self):
+        r = self.renderer
+        r.observe()
+        if self.k % self.every == 0:
+            self.images.append(np.array(r.frame(), copy=True))
+            if self.out is not None:
+                r.save_png(self.out / f"frame_{len(self.images) - 1:03d}.png")
+        self.k += 1
+
+
+def draw_frames(sc, frames: int, duration: float, seed: int | None = None, *, out=None,
+                dpi: int = 90) -> list[np.ndarray]:
+    """Draw ``frames`` frames of a scenario's scene spanning ``duration`` simulated seconds.
+
+    Frame j is drawn at output step j n, n = max(1, round(duration / (frames dt_out))) output steps apart, from the
+    scene's first state (no warm-up).
+
+    Parameters
+    ----------
+    sc : Scenario
+        The scenario.
+    frames : int
+        Number of frames, >= 1.
+    duration : float
+        Simulated time spanned by the frames (Units: s), > 0.
+    seed : int, optional
+        Seed of the substrate and the scene; default the scenario's.
+    out : str or pathlib.Path, optional
+        A folder to write ``frame_000.png``, ``frame_001.png``, ... into (created if needed).
+    dpi : int, optional
+        Resolution of the frames (dots per inch).
+
+    Returns
+    -------
+    list of numpy.ndarray
+        The frames as RGBA images, ``(height, width, 4)`` arrays of uint8.
+    """
+    from .render import SceneRenderer
+
+    if frames < 1:
+        raise ValueError(f"frames must be at least 1 (got {frames!r})")
+    check_seconds("duration", duration)
+    if out is not None:
+        out = Path(out)
+        out.mkdir(parents=True, exist_ok=True)
+    scene = Scene(sc, seed)
+    renderer = SceneRenderer(scene, dpi=dpi)
+    every = max(1, int(round(duration / sc.run.dt_out / frames)))  # output steps between frames
+    images = []
+    n_out = (frames - 1) * every + 1  # the last frame ends the loop, as a last sample ends a recording
+    try:
+        Loop(scene, _Drawer(renderer, every, out, images), n_out).run(n_out)
+    finally:
+        renderer.close()
+    return images
