@@ -7,14 +7,14 @@ file, the field and the limit, including the time-step limit that the pad spring
 """
 from __future__ import annotations
 
+import difflib
+import os
 import re
-import tomllib
 from dataclasses import dataclass, field, fields, replace
 from importlib import resources
 from pathlib import Path
 
-from frictionnoise.base import G
-from frictionnoise.base import check_number
+from frictionnoise.base import G, InputError, check_number, read_toml
 
 from .arrangements import ARRANGEMENTS, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSpec  # noqa: F401
 from .drives import DRIVES, DriveSpec
@@ -27,7 +27,7 @@ from .wear import WearSpec, wear_part
 
 __all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", "SubstrateSpec", "DriveSpec",
            "WearSpec", "RunSpec", "load_scenario", "scenario_from_dict", "shipped_scenarios", "resolve_scenario",
-           "scenario_summary", "SCENARIO_DIR"]
+           "shipped_file", "nearest_names", "scenario_summary", "SCENARIO_DIR"]
 
 # the shipped scenarios are package data of the ``scenarios`` package (installed with every install, not found
 # relative to a source tree); a regular (non-zipped) install gives a real folder
@@ -354,40 +354,77 @@ def _check_consistency(sc: Scenario, where: str):
         raise _err(where, str(e)) from None
 
 
-def resolve_scenario(name_or_path) -> Path:
-    """The file of a scenario given as a path or as the name of a shipped one (``pads_friction_patches``, with
-    or without ``.toml``): an existing path wins over a shipped name of the same spelling."""
+def shipped_file(arg, folder: str = "") -> str:
+    """A file argument that need not exist where it is read: an existing path as given; else a path that starts
+    with ``scenarios/`` (as the README writes the shipped examples) taken inside the installed ``scenarios`` package;
+    else, with ``folder`` (``"sweeps"``), a bare name of a file shipped there (``velocity_model1``); else the
+    argument as given (the reader then names the problem)."""
+    if os.path.lexists(arg):
+        return str(arg)
+    p = Path(arg)
+    candidates = []
+    if p.parts and p.parts[0] == "scenarios":
+        candidates.append(SCENARIO_DIR.joinpath(*p.parts[1:]))
+    if folder and p.parent == Path("."):
+        candidates += [SCENARIO_DIR / folder / p.name, SCENARIO_DIR / folder / f"{p.name}.toml"]
+    return str(next((c for c in candidates if c.is_file()), arg))
+
+
+def nearest_names(name: str, names) -> str:
+    """'; did you mean X?' (or 'X or Y?') for the names closest to ``name`` by difflib's ratio, else ''."""
+    close = difflib.get_close_matches(name, list(names), n=2, cutoff=0.6)
+    if not close:
+        close = [n for n in names if n.lower() == name.lower()]
+    return f"; did you mean {' or '.join(close)}?" if close else ""
+
+
+def resolve_scenario(name_or_path, others=(), others_kind: str = "") -> Path:
+    """The file of a scenario given as a path or as the name of a shipped one: the one name resolution.
+
+    An existing path wins over a shipped name of the same spelling; then a ``scenarios/...`` path inside the
+    installed package (:func:`shipped_file`); then a bare name (no folder; with or without ``.toml``) of a shipped
+    scenario (:func:`shipped_scenarios`). Anything else is a :class:`ScenarioError`, one line: a bare name offers
+    the nearest shipped names (and of ``others``, the other names the caller takes, called ``others_kind``) and
+    lists the shipped ones, as ``frictionnoise scenarios`` does; a path says "no such file".
+    """
+    found = shipped_file(name_or_path)
+    if os.path.lexists(found):
+        return Path(found)
     path = Path(name_or_path)
-    if path.exists():
-        return path
     shipped = shipped_scenarios()
-    stem = path.name[:-5] if path.name.endswith(".toml") else path.name
+    stem = path.name[:-5] if path.name.lower().endswith(".toml") else path.name
     if path.parent == Path(".") and stem in shipped:
         return shipped[stem]
-    raise ScenarioError(f"{path}: no such file, nor a shipped scenario (frictionnoise scenarios lists them: "
-                        f"{', '.join(shipped)})")
+    if path.parent != Path(".") or path.suffix.lower() not in ("", ".toml"):
+        raise ScenarioError(f"{path}: no such file")
+    also = f" or {others_kind}" if others else ""
+    raise ScenarioError(f"{name_or_path}: no such file, nor a shipped scenario{also}"
+                        f"{nearest_names(path.stem, [*shipped, *others])} (`frictionnoise scenarios` lists the shipped "
+                        f"scenarios: {', '.join(shipped)}" + (f"; {others_kind}s: {', '.join(others)})" if others else ")"))
 
 
 def load_scenario(path) -> Scenario:
-    """Read and validate a TOML scenario file, given as a path or a shipped scenario's name.
+    """Read and validate a TOML scenario file, given as a path or a shipped scenario's name: the one loader, which
+    the command line and the Python API share.
 
     Parameters
     ----------
     path : str or pathlib.Path
-        A scenario file, or the name of a shipped one (``"pads_friction_patches"``); an existing file wins.
+        A scenario file, or the name of a shipped one (``"pads_friction_patches"``); an existing file wins
+        (:func:`resolve_scenario`).
 
     Returns
     -------
     Scenario
-        The validated scenario (SI units); :class:`ScenarioError` (one line) otherwise.
+        The validated scenario (SI units); :class:`ScenarioError` (one line naming the file and the problem)
+        otherwise: no such file or name, a folder, an empty, binary, non-UTF-8 or invalid TOML file, one that holds
+        no settings (only comments), or a field out of its range.
     """
     path = resolve_scenario(path)
     try:
-        data = tomllib.loads(path.read_text())
-    except UnicodeDecodeError:
-        raise ScenarioError(f"{path}: not a text file") from None
-    except tomllib.TOMLDecodeError as e:
-        raise ScenarioError(f"{path}: not valid TOML ({e})") from None
+        data = read_toml(path, "scenario TOML file")
+    except InputError as e:
+        raise ScenarioError(str(e)) from None
     return scenario_from_dict(data, where=str(path))
 
 

@@ -1,6 +1,8 @@
 """The helpers the physics and the application share: the paper's g (:data:`G`), the installed version
-(:func:`package_version`), the atomic file write (:func:`atomic_write`) and the one number check of every parameter
-field (:func:`check_number`, :func:`check_fields`, and for a span of time :func:`check_seconds`).
+(:func:`package_version`), the atomic file write (:func:`atomic_write`), the checks of an input file's kind and format
+by content (:func:`input_file`, :func:`sniff`, :func:`read_toml`: a scenario file read by ``engine_sim.load_scenario``,
+a sweep or measured data read by the command line) and the one number check of every parameter field
+(:func:`check_number`, :func:`check_fields`, and for a span of time :func:`check_seconds`).
 
 This module imports the standard library only. ``engine_sim``, ``reduced_models`` and ``compare`` take these from
 here, never from the user API around it (``frictionnoise``, whose ``__init__`` imports nothing but the standard
@@ -17,7 +19,8 @@ import os
 from importlib import metadata as _metadata
 from pathlib import Path
 
-__all__ = ["G", "package_version", "atomic_write", "check_number", "check_fields", "check_seconds"]
+__all__ = ["G", "package_version", "atomic_write", "InputError", "input_file", "sniff", "read_toml", "check_number",
+           "check_fields", "check_seconds"]
 
 G = 9.81  # m/s^2: the paper's g (standard gravity rounded as in Xu, Zhou & Persson 2025)
 
@@ -75,6 +78,76 @@ def atomic_write(path, data: bytes | str | None = None, *, write=None) -> Path:
             os.unlink(tmp)
         raise
     return path
+
+
+_ZIP_MAGIC = (b"PK\x03\x04", b"PK\x05\x06")
+_SNIFF = 4096
+
+
+class InputError(ValueError):
+    """A path that cannot be used as given: the message names it and says why."""
+
+
+def input_file(path) -> Path:
+    """``path`` as a readable, non-empty regular file, or an InputError."""
+    p = Path(path)
+    if not os.path.lexists(p):
+        raise InputError(f"{p}: no such file")
+    if p.is_dir():
+        raise InputError(f"{p}: is a folder, not a file")
+    if not p.exists():
+        raise InputError(f"{p}: broken link")
+    if not p.is_file():
+        raise InputError(f"{p}: not a regular file")
+    try:
+        size = p.stat().st_size
+        with open(p, "rb"):
+            pass
+    except OSError as e:
+        raise InputError(f"{p}: cannot be read ({e.strerror})") from None
+    if size == 0:
+        raise InputError(f"{p}: empty file")
+    return p
+
+
+def sniff(path) -> str:
+    """'npz' (a zip archive), 'text' or 'binary', from the file's first bytes. Text is UTF-8, or the 8-bit text
+    instruments write (latin-1, as a micro sign 0xB5 in a header): no NUL byte and, read as latin-1, at most 1 %
+    control characters other than tab, line ends and form feed."""
+    with open(path, "rb") as fh:
+        head = fh.read(_SNIFF)
+    if head[:4] in _ZIP_MAGIC:
+        return "npz"
+    if b"\x00" in head:
+        return "binary"
+    try:
+        head.decode("utf-8")
+    except UnicodeDecodeError as e:
+        if e.start < len(head) - 4:  # not just a multi-byte character cut at the sniff boundary
+            control = sum(b < 32 and b not in b"\t\n\r\f" or 127 <= b < 160 for b in head)
+            return "text" if control <= 0.01 * len(head) else "binary"
+    return "text"
+
+
+def read_toml(path, what: str = "TOML file") -> dict:
+    """A TOML file's table; refuses folders, empty, binary, invalid and settings-free (comment-only) files."""
+    import tomllib
+
+    p = input_file(path)
+    kind = sniff(p)
+    if kind == "npz":
+        raise InputError(f"{p}: is an NPZ archive, not a {what}")
+    if kind == "binary":
+        raise InputError(f"{p}: binary data, not a {what}")
+    try:
+        data = tomllib.loads(p.read_text(encoding="utf-8"))
+    except UnicodeDecodeError:
+        raise InputError(f"{p}: not UTF-8 text, not a {what}") from None
+    except tomllib.TOMLDecodeError as e:
+        raise InputError(f"{p}: not valid TOML ({e})") from None
+    if not data:
+        raise InputError(f"{p}: holds no settings (empty or only comments); nothing to run")
+    return data
 
 
 def check_number(name: str, val, *, positive: bool = False, non_negative: bool = False, integer: bool = False,
