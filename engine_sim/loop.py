@@ -5,6 +5,8 @@ forecast's probe (:mod:`engine_sim.forecast`), the step costs (:mod:`engine_sim.
 """
 from __future__ import annotations
 
+import math
+
 __all__ = ["Loop", "MAINTAIN_EVERY", "warm_up"]
 
 MAINTAIN_EVERY = 64  # output steps between substrate maintenance (the margin ahead covers 200 outputs)
@@ -45,24 +47,27 @@ class Loop:
 
     def step(self) -> None:
         """One output step (class docstring)."""
-        k = self.k
-        if self.recorder is not None:
-            self.recorder.sample()
-        if k % MAINTAIN_EVERY == 0:
-            self.scene.maintain()
-            if self.on_maintain is not None:
-                self.on_maintain(k)
-        if self.n_out is None or k + 1 < self.n_out:
-            self.scene.advance(self.scene.n_sub)
-        self.k = k + 1
+        self.run(1)
 
     def run(self, n: int, check=None) -> None:
         """``n`` output steps; ``check()`` before each (it raises to stop the loop between output steps, where
-        the scene and the recorder agree)."""
-        for _ in range(n):
+        the scene and the recorder agree; ``k`` counts the output steps done)."""
+        scene, on_maintain = self.scene, self.on_maintain
+        advance, n_sub = scene.advance, scene.n_sub
+        sample = None if self.recorder is None else self.recorder.sample
+        last = math.inf if self.n_out is None else self.n_out - 1  # the output step no pymunk step follows
+        for k in range(self.k, self.k + n):
             if check is not None:
                 check()
-            self.step()
+            if sample is not None:
+                sample()
+            if k % MAINTAIN_EVERY == 0:
+                scene.maintain()
+                if on_maintain is not None:
+                    on_maintain(k)
+            if k < last:
+                advance(n_sub)
+            self.k = k + 1
 
 
 def warm_up(scene, n_out: int, interrupts=None) -> None:

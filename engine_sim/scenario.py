@@ -7,12 +7,8 @@ file, the field and the limit, including the time-step limit that the pad spring
 """
 from __future__ import annotations
 
-import difflib
-import os
-import re
 from dataclasses import dataclass, field, fields, replace
-from importlib import resources
-from pathlib import Path
+from functools import cached_property
 
 from frictionnoise.base import G, InputError, check_number, read_toml
 
@@ -20,6 +16,8 @@ from .arrangements import ARRANGEMENTS, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSp
 from .drives import DRIVES, DriveSpec
 from .drives.force import ForceSpec
 from .laws import LAWS, FrictionSpec
+from .shipped import (SCENARIO_DIR, ScenarioError, nearest_names, resolve_scenario, scenario_summary,  # noqa: F401
+                      shipped_file, shipped_scenarios)
 from .substrates import SUBSTRATES, SubstrateSpec
 from .substrates.patches import PatchesSpec
 from .vibration import Vibration, VibrationSpec
@@ -28,13 +26,6 @@ from .wear import WearSpec, wear_part
 __all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", "SubstrateSpec", "DriveSpec",
            "WearSpec", "RunSpec", "load_scenario", "scenario_from_dict", "shipped_scenarios", "resolve_scenario",
            "shipped_file", "nearest_names", "scenario_summary", "SCENARIO_DIR"]
-
-# the shipped scenarios are package data of the ``scenarios`` package (installed with every install, not found
-# relative to a source tree); a regular (non-zipped) install gives a real folder
-SCENARIO_DIR = Path(str(resources.files("scenarios")))
-
-class ScenarioError(ValueError):
-    """An invalid scenario: the message names the file (if any), the field and what is wrong."""
 
 
 @dataclass(frozen=True)
@@ -75,29 +66,41 @@ class Scenario:
     vibration: VibrationSpec | None = None  # [vibration] (engine_sim/vibration.py); None: the section is absent
 
     # ------------------------------------------------------------------ the parts (engine_sim/*/): each asked, none checked
-    @property
+    # Each is built once per scenario, on first use, and answers the scenario's derived quantities; a scene builds
+    # its own (:meth:`fresh_parts`), since parts keep state while a scene steps (a law's impulse totals, a drive's
+    # bodies).
+    @cached_property
     def drive_part(self):
-        return DRIVES[self.drive.kind](self.drive, self)
+        return _PARTS["drive"](self)
 
-    @property
+    @cached_property
     def law_part(self):
-        return LAWS[self.friction.law](self.friction, self)
+        return _PARTS["law"](self)
 
-    @property
+    @cached_property
     def arrangement_part(self):
-        return ARRANGEMENTS[self.pads.arrangement](self.pads, self)
+        return _PARTS["arrangement"](self)
 
-    @property
+    @cached_property
     def substrate_part(self):
-        return SUBSTRATES[self.substrate.kind](self.substrate, self)
+        return _PARTS["substrate"](self)
 
-    @property
+    @cached_property
     def vibration_part(self):
-        return None if self.vibration is None else Vibration(self.vibration, self)
+        return _PARTS["vibration"](self)
 
-    @property
+    @cached_property
     def wear_part(self):
-        return wear_part(self.wear, self)
+        return _PARTS["wear"](self)
+
+    def fresh_parts(self) -> dict:
+        """New part objects for a scene, by family (``"substrate"``, ``"arrangement"``, ``"law"``, ``"drive"``,
+        ``"wear"``, ``"vibration"``: None without a ``[vibration]`` section), none of them the scenario's own."""
+        return {family: make(self) for family, make in _PARTS.items()}
+
+    def __getstate__(self):
+        """The fields only: the parts built on first use are rebuilt after unpickling (a scene pickles its own)."""
+        return {k: v for k, v in self.__dict__.items() if k not in _PARTS_ATTRS}
 
     # ------------------------------------------------------------------ derived quantities (SI)
     @property
@@ -216,6 +219,16 @@ class Scenario:
         return out
 
 
+# how each part family is built from its section (the section's kind names the class, engine_sim/*/)
+_PARTS = {
+    "substrate": lambda sc: SUBSTRATES[sc.substrate.kind](sc.substrate, sc),
+    "arrangement": lambda sc: ARRANGEMENTS[sc.pads.arrangement](sc.pads, sc),
+    "law": lambda sc: LAWS[sc.friction.law](sc.friction, sc),
+    "drive": lambda sc: DRIVES[sc.drive.kind](sc.drive, sc),
+    "wear": lambda sc: wear_part(sc.wear, sc),
+    "vibration": lambda sc: None if sc.vibration is None else Vibration(sc.vibration, sc),
+}
+_PARTS_ATTRS = frozenset(f"{family}_part" for family in _PARTS)
 _SECTIONS = {"block": BlockSpec, "pads": PadSpec, "friction": FrictionSpec, "substrate": SubstrateSpec,
              "drive": DriveSpec, "wear": WearSpec, "run": RunSpec, "vibration": VibrationSpec}
 _OPTIONAL = {"vibration"}  # sections that are None when absent
@@ -354,55 +367,6 @@ def _check_consistency(sc: Scenario, where: str):
         raise _err(where, str(e)) from None
 
 
-def shipped_file(arg, folder: str = "") -> str:
-    """A file argument that need not exist where it is read: an existing path as given; else a path that starts
-    with ``scenarios/`` (as the README writes the shipped examples) taken inside the installed ``scenarios`` package;
-    else, with ``folder`` (``"sweeps"``), a bare name of a file shipped there (``velocity_model1``); else the
-    argument as given (the reader then names the problem)."""
-    if os.path.lexists(arg):
-        return str(arg)
-    p = Path(arg)
-    candidates = []
-    if p.parts and p.parts[0] == "scenarios":
-        candidates.append(SCENARIO_DIR.joinpath(*p.parts[1:]))
-    if folder and p.parent == Path("."):
-        candidates += [SCENARIO_DIR / folder / p.name, SCENARIO_DIR / folder / f"{p.name}.toml"]
-    return str(next((c for c in candidates if c.is_file()), arg))
-
-
-def nearest_names(name: str, names) -> str:
-    """'; did you mean X?' (or 'X or Y?') for the names closest to ``name`` by difflib's ratio, else ''."""
-    close = difflib.get_close_matches(name, list(names), n=2, cutoff=0.6)
-    if not close:
-        close = [n for n in names if n.lower() == name.lower()]
-    return f"; did you mean {' or '.join(close)}?" if close else ""
-
-
-def resolve_scenario(name_or_path, others=(), others_kind: str = "") -> Path:
-    """The file of a scenario given as a path or as the name of a shipped one: the one name resolution.
-
-    An existing path wins over a shipped name of the same spelling; then a ``scenarios/...`` path inside the
-    installed package (:func:`shipped_file`); then a bare name (no folder; with or without ``.toml``) of a shipped
-    scenario (:func:`shipped_scenarios`). Anything else is a :class:`ScenarioError`, one line: a bare name offers
-    the nearest shipped names (and of ``others``, the other names the caller takes, called ``others_kind``) and
-    lists the shipped ones, as ``frictionnoise scenarios`` does; a path says "no such file".
-    """
-    found = shipped_file(name_or_path)
-    if os.path.lexists(found):
-        return Path(found)
-    path = Path(name_or_path)
-    shipped = shipped_scenarios()
-    stem = path.name[:-5] if path.name.lower().endswith(".toml") else path.name
-    if path.parent == Path(".") and stem in shipped:
-        return shipped[stem]
-    if path.parent != Path(".") or path.suffix.lower() not in ("", ".toml"):
-        raise ScenarioError(f"{path}: no such file")
-    also = f" or {others_kind}" if others else ""
-    raise ScenarioError(f"{name_or_path}: no such file, nor a shipped scenario{also}"
-                        f"{nearest_names(path.stem, [*shipped, *others])} (`frictionnoise scenarios` lists the shipped "
-                        f"scenarios: {', '.join(shipped)}" + (f"; {others_kind}s: {', '.join(others)})" if others else ")"))
-
-
 def load_scenario(path) -> Scenario:
     """Read and validate a TOML scenario file, given as a path or a shipped scenario's name: the one loader, which
     the command line and the Python API share.
@@ -426,22 +390,3 @@ def load_scenario(path) -> Scenario:
     except InputError as e:
         raise ScenarioError(str(e)) from None
     return scenario_from_dict(data, where=str(path))
-
-
-def shipped_scenarios() -> dict:
-    """The scenarios shipped in the ``scenarios`` package (installed with every install).
-
-    Returns
-    -------
-    dict
-        Name -> path of its TOML file.
-    """
-    return {p.stem: p for p in sorted(SCENARIO_DIR.glob("*.toml"))}
-
-
-def scenario_summary(description: str, width: int = 110) -> str:
-    """The first sentence of a scenario's description on one line, cut to ``width`` characters."""
-    text = " ".join(description.split())
-    end = re.search(r"(?<!Fig)(?<!eq)(?<!e\.g)\. (?=[A-Z(])", text)  # a sentence end, not an abbreviation
-    first = text if end is None else text[: end.start() + 1]
-    return first if len(first) <= width else first[: width - 3].rstrip() + "..."

@@ -19,7 +19,7 @@ def cmd_scenarios(args) -> int:
     import textwrap
 
     from engine_sim import load_scenario, shipped_scenarios
-    from engine_sim.scenario import scenario_summary
+    from engine_sim.shipped import scenario_summary
 
     shipped = shipped_scenarios()
     width = max(map(len, shipped), default=0)

@@ -57,7 +57,7 @@ def scenario_path(arg, models=()) -> str:
     """A scenario argument as a path (:func:`engine_sim.scenario.resolve_scenario`, the one name resolution;
     ``models``: the reduced models' names the command also takes, offered among the nearest names)."""
     from engine_sim import ScenarioError
-    from engine_sim.scenario import resolve_scenario
+    from engine_sim.shipped import resolve_scenario
 
     try:
         return str(resolve_scenario(arg, models, "reduced model"))
@@ -68,7 +68,7 @@ def scenario_path(arg, models=()) -> str:
 def shipped_file(arg, folder: str = "") -> str:
     """A file argument that need not exist where the command runs (:func:`engine_sim.scenario.shipped_file`,
     imported when a command reads a file: building the parser loads no numerics)."""
-    from engine_sim.scenario import shipped_file as shipped
+    from engine_sim.shipped import shipped_file as shipped
 
     return shipped(arg, folder)
 
