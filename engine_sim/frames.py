@@ -47,16 +47,16 @@ def draw_frames(sc, frames: int, duration: float, seed: int | None = None, *, ou
     duration : float
         Simulated time spanned by the frames (Units: s), > 0.
     seed : int, optional
-        Seed of the substrate and the scene; default the scenario's.
+        Default the scenario's ``run.seed``.
     out : str or pathlib.Path, optional
-        A folder to write ``frame_000.png``, ``frame_001.png``, ... into (created if needed).
+        Where ``frame_000.png``, ``frame_001.png``, ... go (the folder is created if needed).
     dpi : int, optional
-        Resolution of the frames (dots per inch).
+        Dots per inch of every frame.
 
     Returns
     -------
     list of numpy.ndarray
-        The frames as RGBA images, ``(height, width, 4)`` arrays of uint8.
+        RGBA images of uint8, one per frame.
     """
     from .render import SceneRenderer
 
