@@ -94,8 +94,14 @@ class Scenario:
         return _PARTS["wear"](self)
 
     def fresh_parts(self) -> dict:
-        """New part objects for a scene, by family (``"substrate"``, ``"arrangement"``, ``"law"``, ``"drive"``,
-        ``"wear"``, ``"vibration"``: None without a ``[vibration]`` section), none of them the scenario's own."""
+        """New part objects for a scene, none of them the scenario's own.
+
+        Returns
+        -------
+        dict
+            Family (``"substrate"``, ``"arrangement"``, ``"law"``, ``"drive"``, ``"wear"``, ``"vibration"``) -> its
+            part object (``"vibration"``: None without a ``[vibration]`` section).
+        """
         return {family: make(self) for family, make in _PARTS.items()}
 
     def __getstate__(self):
