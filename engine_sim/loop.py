@@ -50,8 +50,16 @@ class Loop:
         self.run(1)
 
     def run(self, n: int, check=None) -> None:
-        """``n`` output steps; ``check()`` before each (it raises to stop the loop between output steps, where
-        the scene and the recorder agree; ``k`` counts the output steps done)."""
+        """``n`` output steps (class docstring); ``k`` counts the output steps done.
+
+        Parameters
+        ----------
+        n : int
+            Output steps to take.
+        check : callable, optional
+            Called before each output step; it raises to stop the loop there, where the scene and the recorder
+            agree (a deferred SIGINT or SIGTERM in :func:`engine_sim.run`).
+        """
         scene, on_maintain = self.scene, self.on_maintain
         advance, n_sub = scene.advance, scene.n_sub
         sample = None if self.recorder is None else self.recorder.sample
