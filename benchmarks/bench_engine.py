@@ -1,5 +1,5 @@
 """Engine scene cost: microseconds per step, simulated seconds per wall second, and the ratio of the
-project's loop (spring drive, recording at the output rate, substrate maintenance) to a bare
+project's loop (``engine_sim.loop.Loop``: recording at the output rate, substrate maintenance) to a bare
 `space.step` loop on the same space, measured in the same run (targets: ratio <= 1.10;
 pads_friction_patches gives C_x over two decades above v/a in <= 3 min).
 
@@ -18,8 +18,8 @@ import engine_sim
 from compare.analysis.fits import fit_power_law
 from compare.analysis.spectra import displacement_spectrum
 from engine_sim import Scene, load_scenario, shipped_scenarios
+from engine_sim.loop import MAINTAIN_EVERY, Loop
 from engine_sim.record import Recorder
-from engine_sim.run import MAINTAIN_EVERY
 
 
 CLOCK = {"cpu": time.thread_time, "wall": time.perf_counter}
@@ -41,7 +41,8 @@ def loop_ratio(sc, n_steps: int, repeat: int = 3, ratio: bool = False):
     chunk = MAINTAIN_EVERY
     n_chunks = max(1, n_steps // (n_sub * chunk)) * repeat
     rec = Recorder(scene, n_chunks * chunk + 1)
-    rec.sample()
+    rec.sample()  # loads the recorder's kernel
+    loop = Loop(scene, rec)
     step, dt = scene.space.step, scene.dt
     bare, full = [], []
     n = chunk * n_sub
@@ -53,10 +54,7 @@ def loop_ratio(sc, n_steps: int, repeat: int = 3, ratio: bool = False):
         bare.append(clock() - t0)
         scene.steps += n
         t0 = clock()
-        scene.maintain()
-        for _ in range(chunk):
-            scene.advance(n_sub)
-            rec.sample()
+        loop.run(chunk)  # the project's loop: one maintenance, chunk samples and their steps
         full.append(clock() - t0)
     med = lambda x: float(np.median(x)) / n * 1e6
     if ratio:

@@ -16,7 +16,7 @@ from engine_sim import Scene, load_scenario, shipped_scenarios
 from engine_sim.epoch import default_epoch, estimated_costs
 from engine_sim.record import Recorder
 from engine_sim.checkpoint import recorder_state, restore
-from engine_sim.run import MAINTAIN_EVERY, warm_up
+from engine_sim.loop import Loop, warm_up
 
 TARGETS = ("pads_friction_patches", "pads_rough_profile")
 
@@ -31,25 +31,15 @@ def measure(name: str, rounds: int, block: int):
     n_out = (rounds + 1) * block + 1
     rec = Recorder(scene, n_out)
     rt, st = [], []
-    k = 0
-    for _ in range(block):  # untimed: compiles (or loads) the recorder's kernels
-        rec.sample()
-        if k % MAINTAIN_EVERY == 0:
-            scene.maintain()
-        scene.advance(scene.n_sub)
-        k += 1
+    loop = Loop(scene, rec)
+    loop.run(block)  # untimed: compiles (or loads) the recorder's kernels
     for _ in range(rounds):
         t0 = time.perf_counter()
-        for _ in range(block):  # the run's loop body: sample, maintain, advance
-            rec.sample()
-            if k % MAINTAIN_EVERY == 0:
-                scene.maintain()
-            scene.advance(scene.n_sub)
-            k += 1
+        loop.run(block)  # the run's loop: sample, maintain, advance
         st.append((time.perf_counter() - t0) / block)
         t0 = time.perf_counter()
-        data = pickle.dumps(scene, protocol=pickle.HIGHEST_PROTOCOL)
-        scene, rec = restore(data, recorder_state(rec, k), n_out)
+        data = pickle.dumps(loop.scene, protocol=pickle.HIGHEST_PROTOCOL)
+        loop.scene, loop.recorder = restore(data, recorder_state(loop.recorder, loop.k), n_out)
         rt.append(time.perf_counter() - t0)
     return epoch, statistics.median(rt), statistics.median(st), est, sc.run.dt_out
 

@@ -21,7 +21,7 @@ import pymunk
 
 from engine_sim import scenario_from_dict, units as U
 from engine_sim.record import Recorder
-from engine_sim.run import MAINTAIN_EVERY, warm_up
+from engine_sim.loop import MAINTAIN_EVERY, warm_up
 from engine_sim.scenario import SCENARIO_DIR
 from engine_sim.scene import Scene
 

@@ -39,7 +39,7 @@ from compare.analysis.spectra import band_average, force_series_spectrum
 from engine_sim import Scene, load_scenario, shipped_scenarios
 from engine_sim import units as U
 from engine_sim.record import Recorder
-from engine_sim.run import MAINTAIN_EVERY, warm_up
+from engine_sim.loop import MAINTAIN_EVERY, warm_up
 
 CHANNELS = ("F_t", "F_n", "F_drag", "F_drive", "pad_force", "micro_force")
 

@@ -35,7 +35,7 @@ import pymunk.batch as B
 
 from engine_sim import Scene, scenario_from_dict, units as U
 from engine_sim.record import Recorder
-from engine_sim.run import MAINTAIN_EVERY, warm_up
+from engine_sim.loop import MAINTAIN_EVERY, warm_up
 from engine_sim.scenario import SCENARIO_DIR
 from engine_sim.vibration import Vibration
 

@@ -20,7 +20,8 @@ import numpy as np
 import pymunk.batch as B
 
 from engine_sim import Scene, load_scenario, shipped_scenarios
-from engine_sim.reduction import SLIDER, body_of
+from engine_sim.contact_order import body_of
+from engine_sim.sample_layout import SLIDER
 
 _FIELDS = (B.ArbiterFields.BODY_A_ID | B.ArbiterFields.BODY_B_ID | B.ArbiterFields.CONTACT_COUNT
            | B.ArbiterFields.TOTAL_IMPULSE)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import pickle
 from pathlib import Path
 
-from frictionnoise import atomic_write
+from frictionnoise.base import atomic_write
 
 from .record import Recorder
 

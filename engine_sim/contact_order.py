@@ -7,7 +7,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from .reduction import AF, JX, JY, PAX, PAY, STATIC
+from .sample_layout import AF, JX, JY, PAX, PAY, STATIC
 
 __all__ = ["body_of", "arbiter_keys", "arbiter_order"]
 

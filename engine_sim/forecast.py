@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .loop import Loop
 from .record import Recorder
 from .scene import Scene
 
@@ -41,23 +42,23 @@ class Forecast:
 def forecast(sc, duration: float | None = None, seed: int | None = None) -> Forecast:
     """Probe a scenario's scene and project the wall time of ``engine_sim.run(sc, duration, seed)``.
 
-    The probe builds the scene (timed), records one sample (which loads the recorder's kernel, untimed), then
-    times up to 64 output steps with their recording one by one, stopping early after one second, and the substrate
-    maintenance that follows them (the segments generated for the distance slid); the projection takes the median
-    output step. It costs at most about one second plus one scene build."""
+    The probe builds the scene (timed), steps its first output step (its sample loads the recorder's kernel;
+    untimed), then times the next 63 output steps with their recording one by one (:class:`engine_sim.loop.Loop`),
+    stopping early after one second, and the substrate maintenance that follows them (the segments generated for
+    the distance slid); the projection takes the median output step. It costs at most about one second plus one
+    scene build."""
     dur = sc.run.duration if duration is None else float(duration)
     n_out = int(round((sc.run.warmup + dur) / sc.run.dt_out)) + 1
     t0 = time.perf_counter()
     scene = Scene(sc, seed)
     build = time.perf_counter() - t0
-    rec = Recorder(scene, _PROBE_OUTPUTS + 2)
-    rec.sample()
+    loop = Loop(scene, Recorder(scene, _PROBE_OUTPUTS + 2))
+    loop.step()  # the first sample (it loads the recorder's kernel) and the first maintenance
     times = []
     start = time.perf_counter()
-    while len(times) < _PROBE_OUTPUTS and time.perf_counter() - start < _PROBE_WALL:
+    while len(times) < _PROBE_OUTPUTS - 1 and time.perf_counter() - start < _PROBE_WALL:
         t0 = time.perf_counter()
-        scene.advance(scene.n_sub)
-        rec.sample()
+        loop.step()  # output steps 1 .. 63: a sample and its steps, no maintenance
         times.append(time.perf_counter() - t0)
     t0 = time.perf_counter()
     scene.maintain()

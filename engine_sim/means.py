@@ -12,7 +12,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from .reduction import (DRIVE_K, DRIVE_REST, ANCHOR_V, ANCHOR_X, DT, F_DRAG, F_DRIVE, F_N, F_T, GRAV, GUIDED,
+from .sample_layout import (DRIVE_K, DRIVE_REST, ANCHOR_V, ANCHOR_X, DT, F_DRAG, F_DRIVE, F_N, F_T, GRAV, GUIDED,
                         LAW_AFTER, MASS, MEANS, PULLED, STEPS, VIB_BX, VIB_BY, VIB_X, VIB_Y, W0, W1, W2, W3)
 
 __all__ = ["means", "drive_force", "spring_forces"]

@@ -23,9 +23,10 @@ import numpy as np
 import pymunk.batch as B
 from pymunk._chipmunk import lib
 
-from . import reduction as R, units as U
+from . import sample_layout as R, units as U
 from .batch_reader import BatchReader
-from .reduction import COLS, MS_COLS, PRM, reduce_sample
+from .reduction import reduce_sample
+from .sample_layout import COLS, MS_COLS, PRM
 from .vibration import VIB_COLS
 
 __all__ = ["EngineTrace", "Recorder", "step_weights", "FORCE_CHANNELS"]
@@ -151,7 +152,7 @@ class Recorder:
         n_p = scene.wear.count
         self.k = 0
         self.t = np.empty(n_samples)
-        # scalar channels per sample, columns in reduction.COLS order (one array: numba's dispatch cost grows with
+        # scalar channels per sample, columns in sample_layout.COLS order (one array: numba's dispatch cost grows with
         # the number of arguments, and this kernel runs every output step)
         self.out = np.empty((n_samples, len(COLS) + len(VIB_COLS)))  # the vibration's two columns last
         self.out[:, len(COLS):] = 0.0  # written per sample only when the scene has a vibration
@@ -161,7 +162,7 @@ class Recorder:
         self.p_state = np.zeros((n_samples, n_p), dtype=np.int8)
         self.p_force = np.zeros((n_samples, n_p))
         self.recycle = np.zeros(n_samples)
-        # per grain (reduction.G_*): mass, moment, radius, asleep, last place; carried across epochs (checkpoint.py)
+        # per grain (sample_layout.G_*): mass, moment, radius, asleep, last place; carried across epochs (checkpoint.py)
         self.grain_table = scene.wear.recorder_table()
         self.x0 = None
         # the means' state from sample to sample (engine_sim.means): momenta, places and spring forces, spring lengths
@@ -184,7 +185,7 @@ class Recorder:
         self._tab = np.array(rows, dtype=np.int64).reshape(-1, 3)
         self._bodies = BatchReader(scene.space, self._BODY, "bodies")
         self._arbiters = BatchReader(scene.space, self._ARB, "arbiters")
-        # scalars for the kernel, in reduction.PRM order (the drive anchor's place and speed and x0 are set per sample)
+        # scalars for the kernel, in sample_layout.PRM order (the drive anchor's place and speed and x0 are set per sample)
         prm = {"dt": scene.dt, "M": scene.M, "g": -scene.space.gravity.y, "v_trap": scene.v_trap,
                "dt_out": scene.dt * scene.n_sub, "pulled": float(drive.pulled),
                "means": float(self.forces == "mean"), "guided": float(scene.arrangement.guided),

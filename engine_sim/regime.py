@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from frictionnoise import G
+from frictionnoise.base import G
 
 from .arrangements import SPRING_DAMPING_X, SPRING_OMEGA_DT
 

@@ -8,29 +8,17 @@ import time
 from contextlib import contextmanager
 from pathlib import Path
 
-from frictionnoise import package_version
+from frictionnoise.base import check_seconds, package_version
 
 from .checkpoint import Checkpoint, CheckpointError, round_trip
 from .epoch import default_epoch
+from .loop import MAINTAIN_EVERY, Loop, warm_up
 from .record import EngineTrace, Recorder
 from .regime import LOST_CONTACT_S
 from .scenario import Scenario, load_scenario
 from .scene import Scene, describe
 
 __all__ = ["run", "CheckpointError", "TraceSizeError", "warm_up", "MAINTAIN_EVERY"]
-
-MAINTAIN_EVERY = 64  # output steps between substrate maintenance (the margin ahead covers 200 outputs)
-
-
-def warm_up(scene, n_out: int, interrupts=None):
-    """Run n_out output steps unrecorded, maintaining the substrate as the recorded loop does."""
-    for k in range(n_out):
-        if interrupts is not None:
-            interrupts.check()
-        if k % MAINTAIN_EVERY == 0:
-            scene.maintain()
-        scene.advance(scene.n_sub)
-
 
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
@@ -113,42 +101,34 @@ def _start(sc, seed, n_warm: int, n_out: int, epoch, interrupts):
 
 
 def _record(scene, rec, k: int, n_out: int, e_out: int, interrupts, checkpoint, report=None):
-    """The recorded loop from sample k: sample, maintain, step; at every epoch the round trip
+    """The recorded loop (:class:`engine_sim.loop.Loop`) from sample k; at every epoch the round trip
     (:func:`engine_sim.checkpoint.round_trip`). Returns (scene, recorder, stop, round-trip wall seconds); stop:
     None (the whole run), "interrupt" (stopped by SIGINT/SIGTERM, the latest epoch offered to the checkpoint) or
     "contact_lost" (:class:`ContactWatch`)."""
-    n_sub = scene.n_sub
+    # every maintenance: a log's progress lines need fresh figures
+    loop = Loop(scene, rec, n_out, k, on_maintain=report)
     round_trip_s = 0.0
     watch = ContactWatch(scene.sc.run.dt_out)
     try:
-        while k < n_out:
-            interrupts.check()  # the one place a signal takes effect: here k == rec.k
-            rec.sample()
-            if watch.lost(rec.n_contact[rec.k - 1]):
-                return scene, rec, "contact_lost", round_trip_s
-            # maintenance (substrate streaming, particle recycling) right after a sample and before the next steps:
-            # pymunk recomputes a cached arbiter's contact points from the bodies' current positions, so a particle
-            # moved between a step and a sample would report a bogus overlap
-            if k % MAINTAIN_EVERY == 0:
-                scene.maintain()
-                if report is not None:  # every maintenance: a log's progress lines need fresh figures
-                    report(k)
-            if k + 1 < n_out:
-                scene.advance(n_sub)
-            k += 1
+        while loop.k < n_out:
+            interrupts.check()  # the one place a signal takes effect: here loop.k == rec.k
+            loop.step()
+            k = loop.k
+            if watch.lost(loop.recorder.n_contact[loop.recorder.k - 1]):
+                return loop.scene, loop.recorder, "contact_lost", round_trip_s
             # an epoch: continue from the restored copy, as a resumed run will (not before the last sample, which no
             # step follows: that round trip would be wasted, and it would wake every sleeping grain the last sample
             # reads)
             if k % e_out == 0 and k + 1 < n_out:
                 t_rt = time.perf_counter()
-                scene, rec = round_trip(scene, rec, k, n_out, checkpoint)
+                loop.scene, loop.recorder = round_trip(loop.scene, loop.recorder, k, n_out, checkpoint)
                 round_trip_s += time.perf_counter() - t_rt
     except KeyboardInterrupt:
-        if rec.k == 0:
+        if loop.recorder.k == 0:
             raise  # nothing recorded yet
         checkpoint.on_interrupt()
-        return scene, rec, "interrupt", round_trip_s
-    return scene, rec, None, round_trip_s
+        return loop.scene, loop.recorder, "interrupt", round_trip_s
+    return loop.scene, loop.recorder, None, round_trip_s
 
 
 class ContactWatch:
@@ -213,11 +193,9 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     """
     sc = scenario if isinstance(scenario, Scenario) else load_scenario(Path(scenario))
     if duration is not None:
-        if not duration > 0:
-            raise ValueError(f"duration must be positive (got {duration!r})")
-        sc = sc.with_run(duration=float(duration))
-    if epoch is not None and not (epoch > 0 and epoch < float("inf")):
-        raise ValueError(f"epoch must be positive (got {epoch!r})")
+        sc = sc.with_run(duration=check_seconds("duration", duration))
+    if epoch is not None:
+        check_seconds("epoch", epoch)
     dt_out = sc.run.dt_out
     n_warm = int(round(sc.run.warmup / dt_out))
     n_out = int(round(sc.run.duration / dt_out)) + 1

@@ -8,20 +8,18 @@ scene (:mod:`engine_sim.regime`: what its springs' lengths and pymunk's solver c
 """
 from __future__ import annotations
 
-import re
-import tomllib
 from dataclasses import dataclass, field, fields, replace
-from importlib import resources
-from pathlib import Path
+from functools import cached_property
 
-from frictionnoise import G
-from frictionnoise.checks import check_number
+from frictionnoise.base import G, InputError, check_number, read_toml
 
 from .arrangements import ARRANGEMENTS, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSpec  # noqa: F401
 from .drives import DRIVES, DriveSpec
 from .drives.force import ForceSpec
 from .laws import LAWS, FrictionSpec
 from .regime import check_regimes
+from .shipped import (SCENARIO_DIR, ScenarioError, nearest_names, resolve_scenario, scenario_summary,  # noqa: F401
+                      shipped_file, shipped_scenarios)
 from .substrates import SUBSTRATES, SubstrateSpec
 from .substrates.patches import PatchesSpec
 from .vibration import Vibration, VibrationSpec
@@ -29,14 +27,7 @@ from .wear import WearSpec, wear_part
 
 __all__ = ["ScenarioError", "Scenario", "BlockSpec", "PadSpec", "FrictionSpec", "SubstrateSpec", "DriveSpec",
            "WearSpec", "RunSpec", "load_scenario", "scenario_from_dict", "shipped_scenarios", "resolve_scenario",
-           "scenario_summary", "SCENARIO_DIR"]
-
-# the shipped scenarios are package data of the ``scenarios`` package (installed with every install, not found
-# relative to a source tree); a regular (non-zipped) install gives a real folder
-SCENARIO_DIR = Path(str(resources.files("scenarios")))
-
-class ScenarioError(ValueError):
-    """An invalid scenario: the message names the file (if any), the field and what is wrong."""
+           "shipped_file", "nearest_names", "scenario_summary", "SCENARIO_DIR"]
 
 
 @dataclass(frozen=True)
@@ -77,29 +68,47 @@ class Scenario:
     vibration: VibrationSpec | None = None  # [vibration] (engine_sim/vibration.py); None: the section is absent
 
     # ------------------------------------------------------------------ the parts (engine_sim/*/): each asked, none checked
-    @property
+    # Each is built once per scenario, on first use, and answers the scenario's derived quantities; a scene builds
+    # its own (:meth:`fresh_parts`), since parts keep state while a scene steps (a law's impulse totals, a drive's
+    # bodies).
+    @cached_property
     def drive_part(self):
-        return DRIVES[self.drive.kind](self.drive, self)
+        return _PARTS["drive"](self)
 
-    @property
+    @cached_property
     def law_part(self):
-        return LAWS[self.friction.law](self.friction, self)
+        return _PARTS["law"](self)
 
-    @property
+    @cached_property
     def arrangement_part(self):
-        return ARRANGEMENTS[self.pads.arrangement](self.pads, self)
+        return _PARTS["arrangement"](self)
 
-    @property
+    @cached_property
     def substrate_part(self):
-        return SUBSTRATES[self.substrate.kind](self.substrate, self)
+        return _PARTS["substrate"](self)
 
-    @property
+    @cached_property
     def vibration_part(self):
-        return None if self.vibration is None else Vibration(self.vibration, self)
+        return _PARTS["vibration"](self)
 
-    @property
+    @cached_property
     def wear_part(self):
-        return wear_part(self.wear, self)
+        return _PARTS["wear"](self)
+
+    def fresh_parts(self) -> dict:
+        """New part objects for a scene, none of them the scenario's own.
+
+        Returns
+        -------
+        dict
+            Family (``"substrate"``, ``"arrangement"``, ``"law"``, ``"drive"``, ``"wear"``, ``"vibration"``) -> its
+            part object (``"vibration"``: None without a ``[vibration]`` section).
+        """
+        return {family: make(self) for family, make in _PARTS.items()}
+
+    def __getstate__(self):
+        """The fields only: the parts built on first use are rebuilt after unpickling (a scene pickles its own)."""
+        return {k: v for k, v in self.__dict__.items() if k not in _PARTS_ATTRS}
 
     # ------------------------------------------------------------------ derived quantities (SI)
     @property
@@ -218,6 +227,16 @@ class Scenario:
         return out
 
 
+# how each part family is built from its section (the section's kind names the class, engine_sim/*/)
+_PARTS = {
+    "substrate": lambda sc: SUBSTRATES[sc.substrate.kind](sc.substrate, sc),
+    "arrangement": lambda sc: ARRANGEMENTS[sc.pads.arrangement](sc.pads, sc),
+    "law": lambda sc: LAWS[sc.friction.law](sc.friction, sc),
+    "drive": lambda sc: DRIVES[sc.drive.kind](sc.drive, sc),
+    "wear": lambda sc: wear_part(sc.wear, sc),
+    "vibration": lambda sc: None if sc.vibration is None else Vibration(sc.vibration, sc),
+}
+_PARTS_ATTRS = frozenset(f"{family}_part" for family in _PARTS)
 _SECTIONS = {"block": BlockSpec, "pads": PadSpec, "friction": FrictionSpec, "substrate": SubstrateSpec,
              "drive": DriveSpec, "wear": WearSpec, "run": RunSpec, "vibration": VibrationSpec}
 _OPTIONAL = {"vibration"}  # sections that are None when absent
@@ -361,57 +380,26 @@ def _check_consistency(sc: Scenario, where: str):
         raise _err(where, str(e)) from None
 
 
-def resolve_scenario(name_or_path) -> Path:
-    """The file of a scenario given as a path or as the name of a shipped one (``pads_friction_patches``, with
-    or without ``.toml``): an existing path wins over a shipped name of the same spelling."""
-    path = Path(name_or_path)
-    if path.exists():
-        return path
-    shipped = shipped_scenarios()
-    stem = path.name[:-5] if path.name.endswith(".toml") else path.name
-    if path.parent == Path(".") and stem in shipped:
-        return shipped[stem]
-    raise ScenarioError(f"{path}: no such file, nor a shipped scenario (frictionnoise scenarios lists them: "
-                        f"{', '.join(shipped)})")
-
-
 def load_scenario(path) -> Scenario:
-    """Read and validate a TOML scenario file, given as a path or a shipped scenario's name.
+    """Read and validate a TOML scenario file, given as a path or a shipped scenario's name: the one loader, which
+    the command line and the Python API share.
 
     Parameters
     ----------
     path : str or pathlib.Path
-        A scenario file, or the name of a shipped one (``"pads_friction_patches"``); an existing file wins.
+        A scenario file, or the name of a shipped one (``"pads_friction_patches"``); an existing file wins
+        (:func:`resolve_scenario`).
 
     Returns
     -------
     Scenario
-        The validated scenario (SI units); :class:`ScenarioError` (one line) otherwise.
+        The validated scenario (SI units); :class:`ScenarioError` (one line naming the file and the problem)
+        otherwise: no such file or name, a folder, an empty, binary, non-UTF-8 or invalid TOML file, one that holds
+        no settings (only comments), or a field out of its range.
     """
     path = resolve_scenario(path)
     try:
-        data = tomllib.loads(path.read_text())
-    except UnicodeDecodeError:
-        raise ScenarioError(f"{path}: not a text file") from None
-    except tomllib.TOMLDecodeError as e:
-        raise ScenarioError(f"{path}: not valid TOML ({e})") from None
+        data = read_toml(path, "scenario TOML file")
+    except InputError as e:
+        raise ScenarioError(str(e)) from None
     return scenario_from_dict(data, where=str(path))
-
-
-def shipped_scenarios() -> dict:
-    """The scenarios shipped in the ``scenarios`` package (installed with every install).
-
-    Returns
-    -------
-    dict
-        Name -> path of its TOML file.
-    """
-    return {p.stem: p for p in sorted(SCENARIO_DIR.glob("*.toml"))}
-
-
-def scenario_summary(description: str, width: int = 110) -> str:
-    """The first sentence of a scenario's description on one line, cut to ``width`` characters."""
-    text = " ".join(description.split())
-    end = re.search(r"(?<!Fig)(?<!eq)(?<!e\.g)\. (?=[A-Z(])", text)  # a sentence end, not an abbreviation
-    first = text if end is None else text[: end.start() + 1]
-    return first if len(first) <= width else first[: width - 3].rstrip() + "..."

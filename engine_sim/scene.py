@@ -79,8 +79,9 @@ class Scene:
         self.R_pad = p.radius * U.LENGTH
         self.v_trap = sc.wear.trapped_speed * v0  # a grain touching its pad is trapped below this mean speed
         # the parts
-        self.substrate, self.arrangement = sc.substrate_part, sc.arrangement_part
-        self.law, self.drive = sc.law_part, sc.drive_part
+        parts = sc.fresh_parts()  # the scene's own: parts keep state while it steps
+        self.substrate, self.arrangement = parts["substrate"], parts["arrangement"]
+        self.law, self.drive = parts["law"], parts["drive"]
         self.run_ahead = 200 * v0 * self.dt * self.n_sub  # the tracks' margin ahead beyond the part's own
         block = pymunk.Body(sc.block.M * U.MASS, float("inf"))
         block.position = (0.0, self.y_block)
@@ -90,7 +91,7 @@ class Scene:
             space.add(pymunk.GrooveJoint(space.static_body, block, (-_FAR, self.y_block), (_FAR, self.y_block), (0, 0)))
         self.block = block
         self.seeds = np.random.SeedSequence(self.seed).spawn(p.N + 1)  # one per track, stream N for the particles
-        self.wear = sc.wear_part  # the grains part (a null part without particles)
+        self.wear = parts["wear"]  # the grains part (a null part without particles)
         # pymunk multiplies shape frictions: with particles the pads carry q and the tracks mu / q (see wear.py)
         self.q_pad, f_particle = self.wear.friction_split(fr.mu0)
         self.mu_track = fr.mu0 / self.q_pad
@@ -106,7 +107,7 @@ class Scene:
         self.ahead, self.behind = self.substrate.margins(self)
         self.wear.build(self, self.seeds[p.N], f_particle)
         # an imposed vibration, built last: it shifts every body's velocity into the substrate's frame
-        self.vibration = sc.vibration_part  # None without a [vibration] section (engine_sim/vibration.py)
+        self.vibration = parts["vibration"]  # None without a [vibration] section (engine_sim/vibration.py)
         if self.vibration is not None:
             self.vibration.build(self)
         self.maintain()

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import time
 
+from .loop import MAINTAIN_EVERY, Loop, warm_up
 from .record import Recorder
-from .run import MAINTAIN_EVERY, warm_up
 from .scene import Scene
 
 __all__ = ["step_costs"]
@@ -20,17 +20,14 @@ def step_costs(scenarios, seed: int | None = None, warmup: float = 1.0, chunks: 
     exposes all scenes to the same load from other processes, and the fastest chunk drops the moments of
     contention."""
     scenes = [Scene(sc, seed) for sc in scenarios]
-    recs = []
+    loops = []
     for s in scenes:
         warm_up(s, int(round(warmup / s.sc.run.dt_out)))
-        recs.append(Recorder(s, chunks * MAINTAIN_EVERY + 1))
+        loops.append(Loop(s, Recorder(s, chunks * MAINTAIN_EVERY + 1)))
     best = [float("inf")] * len(scenes)
     for _ in range(chunks):
-        for i, (s, rec) in enumerate(zip(scenes, recs)):
+        for i, loop in enumerate(loops):
             t0 = time.perf_counter()
-            s.maintain()
-            for _ in range(MAINTAIN_EVERY):
-                s.advance(s.n_sub)
-                rec.sample()
-            best[i] = min(best[i], (time.perf_counter() - t0) / (MAINTAIN_EVERY * s.n_sub))
+            loop.run(MAINTAIN_EVERY)  # one maintenance, then MAINTAIN_EVERY samples and their steps
+            best[i] = min(best[i], (time.perf_counter() - t0) / (MAINTAIN_EVERY * loop.scene.n_sub))
     return [b * 1e6 for b in best]

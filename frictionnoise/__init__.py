@@ -18,17 +18,15 @@ rad/s; spectra in the two-sided angular convention of eq. (2) of Xu, Zhou & Pers
 - **measured data**: :func:`read_measured`, :func:`analyze_displacement` for x(t) and :func:`analyze_force` for a
   friction-force record.
 
-The names above are imported on first use (PEP 562 ``__getattr__``): ``import frictionnoise`` loads no numerics,
-and the packages below it (``engine_sim``, ``reduced_models``, ``compare``) may import this package's own shared
-helpers, :data:`G`, :func:`package_version` and :func:`atomic_write`, defined here without importing any of them.
+The names above are imported on first use (PEP 562 ``__getattr__``): ``import frictionnoise`` loads no numerics.
+:data:`G`, :func:`package_version` and :func:`atomic_write` are the shared helpers of :mod:`frictionnoise.base`, which
+the packages below (``engine_sim``, ``reduced_models``, ``compare``) import directly: they never import this user API.
 """
 from __future__ import annotations
 
-import itertools
-import os
 from importlib import import_module
-from importlib import metadata as _metadata
-from pathlib import Path
+
+from .base import G, atomic_write, package_version
 
 # name -> module that defines it (imported on first access)
 _LAZY = {
@@ -60,10 +58,6 @@ _LAZY = {
 
 __all__ = ["G", "package_version", "atomic_write", *_LAZY]
 
-_counter = itertools.count()
-
-G = 9.81  # m/s^2: the paper's g (standard gravity rounded as in Xu, Zhou & Persson 2025)
-
 
 def __getattr__(name):
     if name in _LAZY:
@@ -75,56 +69,3 @@ def __getattr__(name):
 
 def __dir__():
     return sorted(set(globals()) | set(__all__))
-
-
-def package_version() -> str:
-    """The installed distribution's version.
-
-    Returns
-    -------
-    str
-        The version of the installed ``frictionnoise`` distribution, or ``"0+unknown"`` when running from a
-        source tree that was never installed.
-    """
-    try:
-        return _metadata.version("frictionnoise")
-    except _metadata.PackageNotFoundError:
-        return "0+unknown"
-
-
-def atomic_write(path, data: bytes | str | None = None, *, write=None) -> Path:
-    """Write a file atomically: a reader sees the old file or the whole new one, never a part.
-
-    The content goes into a hidden temporary sibling, renamed over ``path`` when complete; on any error the
-    temporary file is removed. The file is created 0666 less the umask, as :func:`open` does.
-
-    Parameters
-    ----------
-    path : str or pathlib.Path
-        The file to write.
-    data : bytes or str, optional
-        The content (text is written as UTF-8).
-    write : callable, optional
-        ``write(tmp_path)`` writes the temporary file itself (for writers that want a path, such as
-        ``numpy.savez``); called after ``data`` is written, if both are given.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
-    """
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{next(_counter)}.tmp")
-    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            if data is not None:
-                fh.write(data.encode() if isinstance(data, str) else data)
-        if write is not None:
-            write(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return path

@@ -59,7 +59,7 @@ def run_scene(which, duration: float | None = None, seed: int | None = None, **o
 
 
 def render_scene(which, out=None, *, frames: int = 12, duration: float = 0.6, seed: int | None = None,
-                 dpi: int = 90) -> list[np.ndarray]:
+                 dpi: int = 90, view: str = "side") -> list[np.ndarray]:
     """Draw frames of a scene, headless.
 
     Parameters
@@ -76,39 +76,18 @@ def render_scene(which, out=None, *, frames: int = 12, duration: float = 0.6, se
         Seed of the substrate and the scene; default: the scenario's.
     dpi : int, optional
         Resolution of the frames (dots per inch).
+    view : {"side", "tracks"}, optional
+        The side view of the block on its spring-mounted pads over the substrate (default), or the map of every
+        pad's track.
 
     Returns
     -------
     list of numpy.ndarray
         The frames as RGBA images, ``(height, width, 4)`` arrays of uint8.
     """
-    from engine_sim import Scene
-    from engine_sim.render import SceneRenderer
+    from engine_sim.frames import draw_frames
 
-    sc = scenario(which)
-    if frames < 1:
-        raise ValueError(f"frames must be at least 1 (got {frames!r})")
-    if not duration > 0:
-        raise ValueError(f"duration must be positive (got {duration!r})")
-    if out is not None:
-        out = Path(out)
-        out.mkdir(parents=True, exist_ok=True)
-    scene = Scene(sc, seed)
-    renderer = SceneRenderer(scene, dpi=dpi)
-    n_out = max(1, int(round(duration / sc.run.dt_out / frames)))  # output steps between frames
-    images = []
-    try:
-        for k in range(frames):
-            images.append(np.array(renderer.frame(), copy=True))
-            if out is not None:
-                renderer.save_png(out / f"frame_{k:03d}.png")
-            for _ in range(n_out):
-                scene.advance(scene.n_sub)
-                renderer.observe()
-            scene.maintain()
-    finally:
-        renderer.close()
-    return images
+    return draw_frames(scenario(which), frames, duration, seed, out=out, dpi=dpi, view=view)
 
 
 def compare_scene(which, *, trace=None, duration: float | None = None, seed: int | None = None, out=None) -> dict:

@@ -36,7 +36,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from frictionnoise.checks import check_fields, check_number
+from frictionnoise.base import check_fields, check_number
 
 from . import rate_state as _rs
 from ._version import package_version

@@ -20,7 +20,7 @@ from dataclasses import asdict, dataclass
 import numba
 import numpy as np
 
-from frictionnoise.checks import check_fields
+from frictionnoise.base import check_fields, check_seconds
 
 from ._version import package_version
 from .trace import ModelTrace
@@ -205,13 +205,11 @@ def simulate(params: AsperityForceParams, duration: float, dt_out: float | None 
         ``force`` (N) is F(t) averaged over [t_k, t_k + dt_out); ``x`` (m) the block position v t + zeta with
         M zeta'' = F_f - F, zeta(0) = zeta'(0) = 0.
     """
-    if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
-        raise ValueError(f"duration must be a positive number of seconds (got {duration!r})")
+    check_seconds("duration", duration)
     dt, Nw = params.dt, params.N_w
     stride = 1
     if dt_out is not None:
-        if not (isinstance(dt_out, (int, float)) and math.isfinite(dt_out) and dt_out > 0):
-            raise ValueError(f"dt_out must be a positive number of seconds (got {dt_out!r})")
+        check_seconds("dt_out", dt_out)
         stride = int(round(dt_out / dt))
         if stride < 1 or abs(stride * dt - dt_out) > 1e-9 * dt_out:
             raise ValueError(f"dt_out = {dt_out!r} s must be a whole number of grid steps dt = {dt!r} s "

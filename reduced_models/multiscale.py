@@ -47,7 +47,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from frictionnoise.checks import check_fields
+from frictionnoise.base import check_fields
 
 from . import spring_block as _m1
 from .correlation import contact_force_spectrum

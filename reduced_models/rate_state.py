@@ -48,7 +48,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from frictionnoise.checks import check_fields, check_number
+from frictionnoise.base import check_fields, check_number
 
 from ._version import package_version
 from .rate_state_kernel import DORMAND_PRINCE, segment

@@ -24,7 +24,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from frictionnoise.checks import check_fields, check_number
+from frictionnoise.base import check_fields, check_number
 
 from ._checkpoint import load_checkpoint as _load_checkpoint, save_checkpoint as _save_checkpoint
 from ._version import package_version

@@ -2,10 +2,11 @@
 arguments every model takes."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
+
+from frictionnoise.base import check_seconds
 
 __all__ = ["ModelTrace", "check_run"]
 
@@ -44,9 +45,7 @@ class ModelTrace:
 
 def check_run(duration, dt_out):
     """The run arguments every reduced model takes: a positive duration holding at least two output steps."""
-    if not (isinstance(duration, (int, float)) and duration > 0 and math.isfinite(duration)):
-        raise ValueError(f"duration must be a positive number of seconds (got {duration!r})")
-    if not (isinstance(dt_out, (int, float)) and dt_out > 0 and math.isfinite(dt_out)):
-        raise ValueError(f"dt_out must be a positive number of seconds (got {dt_out!r})")
+    check_seconds("duration", duration)
+    check_seconds("dt_out", dt_out)
     if int(round(duration / dt_out)) < 2:
         raise ValueError(f"duration {duration!r} s holds fewer than two output steps of {dt_out!r} s")

@@ -41,7 +41,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from frictionnoise.checks import check_number
+from frictionnoise.base import check_number
 
 from ._version import package_version
 from .spring_block import SpringBlockParams

@@ -31,7 +31,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 from scipy import integrate
 
-from frictionnoise.checks import check_fields
+from frictionnoise.base import check_fields, check_seconds
 
 from ._version import package_version
 from .wear_particle_kernel import run
@@ -267,9 +267,8 @@ def simulate(params: WearParticleParams, duration: float, dt_out: float = 1e-3, 
     ModelTrace
         ``t`` (s), ``x`` (m), ``force`` (N: the particles' summed force averaged over each output step).
     """
-    for name, val in (("duration", duration), ("dt_out", dt_out)):
-        if not (isinstance(val, (int, float)) and math.isfinite(val) and val > 0):
-            raise ValueError(f"{name} must be a positive number of seconds (got {val!r})")
+    check_seconds("duration", duration)
+    check_seconds("dt_out", dt_out)
     n = int(round(duration / dt_out))
     if n < 2:
         raise ValueError(f"duration {duration!r} s holds fewer than two output steps of {dt_out!r} s")

@@ -144,7 +144,7 @@ def test_a_stale_grain_arbiter_is_left_out_of_the_sample():
     # stale arbiter would read a 100 um overlap; the recorder must skip it (counted) and read no overlap above 1 um.
     from engine_sim import Scene
     from engine_sim.record import Recorder
-    from engine_sim.reduction import COLS
+    from engine_sim.sample_layout import COLS
 
     stale = COLS.index("stale")
     sc = load_scenario(WEAR).with_wear(count=60)

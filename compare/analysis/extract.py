@@ -40,10 +40,12 @@ def scene_info(trace, scenario=None) -> dict:
 
 
 def friction_slope(law: dict, v: float) -> float:
-    """dF/dv of the friction law per pad at speed v (N s/m): c, plus b N_pad / (v_c + v) for the log law (and for
-    the rate_state law's steady state, b = A - B)."""
-    extra = law["b"] * law["load_per_pad"] / (law["v_c"] + v) if law["law"] in ("log", "rate_state") and law["b"] else 0.0
-    return law["c"] + extra
+    """dF/dv of the friction law per pad at speed v (N s/m), from the law's description in a trace
+    (``metadata["scene"]["friction_law"]``), as the law registered under its name computes it
+    (``engine_sim.laws.Law.described_slope``)."""
+    from engine_sim.laws import LAWS
+
+    return LAWS[law["law"]].described_slope(law, v)
 
 
 def model_I_parameters(trace, scenario=None) -> dict:

@@ -36,7 +36,7 @@ __all__ = [
     "G_STANDARD",
 ]
 
-from frictionnoise import G as G_STANDARD  # noqa: E402  (m/s^2, the paper's g, defined once)
+from frictionnoise.base import G as G_STANDARD  # noqa: E402  (m/s^2, the paper's g, defined once)
 from .estimators import as_series as _as_series, default_nperseg as _default_nperseg, welch_dof as _welch_dof  # noqa: E402
 from .prewhitening import (  # noqa: E402
     checked_order, detrended, periodogram_recoloured, prewhitening_order, welch_recoloured,

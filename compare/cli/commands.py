@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import sys
 
-from .options import UserError, check_seed, load_scenario_arg, output_dir, scenario_path, shipped_file, usable_cores
+from .options import (UserError, check_seconds_options, check_seed, load_scenario_arg, output_dir, scenario_path,
+                      shipped_file, usable_cores)
 from .progress import print_verdicts, progress_bar
 
 __all__ = ["cmd_analyze", "cmd_compare", "cmd_render", "cmd_report", "cmd_run", "cmd_scenarios", "cmd_sweep"]
@@ -18,7 +19,7 @@ def cmd_scenarios(args) -> int:
     import textwrap
 
     from engine_sim import load_scenario, shipped_scenarios
-    from engine_sim.scenario import scenario_summary
+    from engine_sim.shipped import scenario_summary
 
     shipped = shipped_scenarios()
     width = max(map(len, shipped), default=0)
@@ -218,34 +219,18 @@ def cmd_render(args) -> int:
     check_seed(args.seed)
     if not 1 <= args.frames <= 10_000:
         raise UserError(f"--frames must be between 1 and 10000 (got {args.frames})")
-    if not 0 < args.duration < float("inf"):
-        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
-    from engine_sim import Scene
-    from engine_sim.render import SceneRenderer
-    from engine_sim.side_render import SideRenderer
+    check_seconds_options(args, "duration")
+    from engine_sim.frames import draw_frames
 
     out = output_dir(args.output, f"render-{sc.name}",
-                      "frame_000.png, frame_001.png, ... and with --gif animation.gif")
-    scene = Scene(sc, args.seed)
-    renderer = (SideRenderer if args.view == "side" else SceneRenderer)(scene)
-    n_out = max(1, int(round(args.duration / sc.run.dt_out / args.frames)))  # output steps between frames
-    images = []
+                     "frame_000.png, frame_001.png, ... and with --gif animation.gif")
     with atomic_folder(out) as tmp:
-        for k in range(args.frames):
-            img = renderer.frame()
-            renderer.save_png(tmp / f"frame_{k:03d}.png")
-            if args.gif:
-                images.append(img.copy())
-            for _ in range(n_out):  # output step by output step: grain states are the recorder's
-                scene.advance(scene.n_sub)
-                renderer.observe()
-            scene.maintain()
+        images = draw_frames(sc, args.frames, args.duration, args.seed, out=tmp, view=args.view)
         if args.gif:
             from PIL import Image
 
             frames = [Image.fromarray(im).convert("P", palette=Image.ADAPTIVE) for im in images]
             frames[0].save(tmp / "animation.gif", save_all=True, append_images=frames[1:], duration=120, loop=0)
-    renderer.close()
     print(f"wrote {args.frames} frames{' and animation.gif' if args.gif else ''} to {out}")
     return 0
 
@@ -253,16 +238,10 @@ def cmd_render(args) -> int:
 def cmd_run(args) -> int:
     sc = load_scenario_arg(args.scenario)
     check_seed(args.seed)
-    if args.duration is not None and not 0 < args.duration < float("inf"):
-        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
+    check_seconds_options(args, "duration")
     out = output_dir(args.output, f"run-{sc.name}", "trace.npz and trace.json")
-    if args.epoch is not None and not 0 < args.epoch < float("inf"):
-        raise UserError(f"--epoch must be a positive number of seconds (got {args.epoch})")
-    ck = None
-    if args.checkpoint_every is not None:
-        if not 0 < args.checkpoint_every < float("inf"):
-            raise UserError(f"--checkpoint-every must be a positive number of seconds (got {args.checkpoint_every})")
-        ck = out / "checkpoint.pkl"
+    check_seconds_options(args, "epoch", "checkpoint_every")
+    ck = None if args.checkpoint_every is None else out / "checkpoint.pkl"
     created = not out.exists()
     try:
         return _run_into(args, sc, out, ck)
@@ -348,9 +327,9 @@ def _compare_model(args) -> int:
     from .compile_notice import compile_notice
 
     check_seed(args.seed)
-    if args.duration is not None and not 0 < args.duration < float("inf") or args.band:
-        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})" if not args.band
-                        else "--band applies to a scene or a trace, not to a reduced model against its closed form")
+    check_seconds_options(args, "duration")
+    if args.band:
+        raise UserError("--band applies to a scene or a trace, not to a reduced model against its closed form")
     out = output_dir(args.output, f"compare-{args.source}", "index.html, summary.json and figures/")
     try:
         with compile_notice():  # the model's kernels compile on its first run after an install
@@ -382,8 +361,7 @@ def cmd_compare(args) -> int:
         raise UserError(f"{src}: binary data, neither a scenario TOML file nor a trace .npz")
     if src.suffix.lower() == ".npz" and kind != "npz":
         raise UserError(f"{src}: not a .npz trace file (text, not a zip archive)")
-    if args.duration is not None and not 0 < args.duration < float("inf"):
-        raise UserError(f"--duration must be a positive number of seconds (got {args.duration})")
+    check_seconds_options(args, "duration")
     if args.band and not 0 < args.band[0] < args.band[1] < float("inf"):
         raise UserError(f"--band must be two finite frequencies LO < HI in rad/s (got {args.band[0]} {args.band[1]})")
     trace = None

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import os
 
-__all__ = ["UserError", "output_dir", "check_seed", "scenario_path", "shipped_file", "load_scenario_arg", "nearest_names", "data_table",
-           "usable_cores"]
+from frictionnoise.base import sniff
+
+__all__ = ["UserError", "output_dir", "check_seed", "check_seconds_options", "scenario_path", "shipped_file",
+           "load_scenario_arg", "data_table", "usable_cores"]
 
 
 class UserError(Exception):
@@ -32,68 +34,43 @@ def output_dir(arg, default, writes: str):
     return output_folder(arg or default)
 
 
+def check_seconds_options(args, *names):
+    """Each named option of ``args`` that is given, as a span of seconds: the rule is
+    :func:`frictionnoise.base.check_seconds`, the one line names the flag (``--checkpoint-every``)."""
+    from frictionnoise.base import check_seconds
+
+    for name in names:
+        val = getattr(args, name)
+        if val is not None:
+            try:
+                check_seconds("--" + name.replace("_", "-"), val)
+            except ValueError as e:
+                raise UserError(str(e)) from None
+
+
 def check_seed(seed):
     if seed is not None and not 0 <= seed < 2**63:
         raise UserError(f"--seed must be a whole number from 0 to 2^63 - 1 (got {seed})")
 
 
 def scenario_path(arg, models=()) -> str:
-    """A scenario argument as a path: an existing path as given (it wins over a shipped name of the same
-    spelling), else a ``scenarios/...`` path inside the installed package (:func:`shipped_file`), else the shipped
-    scenario of that name. A bare name (no folder) that is neither is a UserError that
-    offers the nearest shipped names (and of ``models``, the other names the command takes) and points to
-    ``frictionnoise scenarios``; any other path is returned as given (the input layer then names the problem)."""
-    from pathlib import Path
+    """A scenario argument as a path (:func:`engine_sim.scenario.resolve_scenario`, the one name resolution;
+    ``models``: the reduced models' names the command also takes, offered among the nearest names)."""
+    from engine_sim import ScenarioError
+    from engine_sim.shipped import resolve_scenario
 
-    from engine_sim import ScenarioError, shipped_scenarios
-    from engine_sim.scenario import resolve_scenario
-
-    if os.path.lexists(arg):
-        return arg
-    shipped = shipped_file(arg)  # scenarios/... as the docs write it, inside an installed package
-    if shipped != arg:
-        return shipped
     try:
-        return str(resolve_scenario(arg))
-    except ScenarioError:
-        pass
-    p = Path(arg)
-    if p.parent != Path(".") or p.suffix.lower() not in ("", ".toml"):
-        return arg
-    raise UserError(f"{arg}: no such file, nor a shipped scenario{' or reduced model' if models else ''}"
-                    f"{nearest_names(p.stem, [*shipped_scenarios(), *models])}"
-                    " (`frictionnoise scenarios` lists the shipped scenarios"
-                    + (f"; reduced models: {', '.join(models)})" if models else ")"))
+        return str(resolve_scenario(arg, models, "reduced model"))
+    except ScenarioError as e:
+        raise UserError(str(e)) from None
 
 
 def shipped_file(arg, folder: str = "") -> str:
-    """A file argument that need not exist where the command runs: an existing path as given; else a path that
-    starts with ``scenarios/`` (as the README writes the shipped examples) taken inside the installed
-    ``scenarios`` package; else, with ``folder`` (``"sweeps"``), a bare name of a file shipped there
-    (``velocity_model1``); else the argument as given (the input layer then names the problem)."""
-    from pathlib import Path
+    """A file argument that need not exist where the command runs (:func:`engine_sim.scenario.shipped_file`,
+    imported when a command reads a file: building the parser loads no numerics)."""
+    from engine_sim.shipped import shipped_file as shipped
 
-    from engine_sim.scenario import SCENARIO_DIR
-
-    if os.path.lexists(arg):
-        return arg
-    p = Path(arg)
-    candidates = []
-    if p.parts and p.parts[0] == "scenarios":
-        candidates.append(SCENARIO_DIR.joinpath(*p.parts[1:]))
-    if folder and p.parent == Path("."):
-        candidates += [SCENARIO_DIR / folder / p.name, SCENARIO_DIR / folder / f"{p.name}.toml"]
-    return str(next((c for c in candidates if c.is_file()), arg))
-
-
-def nearest_names(name: str, names) -> str:
-    """'; did you mean X?' (or 'X or Y?') for the names closest to ``name`` by difflib's ratio, else ''."""
-    import difflib
-
-    close = difflib.get_close_matches(name, list(names), n=2, cutoff=0.6)
-    if not close:
-        close = [n for n in names if n.lower() == name.lower()]
-    return f"; did you mean {' or '.join(close)}?" if close else ""
+    return shipped(arg, folder)
 
 
 def data_table(path) -> bool:
@@ -125,23 +102,18 @@ def _number(cell: str) -> bool:
 
 
 def load_scenario_arg(path, models=()):
-    """The validated scenario named by a command's argument (a path or a shipped name; see :func:`scenario_path`).
-    A table of numbers given where a scenario belongs is one line pointing to ``frictionnoise analyze``."""
-    from engine_sim import ScenarioError, scenario_from_dict
-
-    from ..io.inputs import InputError, read_toml, sniff
+    """The validated scenario named by a command's argument (a path or a shipped name), read by the one loader
+    (:func:`engine_sim.load_scenario`). A table of numbers given where a scenario belongs is one line pointing to
+    ``frictionnoise analyze``."""
+    from engine_sim import ScenarioError, load_scenario
 
     path = scenario_path(path, models)
     try:
-        data = read_toml(path, "scenario TOML file")
-    except InputError:
+        return load_scenario(path)
+    except ScenarioError as e:
         if os.path.isfile(path) and sniff(path) == "text" and data_table(path):
             raise UserError(f"{path}: a table of numbers (measured data), not a scenario TOML file; analyse measured "
                             f"x(t) or F(t) with `frictionnoise analyze {path}`") from None
-        raise
-    try:
-        return scenario_from_dict(data, where=str(path))
-    except ScenarioError as e:
         raise UserError(str(e)) from None
 
 

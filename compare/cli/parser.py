@@ -21,7 +21,7 @@ def _micro(unit: str) -> str:
     return unit.replace("\u00b5", "u").replace("\u03bc", "u")
 
 def build_parser() -> argparse.ArgumentParser:
-    from frictionnoise import package_version  # the leaf package: no numerics imported to build the parser
+    from frictionnoise.base import package_version  # the leaf package: no numerics imported to build the parser
 
     ap = Parser(
         prog="frictionnoise",

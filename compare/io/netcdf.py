@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from frictionnoise import atomic_write
+from frictionnoise.base import atomic_write
 
 __all__ = ["save_netcdf", "load_netcdf", "to_dataset", "from_dataset", "NetcdfUnavailable", "NetcdfFileError",
            "UNITS"]

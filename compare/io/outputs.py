@@ -9,7 +9,7 @@ import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
-from frictionnoise import atomic_write
+from frictionnoise.base import atomic_write
 
 __all__ = ["atomic_folder", "atomic_write"]
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from frictionnoise import atomic_write
+from frictionnoise.base import atomic_write
 
 __all__ = ["save_trace", "load_trace", "TraceFileError", "FORMAT"]
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import time
 
-from frictionnoise import package_version
+from frictionnoise.base import package_version
 
 from .html import paragraphs, summary_of, table
 from .study import StudyResult

@@ -20,7 +20,7 @@ __all__ = ["Strokes", "ForceAnalysis", "find_strokes", "analyze_force", "build_f
 
 def build_force_report(an: ForceAnalysis):
     """Results (StudyResult list) and the JSON summary of a force analysis."""
-    from frictionnoise import package_version
+    from frictionnoise.base import package_version
 
     from . import plots
 
@@ -92,7 +92,7 @@ def build_measured_report(an: DisplacementAnalysis, data):
 
     C_F and its figure appear only when the analysis was given a mass; otherwise the page says that C_F needs it.
     """
-    from frictionnoise import package_version
+    from frictionnoise.base import package_version
 
     from . import plots
 

@@ -10,7 +10,7 @@ from .study import Figure, StudyResult
 
 def build_series_report(series: VelocitySeries, analyses: list, sources: list):
     """Results (StudyResult list) and the JSON summary of a velocity series over the records ``sources``."""
-    from frictionnoise import package_version
+    from frictionnoise.base import package_version
 
     from . import plots
 

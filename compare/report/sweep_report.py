@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from frictionnoise import package_version
+from frictionnoise.base import package_version
 
 from ..analysis.fits import flag_mark
 from .html import esc, span, json_text, page, paragraphs, table
@@ -101,7 +101,7 @@ def write_sweep_outputs(out_dir, results, summary):
     out = Path(out_dir)
     (out / "figures").mkdir(parents=True, exist_ok=True)
 
-    from frictionnoise import atomic_write as atomic
+    from frictionnoise.base import atomic_write as atomic
 
     for r in results:
         for f in r.figures:

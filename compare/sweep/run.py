@@ -6,7 +6,7 @@ import json
 import sys
 from pathlib import Path
 
-from frictionnoise import atomic_write
+from frictionnoise.base import atomic_write
 
 from .spec import SweepSpec, expand, task_id
 from .tasks import run_task

@@ -21,7 +21,7 @@ from typing import ClassVar
 import numpy as np
 import pymunk
 
-from frictionnoise import G
+from frictionnoise.base import G
 
 from .. import units as U
 from ..parts import Registry

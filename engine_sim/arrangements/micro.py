@@ -21,8 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 import pymunk
 
-from frictionnoise import G
-from frictionnoise.checks import check_number
+from frictionnoise.base import G
+from frictionnoise.base import check_number
 
 from .. import units as U
 from ..substrates.patches import Patches, PatchesSpec

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pymunk
 
 from .. import units as U
-from frictionnoise import G
+from frictionnoise.base import G
 
 from . import ARRANGEMENTS, LT, Arrangement, PadSpec, track_rng
 

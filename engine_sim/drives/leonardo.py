@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 import pymunk
 
-from frictionnoise import G
+from frictionnoise.base import G
 
 from .. import units as U
 from . import DRIVES, FAR, Drive, DriveSpec

@@ -4,7 +4,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from frictionnoise import G
+from frictionnoise.base import G
 
 from . import DRIVES, Drive, DriveSpec
 

@@ -66,6 +66,12 @@ class Law:
         """The law's parameters for one sliding body (``metadata["scene"]["friction_law"]``)."""
         return {"law": self.name, "c": c, "b": 0.0, "v_c": None, "load_per_pad": load}
 
+    @classmethod
+    def described_slope(cls, law: dict, v: float) -> float:
+        """dF/dv (N s/m) of one sliding body at speed v (m/s), from the law's :meth:`describe` (what a trace
+        carries, so an analysis needs no scenario): ``compare`` asks the law registered as ``law["law"]``."""
+        return law["c"]
+
     def build(self, scene, body, c: float) -> None:
         """Add the velocity part of the law on ``body`` (scene units) to ``scene.space``."""
 

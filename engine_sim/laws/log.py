@@ -13,6 +13,12 @@ from . import LAWS, FrictionSpec
 from .linear import Linear
 
 
+def log_slope(law: dict, v: float) -> float:
+    """dF/dv (N s/m) of the log law's describe() at speed v (m/s): c + b N_pad / (v_c + v) (c alone if b = 0)."""
+    extra = law["b"] * law["load_per_pad"] / (law["v_c"] + v) if law["b"] else 0.0
+    return law["c"] + extra
+
+
 @dataclass(frozen=True)
 class LogSpec(FrictionSpec):
     """mu rises by ``b`` per e-fold of speed above ``v_c`` (m/s); ``c`` (N s/m) optional (>= 0)."""
@@ -61,6 +67,10 @@ class Log(Linear):
 
     def describe(self, load, c):
         return {"law": self.name, "c": c, "b": self.spec.b, "v_c": self.spec.v_c, "load_per_pad": load}
+
+    @classmethod
+    def described_slope(cls, law, v):
+        return log_slope(law, v)
 
     def _per_body(self, scene):
         """Per body of the space (in the batch's order, read once): b N_pad of the sliding body (scene units), 0

@@ -46,6 +46,7 @@ import pymunk.batch as PB
 from .. import units as U
 from . import LAWS, FrictionSpec
 from .linear import Linear
+from .log import log_slope
 
 STATE_LAWS = {"ageing": 0, "slip": 1}
 RESOLVE = 0.1  # largest V dt / D_c at the steady speed: the state's relaxation length resolved by 10 steps
@@ -144,6 +145,11 @@ class RateState(Linear):
         return {"law": self.name, "c": c, "b": (s.A - s.B) if ok else 0.0, "v_c": self.steady_v_c() if ok else None,
                 "load_per_pad": load, "A": s.A, "B": s.B, "D_c": s.D_c, "V0": s.V0, "mu_ref": s.mu_ref, "mu0": s.mu0,
                 "state_law": s.state_law}
+
+    @classmethod
+    def described_slope(cls, law, v):
+        """The steady law's slope, in the log law's form (b = A - B, v_c = v_ss)."""
+        return log_slope(law, v)
 
     # ------------------------------------------------------------------ scene side (scene units; theta in s)
     def states(self, scene) -> np.ndarray:

@@ -65,7 +65,7 @@ def test_cost_flat_and_substrate_bounded_over_two_metres():
     # window behind, while > 25x as many were generated.
     import time
 
-    from engine_sim.run import warm_up
+    from engine_sim.loop import warm_up
     from engine_sim.scene import Scene
     from engine_sim.units import LENGTH
 
