@@ -155,6 +155,7 @@ class RecordFit:
     method: str = "record"
     band_auto: bool = True
     n_points: int = 0
+    level_cov: tuple = ()
 
     @property
     def gamma_err(self) -> float:
@@ -174,6 +175,22 @@ class RecordFit:
     def level(self, omega):
         """The fitted power law A omega^-gamma at ``omega`` (rad/s), without the floor."""
         return self.prefactor * np.asarray(omega, dtype=float) ** (-self.gamma)
+
+    def ln_level(self, omega: float) -> tuple[float, float]:
+        """ln(A omega^-gamma) at ``omega`` (rad/s) and its standard error from the Fisher information of the fit
+        (``level_cov``: the covariance of (gamma, ln A), the floor profiled out).
+
+        Returns
+        -------
+        (float, float)
+            ln C and its 1-sigma error (dimensionless).
+        """
+        lw = math.log(omega)
+        value = math.log(self.prefactor) - self.gamma * lw
+        if not self.level_cov:
+            return value, math.nan
+        vgg, vga, vaa = self.level_cov
+        return value, math.sqrt(max(vgg * lw * lw - 2.0 * vga * lw + vaa, 0.0))
 
     def derived(self, power: float, factor: float, quantity: str) -> "RecordFit":
         """The fit of factor * omega^power * C (e.g. C_mu = omega^4 C_x / g^2): gamma and its interval less
@@ -277,6 +294,27 @@ def _bend_p(prof: _Profile, gamma: float, t) -> float:
     except np.linalg.LinAlgError:
         return 1.0
     return float(stats.chi2.sf(stat, len(knots)))
+
+
+def _level_cov(prof: _Profile, gamma: float, t) -> tuple:
+    """(var gamma, cov(gamma, ln A), var ln A) from the Whittle Fisher information at the fit, the floor profiled out:
+    F = X^T X count, X_j = d ln Ibar_j / d(gamma, ln A, B) (A the physical prefactor)."""
+    a, am = prof.unit(gamma)
+    share = math.exp(t) if t is not None else 0.0
+    S = a + share * prof.b
+    f = a / S
+    h = 1e-3
+    raw = [np.log(prof.unit(g)[0] * prof.unit(g)[1]) for g in (gamma + h, gamma - h)]
+    dlnraw = (raw[0] - raw[1]) / (2 * h) - math.log(2.0 * math.pi / prof.rec.dt)
+    cols = [f * dlnraw, f]
+    if prof.floor:
+        cols.append(prof.b / S)
+    X = np.column_stack(cols)
+    try:
+        cov = np.linalg.inv(X.T @ X * prof.count)
+    except np.linalg.LinAlgError:
+        return ()
+    return float(cov[0, 0]), float(cov[0, 1]), float(cov[1, 1])
 
 
 def _pilot(x: np.ndarray, dt: float) -> float:
@@ -451,4 +489,5 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
     return RecordFit(gamma=g, gamma_low=float(g_lo), gamma_high=float(g_hi), prefactor=A, floor=B,
                      floor_rms=math.sqrt(2.0 * math.pi * B / dt), crossover=cross, band=band_out, order=k,
                      n_samples=len(x), nll=nll, stationarity_p=p, bend_p=bend, quantity=quantity,
-                     flags=tuple(flags), notes=tuple(notes), band_auto=auto, n_points=prof.m)
+                     flags=tuple(flags), notes=tuple(notes), band_auto=auto, n_points=prof.m,
+                     level_cov=_level_cov(prof, g, t))
