@@ -31,7 +31,8 @@ import numpy as np
 from scipy import stats
 
 from compare.analysis.fits import fit_power_law
-from compare.analysis.record_model import _Profile, fit_record
+from compare.analysis.power_floor import PowerFloorProfile
+from compare.analysis.record_model import fit_record
 from compare.analysis.spectra import displacement_spectrum
 from compare.analysis.synthetic import power_law_record
 from compare.analysis.whittle import WhittleRecord, order_for
@@ -56,7 +57,7 @@ def cramer_rao(n: int, gamma: float, rms: float, floor_free: bool = True) -> flo
     debiased expectation (the Whittle information; exact for independent exponential ordinates)."""
     k = order_for(gamma)
     rec = WhittleRecord(np.zeros(n), DT, k)
-    prof = _Profile([rec], True)
+    prof = PowerFloorProfile([rec], True)
     B = rms**2 * DT / (2 * math.pi)
     a, am = prof.unit(gamma)
     scale = (2 * math.pi / DT) ** -gamma
@@ -116,6 +117,35 @@ def cell(n: int, gamma: float, where: str, seeds: int, old: bool) -> dict:
     return row
 
 
+def model1_like(records: int, floor_nm: float = 20.0) -> dict:
+    """Records like scenarios/data/model1_synthetic_um.csv: 20000 samples at 100 Hz, exactly omega^-4 with the
+    level the record model reads from that file over its omega^-4 range (2-60 rad/s), plus a white floor of
+    ``floor_nm`` nm rms; fitted as analyze fits them (stationarity test on)."""
+    d = np.loadtxt(Path(__file__).resolve().parents[1] / "scenarios" / "data" / "model1_synthetic_um.csv",
+                   delimiter=",", skiprows=1)
+    dt = float(d[1, 0] - d[0, 0])
+    A = fit_record(d[:, 1] * 1e-6, dt, band=(2.0, 60.0), stationarity=False).prefactor
+    hits = flagged = 0
+    halves = []
+    t0 = time.perf_counter()
+    for seed in range(records):
+        f = fit_record(power_law_record(20000, dt, 4.0, prefactor=A, floor_rms=floor_nm * 1e-9, seed=seed), dt)
+        hits += f.gamma_low <= 4.0 <= f.gamma_high
+        flagged += bool(f.flags)
+        halves.append(f.gamma_err)
+    return {"records": records, "floor_nm": floor_nm, "prefactor": A, "hits": hits, "flagged": flagged,
+            "median_half": float(np.median(halves)), "wall_s": time.perf_counter() - t0}
+
+
+def model1_text(m: dict) -> str:
+    return (f"\n## Records like the shipped model I file\n\n{m['records']} records of 20000 samples at 100 Hz, exactly "
+            f"ω⁻⁴ at the level the record model reads from `scenarios/data/model1_synthetic_um.csv` over 2-60 rad/s "
+            f"(A = {m['prefactor']:.3g} m² s (rad/s)⁴), with a {m['floor_nm']:g} nm rms white floor, fitted as "
+            f"`analyze` fits them: the interval covers 4 in {m['hits']} ({100 * m['hits'] / m['records']:.0f} %), "
+            f"{m['flagged']} flagged ({100 * m['flagged'] / m['records']:.0f} %), median half-width "
+            f"{m['median_half']:.3f}.\n")
+
+
 def table(rows) -> str:
     head = ("| n | γ | floor | seeds | coverage | rejected (p<0.001) | bias | median half-width | Cramér-Rao, floor "
             "free / known | ratio | flagged | min decades | old coverage | old bias | old half-width | old flagged |\n"
@@ -139,13 +169,13 @@ def pooled(rows) -> str:
     return f"pooled coverage {100 * hits / total:.1f} % ({hits}/{total}; 95 % Clopper-Pearson {100 * lo:.1f}-{100 * hi:.1f} %)"
 
 
-def write_page(rows, commands, wall) -> None:
-    """docs/results/exponent_coverage.md from the rows of one or more runs."""
+def write_page(rows, commands, wall, model1=None) -> None:
+    """docs/results/exponent_coverage.md from the rows of one or more runs (and the model I-like records)."""
     PAGE.write_text(
         "# Exponent coverage on lab-length records\n\n"
         f"Reproduce: {commands} ({wall / 60:.0f} min of one core on 2 shared cores); `--smoke` runs the 2^12 cells "
         "with 6 seeds.\n\n" + (__doc__.split("\n\n", 1)[1].split("    python -m")[0])
-        + f"\nResult: {pooled(rows)}.\n\n" + table(rows))
+        + f"\nResult: {pooled(rows)}.\n\n" + table(rows) + (model1_text(model1) if model1 else ""))
 
 
 def main(argv=None) -> int:
@@ -155,13 +185,23 @@ def main(argv=None) -> int:
     ap.add_argument("--lengths", default="12,14,16", help="log2 of the record lengths, comma-separated")
     ap.add_argument("--no-old", action="store_true", help="skip the spectrum-and-band estimator")
     ap.add_argument("--rows", default=None, metavar="JSON", help="write the rows here instead of the page")
+    ap.add_argument("--model1", type=int, default=0, metavar="N",
+                    help="instead: N records like the shipped model I file (coverage and flags)")
     ap.add_argument("--combine", nargs="+", default=None, metavar="JSON",
                     help="write the page from the rows of earlier --rows runs (runs nothing)")
     args = ap.parse_args(argv)
     if args.combine:
         parts = [json.loads(Path(f).read_text()) for f in args.combine]
-        rows = [r for p in parts for r in p["rows"]]
-        write_page(rows, " and ".join(f"`{p['command']}`" for p in parts), sum(p["wall_s"] for p in parts))
+        rows = [r for p in parts for r in p.get("rows", [])]
+        m1 = next((p["model1"] for p in parts if "model1" in p), None)
+        write_page(rows, " and ".join(f"`{p['command']}`" for p in parts), sum(p["wall_s"] for p in parts), m1)
+        return 0
+    if args.model1:
+        m = model1_like(args.model1)
+        print(model1_text(m))
+        if args.rows:
+            Path(args.rows).write_text(json.dumps({"model1": m, "wall_s": m["wall_s"], "command":
+                                                   f"python -m benchmarks.exponent_coverage --model1 {args.model1}"}))
         return 0
     lengths = [2**12] if args.smoke else [2 ** int(s) for s in args.lengths.split(",")]
     seeds = 6 if args.smoke else args.seeds
