@@ -1,0 +1,294 @@
+"""The record model C_x(omega) = A omega^-gamma + B, fitted by the debiased Whittle likelihood (module
+``compare.analysis.record_model``).
+
+A sampled record is the physical spectrum A omega^-gamma folded at Nyquist (exactly, by Hurwitz zeta sums) plus a
+sensor's white floor B (a level of the sampled record, Units: m^2 s; rms sqrt(2 pi B / dt)). :func:`fit_record`
+differences the record k times (:func:`compare.analysis.whittle.order_for` of a pilot slope, raised while the
+exponent's interval reaches the order's limit 2k + 1), and maximises the debiased Whittle likelihood
+(:mod:`compare.analysis.whittle`) over all Fourier ordinates: A and the floor's share are profiled out exactly for
+each gamma, so the likelihood is a function of gamma alone, and the 95 % interval is where twice its rise stays
+below chi2_1(0.95) = 3.84. The floor is bounded at zero, not log-parametrised, so a record without one is fitted at
+B = 0 and the interval stays valid there.
+
+Reported with the exponent: the **identified band**, from the lowest fitted Fourier frequency to where the power law
+falls to the floor (omega_x = (A / B)^(1/gamma), or the highest when the floor never takes over); the floor and its
+crossover; a **bend test** (Rao's efficient score for changes of the exponent at knots every half decade inside the
+band, :func:`compare.analysis.power_floor.bend_p`); and a **split-half test** of stationarity: the model fitted to each half of the record apart
+and to both with shared parameters, twice the log-likelihood gain chi2 with 3 degrees of freedom (2 without a floor).
+
+Without a band given, a record whose spectrum bends (bend test p < :data:`TEST_LEVEL`: a corner, the other side of a
+crossover between mechanisms) is fitted over a narrower band: a quarter decade is taken off the end whose removal
+leaves the larger p-value, until the test passes or the band would span less than a decade. A record still failing
+either test is flagged (``flags``; ``power_law`` False).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from scipy import stats
+
+from .power_floor import PowerFloorProfile, bend_p, interval, keep_band, level_cov, minimum
+from .whittle import MAX_ORDER, WhittleRecord, order_for
+
+__all__ = ["RecordFit", "fit_record", "TEST_LEVEL", "GAMMA_MIN", "check_record"]
+
+TEST_LEVEL = 0.01  # the bend and split-half tests reject (and the band is narrowed, or the fit flagged) below it
+GAMMA_MIN = 1.05  # a sampled omega^-gamma with gamma <= 1 has infinite variance (its folded sum diverges)
+_HEADROOM = 0.95  # gamma < 2k + 0.95: the differenced spectrum's zero-frequency peak omega^-0.95 is still integrable
+
+
+@dataclass(frozen=True)
+class RecordFit:
+    """A record's C_x = A omega^-gamma + B fitted by the debiased Whittle likelihood (:func:`fit_record`).
+
+    ``gamma_low``/``gamma_high``: the 95 % profile-likelihood interval; ``gamma_err`` its half-width. ``prefactor``
+    A (Units: C's unit times (rad/s)^gamma); ``floor`` B (C's unit) and ``floor_rms`` sqrt(2 pi B / dt) (the
+    record's unit); ``crossover`` where A omega^-gamma = B (rad/s; inf without a floor); ``band`` the identified band
+    (rad/s): from the lowest Fourier frequency to the crossover or Nyquist. ``stationarity_p``: the split-half test's
+    p-value; ``bend_p``: the bend test's.
+    """
+
+    gamma: float
+    gamma_low: float
+    gamma_high: float
+    prefactor: float
+    floor: float
+    floor_rms: float
+    crossover: float
+    band: tuple
+    order: int
+    n_samples: int
+    nll: float
+    stationarity_p: float
+    bend_p: float
+    quantity: str = "x"
+    flags: tuple = ()
+    notes: tuple = field(default=())
+    method: str = "record"
+    band_auto: bool = True
+    n_points: int = 0
+    level_cov: tuple = ()
+
+    @property
+    def gamma_err(self) -> float:
+        """Half-width of the 95 % interval."""
+        return 0.5 * (self.gamma_high - self.gamma_low)
+
+    @property
+    def power_law(self) -> bool:
+        """False when a flag says the record is not a stationary power law (see ``flags``)."""
+        return not self.flags
+
+    @property
+    def decades(self) -> float:
+        """Width of the identified band (decades)."""
+        return math.log10(self.band[1] / self.band[0])
+
+    def level(self, omega):
+        """The fitted power law A omega^-gamma at ``omega`` (rad/s), without the floor."""
+        return self.prefactor * np.asarray(omega, dtype=float) ** (-self.gamma)
+
+    def ln_level(self, omega: float) -> tuple[float, float]:
+        """ln(A omega^-gamma) at ``omega`` (rad/s) and its standard error from the Fisher information of the fit
+        (``level_cov``: the covariance of (gamma, ln A), the floor profiled out).
+
+        Returns
+        -------
+        (float, float)
+            ln C and its 1-sigma error (dimensionless).
+        """
+        lw = math.log(omega)
+        value = math.log(self.prefactor) - self.gamma * lw
+        if not self.level_cov:
+            return value, math.nan
+        vgg, vga, vaa = self.level_cov
+        return value, math.sqrt(max(vgg * lw * lw - 2.0 * vga * lw + vaa, 0.0))
+
+    def derived(self, power: float, factor: float, quantity: str) -> "RecordFit":
+        """The fit of factor * omega^power * C (e.g. C_mu = omega^4 C_x / g^2): gamma and its interval less
+        ``power``, the prefactor times ``factor``; floor, crossover and band stay those of the fitted record."""
+        return replace(self, gamma=self.gamma - power, gamma_low=self.gamma_low - power,
+                       gamma_high=self.gamma_high - power, prefactor=self.prefactor * factor, quantity=quantity)
+
+    def to_dict(self) -> dict:
+        """JSON-ready: every field plus ``gamma_err``, ``power_law``, ``decades`` and ``confidence``."""
+        return {"gamma": self.gamma, "gamma_err": self.gamma_err, "gamma_se": self.gamma_err / 1.96, "gamma_interval": [self.gamma_low, self.gamma_high],
+                "confidence": 0.95, "prefactor": self.prefactor, "floor": self.floor, "floor_rms": self.floor_rms,
+                "crossover": None if math.isinf(self.crossover) else self.crossover,
+                "band": [self.band[0], self.band[1]], "decades": self.decades, "differencing_order": self.order,
+                "n_samples": self.n_samples, "stationarity_p": self.stationarity_p,
+                "bend_p": self.bend_p, "quantity": self.quantity, "method": self.method,
+                "power_law": self.power_law, "flags": list(self.flags), "notes": list(self.notes),
+                "band_auto": self.band_auto, "n_points": self.n_points}
+
+    def __str__(self) -> str:
+        flag = f" [NOT A POWER LAW: {'; '.join(self.flags)}]" if self.flags else ""
+        floor = (f"; floor {self.floor_rms:.3g} rms, over the power law above {self.crossover:.3g} rad/s"
+                 if self.floor > 0 and math.isfinite(self.crossover) else
+                 f"; floor {self.floor_rms:.3g} rms" if self.floor > 0 else "; no floor resolved")
+        return (f"gamma = {self.gamma:.3f} +- {self.gamma_err:.3f} (95 % [{self.gamma_low:.3f}, {self.gamma_high:.3f}], "
+                f"debiased Whittle) over {self.band[0]:.3g}-{self.band[1]:.3g} rad/s ({self.decades:.1f} decades)"
+                f"{floor}{flag}")
+
+
+def _pilot(x: np.ndarray, dt: float) -> float:
+    """A first slope: the Whittle fit of a power law alone to the once-differenced record's periodogram over its
+    lowest decade (where a floor is least), plus 2; clipped to [GAMMA_MIN, 2 MAX_ORDER]."""
+    rec = WhittleRecord(x, dt, 1)
+    m = max(8, len(rec.omega) // 10)
+    lw = np.log(rec.omega[:m])
+    lp = np.log(np.maximum(rec.periodogram[:m], 1e-300))
+    slope = float(np.polyfit(lw, lp, 1)[0])
+    return float(np.clip(2.0 - slope, GAMMA_MIN + 0.1, 2 * MAX_ORDER))
+
+
+def _fit_order(x, dt, k, floor, band):
+    rec = WhittleRecord(x, dt, k)
+    prof = PowerFloorProfile([rec], floor, keep_band(rec, band))
+    lo, hi = max(GAMMA_MIN, 2 * k - 3.0), 2 * k + _HEADROOM
+    g, nll, t = minimum(prof, lo, hi, None)
+    g_lo, g_hi, wall_lo, wall_hi = interval(prof, g, nll, lo, hi)
+    return rec, prof, (g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi)
+
+
+def _split_half_p(x, dt, k, floor, g0, band) -> float:
+    """p-value of the split-half likelihood-ratio test of stationarity (module docstring)."""
+    h = len(x) // 2
+    halves = [WhittleRecord(x[:h], dt, k), WhittleRecord(x[h:2 * h], dt, k)]
+    keep = keep_band(halves[0], band) if band is not None else None
+    lo, hi = max(GAMMA_MIN, 2 * k - 3.0), 2 * k + _HEADROOM
+    apart = sum(minimum(PowerFloorProfile([r], floor, keep), lo, hi, g0)[1] for r in halves)
+    together = minimum(PowerFloorProfile(halves, floor, keep), lo, hi, g0)[1]
+    lr = max(0.0, 2.0 * (together - apart))
+    return float(stats.chi2.sf(lr, 3 if floor else 2))
+
+
+def _narrowed(x, dt, k, floor, omega, bend):
+    """Narrow the band a quarter decade at a time from the end whose removal leaves the larger bend-test p-value,
+    while the test rejects and the band spans more than a decade. Returns (record, profile, result, p, band)."""
+    lo, hi = float(omega[0]), float(omega[-1])
+    step = 10 ** 0.25
+    best = None
+    while True:
+        trials = []
+        for b in ((lo * step, hi), (lo, hi / step)):
+            if b[1] / b[0] < 10 * (1 - 1e-9):
+                continue
+            rec, prof, res = _fit_order(x, dt, k, floor, b)
+            trials.append((bend_p(prof, res[0], res[2]), b, rec, prof, res))
+        if not trials:
+            break
+        p, (lo, hi), rec, prof, res = max(trials, key=lambda tr: tr[0])
+        best = (rec, prof, res, p, (lo, hi))
+        if p >= TEST_LEVEL:
+            break
+    if best is None:
+        rec, prof, res = _fit_order(x, dt, k, floor, (lo, hi))
+        best = (rec, prof, res, bend, (lo, hi))
+    return best
+
+
+def check_record(x, name: str = "x", unit: str = "") -> None:
+    """ValueError, in one line saying what would help, for a record no spectrum can be fitted to: too few samples,
+    a constant channel, or one that changes in fewer than half its steps (written at the file's resolution).
+
+    Parameters
+    ----------
+    x : ndarray
+        The record.
+    name, unit : str
+        How the message names the channel and its unit.
+    """
+    n = len(x)
+    if n < 32:
+        raise ValueError(f"{name}: only {n} samples; a spectral fit needs at least 32 (a longer record)")
+    steps = np.diff(x)
+    if not np.any(steps):
+        raise ValueError(f"{name} is constant ({x[0]:.6g} {unit}) over all {n} samples: a saturated or disconnected "
+                         "sensor has no spectrum (check the channel)".replace(" )", ")"))
+    still = float(np.mean(steps == 0))
+    if still > 0.5:
+        q = float(np.min(np.abs(steps[steps != 0])))
+        raise ValueError(f"{name} stays the same in {100 * still:.0f} % of its {n - 1} steps (smallest change "
+                         f"{q:.3g} {unit}): the record is at the file's resolution and its spectrum is the rounding's; "
+                         "export it with more digits (a finer unit or more decimals)".replace(" )", ")"))
+
+
+def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, band=None, quantity: str = "x",
+               stationarity: bool = True) -> RecordFit:
+    """Fit C_x = A omega^-gamma + B to a uniformly sampled record by the debiased Whittle likelihood.
+
+    Parameters
+    ----------
+    x : array_like
+        The record (e.g. positions, Units: m), uniformly sampled, trend removed or not (differencing removes
+        polynomials of degree below k).
+    dt : float
+        Sampling step (Units: s).
+    floor : bool, optional
+        Fit a white floor B >= 0 (default); False fits the power law alone.
+    order : int, optional
+        Differencing order k; default from a pilot slope (:func:`compare.analysis.whittle.order_for`), raised while
+        the interval reaches the order's limit 2k + 1.
+    band : tuple of float, optional
+        (low, high) (Units: rad/s): the likelihood over the Fourier ordinates inside only (the expectation still
+        holds every frequency's leakage); default all of them.
+    quantity : str, optional
+        What the record is of (``"x"``, ``"F"``, ...), carried to the result.
+    stationarity : bool, optional
+        Run the split-half test (three more fits on the halves).
+
+    Returns
+    -------
+    RecordFit
+        gamma with its 95 % profile interval, A, B, the crossover, the identified band, flags and notes.
+    """
+    x = np.asarray(x, dtype=float)
+    check_record(x, quantity)
+    notes = []
+    auto = band is None
+    if order is None:
+        k = order_for(_pilot(x, dt))
+        while True:
+            rec, prof, res = _fit_order(x, dt, k, floor, band)
+            if res[6] and k < MAX_ORDER:
+                k += 1
+                continue
+            if order_for(res[0]) < k:  # over-differenced: the order the estimate itself asks for
+                k = order_for(res[0])
+                rec, prof, res = _fit_order(x, dt, k, floor, band)
+            break
+    else:
+        k = int(order)
+        rec, prof, res = _fit_order(x, dt, k, floor, band)
+    g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
+    bend = bend_p(prof, g, t)
+    if band is None and bend < TEST_LEVEL:
+        rec, prof, res, bend, trimmed = _narrowed(x, dt, k, floor, rec.omega, bend)
+        g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
+        notes.append(f"one power law does not fit every frequency (bend test p < {TEST_LEVEL:g}); fitted over "
+                     f"{trimmed[0]:.3g}-{trimmed[1]:.3g} rad/s, the widest band where it does")
+        band = trimmed
+    if wall_hi or wall_lo:
+        notes.append(f"the 95 % interval reaches the fitted range's {'upper' if wall_hi else 'lower'} limit "
+                     f"{hi if wall_hi else lo:.2f} at differencing order {k}")
+    A, B = prof.levels(g, t)
+    w0, w1 = float(prof.omega[0]), float(prof.omega[-1])
+    cross = (A / B) ** (1.0 / g) if B > 0 else math.inf
+    band_out = (w0, float(min(cross, w1)))
+    flags = []
+    if band_out[1] <= w0 * 1.0001:
+        notes.append("the floor lies above the power law at every fitted frequency: gamma is not identified")
+        band_out = (w0, w0 * 1.0001)
+    p = _split_half_p(x, dt, k, floor, g, band) if stationarity and len(x) >= 64 + 2 * k else math.nan
+    if p < TEST_LEVEL:
+        flags.append(f"not stationary: the halves' spectra differ (split-half likelihood ratio, p = {p:.2g})")
+    if bend < TEST_LEVEL:
+        flags.append(f"the spectrum bends within the band (bend test p = {bend:.2g})")
+    return RecordFit(gamma=g, gamma_low=float(g_lo), gamma_high=float(g_hi), prefactor=A, floor=B,
+                     floor_rms=math.sqrt(2.0 * math.pi * B / dt), crossover=cross, band=band_out, order=k,
+                     n_samples=len(x), nll=nll, stationarity_p=p, bend_p=bend, quantity=quantity,
+                     flags=tuple(flags), notes=tuple(notes), band_auto=auto, n_points=prof.m,
+                     level_cov=level_cov(prof, g, t))
