@@ -30,12 +30,7 @@ def one_minus_cos(mode, s, tab, x):
     return tab
 
 
-@numba.njit(parallel=True, cache=True)
-def b2_sum(w, T, K, c2, mode, s, tab, out):
-    """out[i] += sum_j K_j c2_j g(w_i T_j) / w_i^2, g = 1 - <cos omega T>, one state's half of the quadrature of
-    eq. (B2) without its prefactor N / pi: ``T`` the distinct mean times of that state (Units: s), ``K`` their
-    quadrature weights already divided by tau + tau' and summed over the other state's times, ``c2`` the squared
-    force at each (Units: N^2); ``tab`` holds g per frequency for mode TABLE."""
+def _b2_loop(w, T, K, c2, mode, s, tab, out):
     for i in numba.prange(w.shape[0]):
         wi = w[i]
         tab_i = tab[i] if mode == TABLE else 0.0  # the table has one entry per frequency in mode TABLE only
@@ -43,6 +38,22 @@ def b2_sum(w, T, K, c2, mode, s, tab, out):
         for j in range(T.shape[0]):
             acc += K[j] * c2[j] * one_minus_cos(mode, s, tab_i, wi * T[j])
         out[i] += acc / (wi * wi)
+
+
+# the same loop compiled twice: parallel over the frequencies for large sums; serial for small ones, where starting
+# the threads costs more than the sum (18 ms against 0.1 ms for 384 frequencies x 60 times on a loaded machine)
+_b2_parallel = numba.njit(parallel=True, cache=True)(_b2_loop)
+_b2_serial = numba.njit(cache=True)(_b2_loop)
+_PARALLEL_ABOVE = 2_000_000  # terms (frequencies x times)
+
+
+def b2_sum(w, T, K, c2, mode, s, tab, out):
+    """out[i] += sum_j K_j c2_j g(w_i T_j) / w_i^2, g = 1 - <cos omega T>, one state's half of the quadrature of
+    eq. (B2) without its prefactor N / pi: ``T`` the distinct mean times of that state (Units: s), ``K`` their
+    quadrature weights already divided by tau + tau' and summed over the other state's times, ``c2`` the squared
+    force at each (Units: N^2); ``tab`` holds g per frequency for mode TABLE."""
+    kernel = _b2_parallel if w.shape[0] * T.shape[0] > _PARALLEL_ABOVE else _b2_serial
+    kernel(w, T, K, c2, mode, s, tab, out)
 
 
 @numba.njit(parallel=True, cache=True)
