@@ -15,7 +15,7 @@ rad/s; spectra in the two-sided angular convention of eq. (2) of Xu, Zhou & Pers
 - **scenes** (the pymunk engine): :func:`shipped_scenarios`, :func:`load_scenario`, :func:`run_scene`,
   :func:`render_scene`, :func:`compare_scene`, :func:`save_trace` and :func:`load_trace`;
 - **measured data**: :func:`read_measured`, :func:`analyze_displacement` for x(t) and :func:`analyze_force` for a
-  friction-force record.
+  friction-force record; :func:`identify` ranks the paper's mechanisms for x(t) (:class:`Mechanism`).
 
 The names above are imported on first use (PEP 562 ``__getattr__``): ``import frictionnoise`` loads no numerics,
 and the packages below it (``engine_sim``, ``reduced_models``, ``compare``) may import this package's own shared
@@ -53,6 +53,7 @@ _LAZY = {
     "MeasuredData": "frictionnoise.measurements", "read_measured": "frictionnoise.measurements",
     "DisplacementAnalysis": "frictionnoise.measurements", "analyze_displacement": "frictionnoise.measurements",
     "ForceAnalysis": "frictionnoise.measurements", "analyze_force": "frictionnoise.measurements",
+    "identify": "compare.analysis.identify", "Mechanism": "compare.analysis.identify",
 }
 
 __all__ = ["G", "package_version", "atomic_write", *_LAZY]

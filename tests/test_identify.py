@@ -7,7 +7,7 @@ import pytest
 import reduced_models as rm
 from compare.analysis.families import FAMILIES
 from compare.analysis.family_fit import Grouped, fit_family, record_for
-from compare.analysis.identify import holm, identify, vuong
+from compare.analysis.identify import holm, identify, stationarity, vuong
 
 DT = 1e-3
 FLOOR = 1e-24  # m^2 s: a sensor's white noise of rms sqrt(2 pi FLOOR / DT) = 79 pm
@@ -71,6 +71,17 @@ def test_a_record_not_stationary_gets_no_mechanism(model_I_record):
     assert identify(model_I_record, DT, v=5e-4, stationary=False) == []
 
 
+def test_stationarity_flags_a_record_whose_level_jumps(model_I_record):
+    # the model I record is stationary; doubling its fluctuation about the slide in the second half quadruples the
+    # spectrum there, which every band sees
+    assert stationarity(model_I_record, DT)["stationary"]
+    t = np.arange(len(model_I_record)) * DT
+    zeta = model_I_record - 5e-4 * t
+    jumped = 5e-4 * t + np.where(t < t[-1] / 2, zeta, 2 * zeta)
+    assert not stationarity(jumped, DT)["stationary"]
+    assert identify(jumped, DT, v=5e-4) == []
+
+
 def test_holm_adjusts_as_the_step_down_method():
     # p = (0.01, 0.04, 0.03) over m = 3: sorted 0.01 x 3, 0.03 x 2, 0.04 x 1, running maximum
     np.testing.assert_allclose(holm([0.01, 0.04, 0.03]), [0.03, 0.06, 0.06])
@@ -90,3 +101,31 @@ def test_identify_rejects_an_unknown_model_and_a_bad_speed(model_I_record):
         identify(model_I_record, DT, v=5e-4, models=["model_X"])
     with pytest.raises(ValueError, match="speed"):
         identify(model_I_record, DT, v=-1.0)
+
+
+def test_analyze_prints_the_ranking_first_and_writes_mechanisms(tmp_path, capsys):
+    import json
+
+    from compare.cli.main import main
+
+    out = tmp_path / "out"
+    assert main(["analyze", "scenarios/data/model1_synthetic_um.csv", "-o", str(out)]) == 0
+    printed = capsys.readouterr().out.splitlines()
+    assert printed[0].startswith("mechanisms (best first")
+    assert printed[1].split()[0] == "model_I"  # the file is model I's reference case (scenarios/data/README.md)
+    s = json.loads((out / "summary.json").read_text())
+    best = s["mechanisms"][0]
+    assert best["model"] == "model_I" and best["verdict"] in ("fits", "indistinguishable")
+    assert set(best) >= {"model", "verdict", "p_value", "parameters", "separate"}
+    value, half, unit = best["parameters"]["a"]
+    assert unit == "m" and abs(value - 1e-3) < 2 * half  # built with a = 1 mm
+    assert best["parameters"]["omega_c"] == "not identified"  # 548 rad/s lies above the 100 Hz file's Nyquist
+
+
+def test_fn_identify_takes_a_trace():
+    import frictionnoise as fn
+
+    p = fn.WearParticleParams()
+    tr = fn.simulate(p, 30.0, seed=3)
+    ranking = fn.identify(tr, v=p.v)
+    assert isinstance(ranking[0], fn.Mechanism) and ranking[0].model == "model_II"

@@ -1,4 +1,4 @@
-"""A spectral family fitted to one record by the debiased Whittle likelihood, the sensor floor a nuisance term.
+"""A spectral family fitted to one record by the Whittle likelihood, the sensor floor a nuisance term.
 
 The record is differenced twice (every family's common omega^-4 range becomes flat) and held as a
 :class:`~compare.analysis.whittle.WhittleRecord`; a family (:mod:`compare.analysis.families`) plus a white floor
@@ -9,16 +9,15 @@ The fit runs on the Whittle likelihood of the differenced periodogram with adjac
 (:class:`Grouped`: the lowest 64 alone, then bins 1 % wide in frequency, each bin's m ordinates entering as
 m [ln mu_b + mean(I)_b / mu_b], exact when the model's mean is constant over the bin; the model varies by under
 2e-4 across a bin for any slope up to omega^-8), its mean the differencing gain times the model folded at Nyquist
-and the floor; a grid over the corner parameters gives the start. On records of at most :data:`EXACT_N` samples the
-maximum is then polished on the debiased likelihood of :mod:`compare.analysis.whittle` (the finite record's
-leakage in the model) and its value reported; longer records keep the grouped one (the debiased mean costs 1.5 s
-per evaluation at 4e5 samples; with two differences the spectrum is nearly flat and leakage small). Every family
-on one record is scored by the same rule, so their likelihoods compare.
+and the floor; a grid over the corner parameters gives the start. This leaves out the finite record's leakage,
+small once two differences flatten the spectrum; ``exact=True`` polishes the maximum on the debiased likelihood of
+:mod:`compare.analysis.whittle` (records of at most :data:`EXACT_N` samples: its mean costs 0.03 s per evaluation at
+2e4 samples and 1.5 s at 4e5). Every family compared on one record must be fitted alike.
 
-The 95 % intervals come from the curvature of the grouped negative log-likelihood at the maximum (finite
-differences on the fitted scale; log-fitted parameters get asymmetric ends). A parameter whose feature
-(:meth:`Family.feature`) lies outside the band where the fitted family stands above the floor is "not
-identified": held at its fitted value, no interval; so is a scale whose 95 % interval spans more than a factor 100.
+The 95 % intervals come from the curvature of the grouped negative log-likelihood at the maximum over every free
+parameter and the floor (finite differences on the fitted scale; log-fitted parameters get asymmetric ends). A
+parameter whose feature (:meth:`Family.feature`) lies outside the band where the fitted family stands above the
+floor is "not identified": no interval; so is a scale whose 95 % interval spans more than a factor 100.
 """
 from __future__ import annotations
 
@@ -127,7 +126,7 @@ class FamilyFit:
     band : tuple
         (low, high) (rad/s): the lowest Fourier frequency to where the fitted family meets the floor.
     n_free : int
-        Parameters fitted (the floor included).
+        Parameters the record identifies, the floor included (the information criterion's count).
     held : tuple of str
         Parameters held at their neutral value (their feature does not show) and those sharing its feature.
     v : float
@@ -314,7 +313,8 @@ def _errors(H) -> np.ndarray:
     return err
 
 
-def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dict | None = None) -> FamilyFit:
+def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dict | None = None,
+               exact: bool = False) -> FamilyFit:
     """Maximum-likelihood fit of family ``fam`` plus a white floor to ``record``, with 95 % intervals.
 
     Parameters
@@ -327,6 +327,9 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         The record's mean sliding speed (Units: m/s).
     start_theta : dict, optional
         Name -> value to start from (e.g. the values a simulated record was built with); the grid otherwise.
+    exact : bool, optional
+        Polish the maximum on the debiased likelihood (records of at most :data:`EXACT_N` samples; 5-15 s more per
+        family on a loaded 2-core machine at 2e4 samples). Every family compared on one record must be fitted alike.
 
     Returns
     -------
@@ -358,7 +361,7 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         neutral = sorted(held)
         res = optimize.minimize(grouped, np.clip(q, [b[0] for b in bounds], [b[1] for b in bounds]),
                                 method="L-BFGS-B", bounds=bounds)
-    if record.n <= EXACT_N:
+    if exact and record.n <= EXACT_N:
         fit = maximum_likelihood(record, spectrum, res.x, bounds=bounds, images=None)
     else:
         fit = WhittleFit(tuple(map(float, res.x)), float(res.fun), bool(res.success))
@@ -367,8 +370,10 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         ident[i] = False
     theta = _to_theta(fam, q)
     floor = 10.0 ** q[-1]
-    # the curvature over the identified parameters and the floor; the others held
-    idx = [i for i, ok in enumerate(ident) if ok] + [len(q) - 1]
+    # the curvature over every free parameter and the floor, so that an identified parameter's interval carries its
+    # correlation with the ones the band does not pin down (a resonance above the band still tilts its top); the
+    # held ones stay out. Intervals are then given to the identified parameters only.
+    idx = [i for i in range(len(q) - 1) if i not in neutral] + [len(q) - 1]
 
     def nll_sub(s):
         r = q.copy()
@@ -379,6 +384,8 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
     intervals = {}
     for k, i in enumerate(idx[:-1]):
         p = fam.params[i]
+        if not ident[i]:
+            continue
         lo, hi = q[i] - _Z95 * err[k], q[i] + _Z95 * err[k]
         intervals[p.name] = (10.0**lo, 10.0**hi) if p.log else (lo, hi)
         if not math.isfinite(err[k]) or (p.log and hi - lo > _WIDEST):
@@ -386,5 +393,6 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
     for i, ok in enumerate(ident):
         if not ok:
             intervals[fam.params[i].name] = None
-    return FamilyFit(fam.name, theta, floor, fit.nll, intervals, band, len(idx), v, fit.converged, tuple(q),
+    n_free = 1 + sum(1 for i in idx[:-1] if ident[i])  # what the information criterion counts: what the band shows
+    return FamilyFit(fam.name, theta, floor, fit.nll, intervals, band, n_free, v, fit.converged, tuple(q),
                      tuple(fam.params[i].name for i in neutral))

@@ -31,7 +31,7 @@ import reduced_models
 from .families import FAMILIES, MARGIN, Family
 from .family_fit import FamilyFit, Grouped, fit_family, record_for, sampled_spectrum
 
-__all__ = ["Mechanism", "identify", "holm", "vuong"]
+__all__ = ["Mechanism", "identify", "holm", "vuong", "stationarity"]
 
 _BASE = ("model_I",)  # fitted first: the families below extend its spectrum and start from its fit
 _EXTENDS_I = ("model_Ib", "model_ageing")
@@ -68,7 +68,14 @@ class Mechanism:
     fit: FamilyFit
 
     def to_dict(self) -> dict:
-        """summary.json's form: model, verdict, p_value, parameters, separate, bic, band and floor."""
+        """summary.json's form of this standing.
+
+        Returns
+        -------
+        dict
+            ``model``, ``verdict``, ``p_value``, ``parameters``, ``separate``, ``bic``, ``band_rad_s`` (rad/s),
+            ``floor_m2s`` (m^2 s) and ``cannot_separate`` (the model's parameters the family lumps together).
+        """
         return {"model": self.model, "verdict": self.verdict, "p_value": float(self.p_value),
                 "parameters": self.parameters, "separate": self.separate, "bic": float(self.bic),
                 "band_rad_s": [float(b) for b in self.fit.band], "floor_m2s": float(self.fit.floor),
@@ -172,14 +179,57 @@ def _separate(best: str, other: str, fits: dict, v: float) -> str:
     return "; ".join(dict.fromkeys(bits))
 
 
-def identify(x, dt: float, v: float | None = None, *, models=None, alpha: float = 0.05,
-             stationary: bool = True) -> list:
-    """The registered models ranked for a displacement record, best first, with verdicts and parameters.
+def stationarity(x, dt: float, bands: int = 8, level: float = 0.01) -> dict:
+    """Whether a record's two halves share one spectrum: the twice-differenced periodograms of the halves averaged
+    over ``bands`` log-spaced bands from each half's lowest frequency to Nyquist; each band's log ratio is
+    normal with variance 2/m (m ordinates per half, exponential ordinates) under stationarity.
 
     Parameters
     ----------
     x : array_like
-        Displacement record (Units: m), uniformly sampled, the slide included (twice differenced away).
+        The record (Units: m).
+    dt : float
+        Sampling step (Units: s).
+    bands : int, optional
+        Number of bands.
+    level : float, optional
+        Family-wise level (Bonferroni over the bands).
+
+    Returns
+    -------
+    dict
+        ``stationary`` (bool: no band differs both significantly and by more than a factor 1.5), ``ratios`` (second
+        half over first, per band), ``z`` and ``bands`` (rad/s).
+    """
+    x = np.asarray(x, dtype=float)
+    h = len(x) // 2
+    r1, r2 = record_for(x[:h], dt), record_for(x[h:2 * h], dt)
+    m = min(len(r1.omega), len(r2.omega))
+    w = r1.omega[:m]
+    edges = np.geomspace(w[0], w[-1] * (1 + 1e-12), bands + 1)
+    idx = np.searchsorted(edges[1:-1], w, side="right")
+    cnt = np.bincount(idx, minlength=bands).astype(float)
+    a = np.bincount(idx, weights=r1.periodogram[:m], minlength=bands)
+    b = np.bincount(idx, weights=r2.periodogram[:m], minlength=bands)
+    ok = (cnt > 0) & (a > 0) & (b > 0)
+    ratio = np.where(ok, b / np.where(a > 0, a, 1.0), np.nan)
+    z = np.where(ok, np.log(np.where(ok, ratio, 1.0)) / np.sqrt(2.0 / np.maximum(cnt, 1)), 0.0)
+    crit = float(stats.norm.isf(level / (2 * bands)))
+    bad = ok & (np.abs(z) > crit) & (np.abs(np.log(np.where(ok, ratio, 1.0))) > math.log(1.5))
+    return {"stationary": not bool(bad.any()), "ratios": [float(r) for r in ratio], "z": [float(v) for v in z],
+            "bands": [[float(edges[i]), float(edges[i + 1])] for i in range(bands)]}
+
+
+def identify(x, dt: float | None = None, v: float | None = None, *, models=None, alpha: float = 0.05,
+             stationary: bool | None = None) -> list:
+    """The registered models ranked for a displacement record, best first, with verdicts and parameters.
+
+    Parameters
+    ----------
+    x : array_like or record
+        Displacement record (Units: m), uniformly sampled, the slide included (twice differenced away); or a record
+        with attributes ``t`` (s) and ``x`` (m) (a :class:`~compare.io.measured.MeasuredData`, a model's or a
+        scene's trace), then ``dt`` is read from ``t``.
     dt : float
         Sampling step (Units: s).
     v : float, optional
@@ -189,16 +239,28 @@ def identify(x, dt: float, v: float | None = None, *, models=None, alpha: float 
     alpha : float, optional
         Level of the Holm-adjusted comparisons.
     stationary : bool, optional
-        False for a record flagged as not stationary: no mechanism is named (an empty list).
+        False for a record flagged as not stationary: no mechanism is named (an empty list). None (default): the
+        record's halves are compared by :func:`stationarity`.
 
     Returns
     -------
     list of Mechanism
         Best first.
     """
+    if hasattr(x, "t") and hasattr(x, "x"):
+        t = np.asarray(x.t, dtype=float)
+        if getattr(x, "segmented", False):
+            raise ValueError("the record's time stamps break into segments: identification needs one uniform record "
+                             "(resample it, or pass one segment)")
+        dt = float(np.median(np.diff(t))) if dt is None else dt
+        x = x.x
+    if dt is None or not (dt > 0 and math.isfinite(dt)):
+        raise ValueError(f"the sampling step dt must be positive, in s (got {dt!r})")
+    x = np.asarray(x, dtype=float)
+    if stationary is None:
+        stationary = stationarity(x, dt)["stationary"]
     if not stationary:
         return []
-    x = np.asarray(x, dtype=float)
     if v is None:
         v = float((x[-1] - x[0]) / (dt * (len(x) - 1)))
     if not (v > 0 and math.isfinite(v)):
