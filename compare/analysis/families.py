@@ -88,6 +88,9 @@ class Family:
         The combinations of the model's own parameters a record cannot take apart.
     line : bool
         The model adds a spectral line (a nuisance term of the fit).
+    smooth : bool
+        Smooth on a 1 % frequency scale (a fit may group ordinates); False for model III, whose window's zeros
+        repeat every 2 pi v / w and need every ordinate.
     """
 
     name: str
@@ -97,6 +100,7 @@ class Family:
     from_model: Callable
     cannot_separate: str
     line: bool = False
+    smooth: bool = True
 
     def spectrum(self, theta: dict, omega, v: float) -> np.ndarray:
         """C_x(omega) (Units: m^2 s) at ``theta`` (dict name -> value) and sliding speed ``v`` (m/s)."""
@@ -255,7 +259,7 @@ FAMILIES["model_II"] = Family(
 FAMILIES["model_III"] = Family(
     "model_III", (Param("L", _LEVEL4, True, (1e-40, 1e10)), Param("w", "m", True, (1e-9, 1e3))),
     _model_III, lambda th, v: {"L": None, "w": 2 * np.pi * v / th["w"]},
-    _from_III, "the contacts' number, forces and the mass only through the level L")
+    _from_III, "the contacts' number, forces and the mass only through the level L", smooth=False)
 
 
 def family_of(model: str) -> Family:

@@ -31,13 +31,15 @@ from scipy import optimize, stats
 from .families import Family, identified
 from .whittle import WhittleFit, WhittleRecord, maximum_likelihood
 
-__all__ = ["FamilyFit", "Grouped", "fit_family", "record_for", "sampled_spectrum", "ORDER", "EXACT_N"]
+__all__ = ["FamilyFit", "Grouped", "fit_family", "record_for", "sampled_spectrum", "cell_of", "ORDER", "EXACT_N"]
 
 ORDER = 2  # differences: every family's omega^-4 range flat, the floor rising as omega^4
 EXACT_N = 2**15  # records up to this many samples get the debiased likelihood's maximum
 _Z95 = float(stats.norm.ppf(0.975))
 _GRID = 5  # trial points per corner parameter when choosing a start
 _ALONE = 64  # lowest ordinates kept alone
+_FINE_GROUPS = 20_000  # linear groups of a family that is not smooth: 4000 ordinates per model III zero spacing at
+#   400 s and v / w = 10 /s become 400 groups
 _BIN = 0.01  # relative width of a bin above them
 _WIDEST = 2.0  # a scale whose 95 % interval spans more than two decades is not identified
 
@@ -62,6 +64,9 @@ class Grouped:
     Parameters
     ----------
     record : WhittleRecord
+    fine : bool, optional
+        Linear groups of :attr:`run` adjacent ordinates instead of 1 % bins (for a family that is not smooth on the
+        bins' scale), at most :data:`_FINE_GROUPS` of them.
 
     Attributes
     ----------
@@ -77,10 +82,13 @@ class Grouped:
         The differencing gain |2 sin(omega dt / 2) / dt|^(2k) at ``omega``.
     """
 
-    def __init__(self, record: WhittleRecord):
+    def __init__(self, record: WhittleRecord, fine: bool = False):
         w, I = record.omega, record.periodogram
         k = min(_ALONE, len(w))
-        if len(w) > k:
+        self.run = max(1, math.ceil(len(w) / _FINE_GROUPS)) if fine else 0  # ordinates per linear group
+        if fine:
+            idx = np.concatenate([np.arange(k), k + (np.arange(len(w) - k) // self.run)])
+        elif len(w) > k:
             edges = np.geomspace(w[k], w[-1] * (1 + 1e-12), max(2, int(math.log(w[-1] / w[k]) / _BIN) + 1))
             idx = np.concatenate([np.arange(k), k + np.searchsorted(edges[1:-1], w[k:], side="right")])
         else:
@@ -192,10 +200,25 @@ def _bounds(fam: Family, v: float, lo: float, hi: float):
 _IMAGES = 2  # aliasing images each side: a family falling as omega^-4 leaves out 5^-4 of its Nyquist level
 
 
-def sampled_spectrum(fam: Family, v: float, dt: float):
+_SUB = 4  # sub-points averaged over each ordinate's cell for a family that is not smooth
+
+
+def cell_of(record: WhittleRecord, fam: Family):
+    """The width (rad/s) of a linear group of ordinates (:class:`Grouped` with ``fine``) for a family that is not
+    smooth, else None."""
+    if fam.smooth:
+        return None
+    return max(1, math.ceil(len(record.omega) / _FINE_GROUPS)) * 2.0 * math.pi / (record.n * record.dt)
+
+
+def sampled_spectrum(fam: Family, v: float, dt: float, cell: float | None = None):
     """The sampled record's spectrum of family ``fam`` at speed ``v`` (m/s) and step ``dt`` (s): the family folded at
     Nyquist (:func:`~compare.analysis.whittle.folded`'s sum, all images in one call of the family) plus the white
     floor, which a sensor adds after sampling.
+
+    ``cell`` (rad/s, the ordinates' spacing 2 pi / (n dt)): the family is averaged over each ordinate's cell at
+    :data:`_SUB` points, a first account of the finite record's leakage for a family with exact zeros (model III's
+    window): without it an ordinate at a zero, which leakage fills, reads thousands of times its mean.
 
     Returns
     -------
@@ -206,11 +229,14 @@ def sampled_spectrum(fam: Family, v: float, dt: float):
     shifts = np.array([0.0] + [m * step for m in range(1, _IMAGES + 1) for _ in (0, 1)])
     signs = np.array([1.0] + [s for _ in range(_IMAGES) for s in (1.0, -1.0)])
 
+    offsets = np.zeros(1) if cell is None else cell * ((np.arange(_SUB) + 0.5) / _SUB - 0.5)
+
     def spectrum(w, q):
         w = np.asarray(w, dtype=float)
-        ws = np.abs(shifts[:, None] + signs[:, None] * w[None, :])
-        vals = fam.shape(_to_theta(fam, q), ws.ravel(), v).reshape(ws.shape)
-        return vals.sum(axis=0) + 10.0 ** q[-1]
+        wo = (w[None, :] + offsets[:, None]).ravel()
+        ws = np.abs(shifts[:, None] + signs[:, None] * wo[None, :])
+        vals = fam.shape(_to_theta(fam, q), ws.ravel(), v).reshape(ws.shape).sum(axis=0)
+        return vals.reshape(len(offsets), len(w)).mean(axis=0) + 10.0 ** q[-1]
     return spectrum
 
 
@@ -223,7 +249,7 @@ def _start(G: Grouped, fam: Family, v: float, start_theta: dict | None):
     floor0 = math.log10(max(float(np.mean(C[top])), 1e-300))
     mid = (w > w[0] * 10) & (w < w[-1] / 10) if w[-1] > 100 * w[0] else slice(None)
     lev4 = math.log10(max(float(np.median((C * w**4)[mid])), 1e-300))
-    spectrum = sampled_spectrum(fam, v, G.dt)
+    spectrum = sampled_spectrum(fam, v, G.dt, None if fam.smooth else G.run * (G.omega[1] - G.omega[0]))
     lo, hi = w[0], w[-1]
     base = []
     for p in fam.params:
@@ -244,6 +270,11 @@ def _start(G: Grouped, fam: Family, v: float, start_theta: dict | None):
         return np.array(base, dtype=float)
     # each corner parameter's trial values place its feature over the band (and one beyond each end)
     freqs = np.geomspace(lo / 3, hi * 3, _GRID)
+    if not fam.smooth:
+        # a family with repeating zeros (model III's window) has a likelihood with a mode at every shift of its zeros
+        # against the ordinates: the zeros' spacing is read from the periodogram's own periodicity (the strongest
+        # periods of its logarithm along the ordinates, and twice and three times them)
+        freqs = np.concatenate([freqs, _zero_spacings(G)])
     fixed_start = {"Q": 1.0, "omega_0": math.log10(hi * 1e3)}  # a resonance of quality 10; its spring damping unseen
     trials = [[fixed_start[fam.params[i].name]] if fam.params[i].name in fixed_start
               else [_param_at(fam.params[i].name, f, v) for f in freqs] for i in free]
@@ -263,6 +294,20 @@ def _start(G: Grouped, fam: Family, v: float, start_theta: dict | None):
         if val < best_v:
             best, best_v = q, val
     return best
+
+
+def _zero_spacings(G: Grouped, peaks: int = 4) -> np.ndarray:
+    """Candidate spacings (rad/s) of a comb of zeros in an ungrouped periodogram: the ``peaks`` strongest periods of
+    log I along the ordinates (between 3 ordinates and a third of them), each also doubled and tripled."""
+    y = np.log(np.maximum(G.mean, 1e-300))
+    y = y - np.convolve(y, np.ones(101) / 101, mode="same")  # the slow trend out
+    P = np.abs(np.fft.rfft(y)) ** 2
+    k = np.arange(len(P))
+    ok = (k >= 3) & (k <= len(y) / 3)
+    top = k[ok][np.argsort(P[ok])[-peaks:]]
+    step = G.omega[-1] - G.omega[-2]  # the linear groups' spacing
+    spacing = len(y) / top * step
+    return np.concatenate([spacing, 2 * spacing, 3 * spacing])
 
 
 def _band(record: WhittleRecord, fam: Family, theta: dict, floor: float, v: float):
@@ -335,8 +380,8 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
     -------
     FamilyFit
     """
-    G = Grouped(record)
-    spectrum = sampled_spectrum(fam, v, record.dt)
+    G = Grouped(record, fine=not fam.smooth)
+    spectrum = sampled_spectrum(fam, v, record.dt, cell_of(record, fam))
     bounds = _bounds(fam, v, G.omega[0], G.omega[-1])
     q0 = _start(G, fam, v, start_theta)
 

@@ -29,7 +29,7 @@ from scipy import stats
 import reduced_models
 
 from .families import FAMILIES, MARGIN, Family
-from .family_fit import FamilyFit, Grouped, fit_family, record_for, sampled_spectrum
+from .family_fit import FamilyFit, Grouped, cell_of, fit_family, record_for, sampled_spectrum
 
 __all__ = ["Mechanism", "identify", "holm", "vuong", "stationarity"]
 
@@ -292,7 +292,10 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
     first = min(close, key=lambda n: (len(FAMILIES[n].params), names.index(n)))
     ranked = [first] + [n for n in ranked if n != first]
     best = ranked[0]
-    ll = {n: G.ordinate_loglik(sampled_spectrum(FAMILIES[n], v, dt), np.asarray(fits[n].params)) for n in names}
+    G_fine = None if all(FAMILIES[n].smooth for n in names) else Grouped(rec, fine=True)
+    ll = {n: (G if FAMILIES[n].smooth else G_fine).ordinate_loglik(sampled_spectrum(FAMILIES[n], v, dt,
+                                                                                     cell_of(rec, FAMILIES[n])),
+                                                                    np.asarray(fits[n].params)) for n in names}
     raw = [vuong(ll[best], ll[n])[1] for n in ranked[1:]]
     adj = holm(raw) if raw else np.array([])
     rejected = {n: bool(p < alpha) for n, p in zip(ranked[1:], adj)}
