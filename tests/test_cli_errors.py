@@ -266,14 +266,17 @@ def test_unit_options_read_the_micro_sign_as_files_write_it(tmp_path, capsys):
 
 
 def test_analyze_help_names_the_default_fit_and_report_help_the_quick_selection(capsys):
+    from compare.analysis.displacement import METHODS
     from compare.analysis.fits import DEFAULT_METHOD
     from compare.report.studies.scenes import HEADLINE_SCENES
 
     with pytest.raises(SystemExit):
         main(["analyze", "--help"])
     out = " ".join(capsys.readouterr().out.split())
-    assert f"default: {DEFAULT_METHOD})" in out and "DEFAULT_METHOD" not in out
-    assert "--band LO HI fit band (rad/s); default: the straightest stretch" in out  # the automatic band, said
+    # the record model is the displacement default (METHODS[0]); the band fit's default the force data's
+    assert f"{METHODS[0]} (displacement:" in out and "the default there" in out
+    assert f"{DEFAULT_METHOD} (the Whittle likelihood over a band of the Welch spectrum; the default for force" in out
+    assert "--band LO HI fit band (rad/s); default: every Fourier frequency of the record (record)" in out
     with pytest.raises(SystemExit):
         main(["report", "--help"])
     out = " ".join(capsys.readouterr().out.split())

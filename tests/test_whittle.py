@@ -18,9 +18,21 @@ def _sampled(omega, p):
 def test_expected_periodogram_of_a_random_walk_is_flat():
     # A random walk's sampled spectrum is exactly A omega^-2 folded; once differenced it is white of level A, and a
     # white series' expected periodogram is its level at every Fourier ordinate (rounding only: 1e-12).
-    rec = WhittleRecord(np.cumsum(np.ones(1000)), DT, 1)
-    e = rec.expected(_sampled, (2.0, 3.0), images=None)
-    np.testing.assert_allclose(e, 3.0, rtol=1e-12)
+    # The taper (sum h^2 = 1) leaves a white level as it is: E I_j = B sum_t h_t^2.
+    for taper in (0.0, 0.1, 1.0):
+        rec = WhittleRecord(np.cumsum(np.ones(1000)), DT, 1, taper=taper)
+        e = rec.expected(_sampled, (2.0, 3.0), images=None)
+        np.testing.assert_allclose(e, 3.0, rtol=1e-12)
+
+
+def test_tapered_periodogram_is_unbiased_for_white_noise():
+    # The mean of 400 tapered periodograms of unit-variance white noise is dt / (2 pi) at every ordinate: 400
+    # exponential ordinates average to within 5 sigma = 5 / sqrt(400) = 25 % each; the mean over all of them
+    # (400 x 255) to within 1 %.
+    rng = np.random.default_rng(0)
+    P = np.mean([WhittleRecord(rng.standard_normal(512), DT, 0).periodogram for _ in range(400)], axis=0)
+    level = DT / (2 * math.pi)
+    assert np.max(np.abs(P / level - 1)) < 0.25 and abs(P.mean() / level - 1) < 0.01
 
 
 @pytest.mark.parametrize("n", [64, 1000])
@@ -28,7 +40,7 @@ def test_expected_periodogram_of_omega4_is_the_finite_ma1_form(n):
     # Twice differenced, a sampled omega^-4 process is MA(1) with spectrum A (2 + cos omega dt) / 3: c(0) = 2/3 and
     # c(1) = 1/6 (times 2 pi A / dt). Over n samples the expected periodogram is A [2/3 + (1 - 1/n) cos(omega dt) / 3]
     # exactly (the Fejer kernel's finite-record bias is the 1 - 1/n); the FFT route must give it to rounding.
-    rec = WhittleRecord(np.zeros(n + 2), DT, 2)
+    rec = WhittleRecord(np.zeros(n + 2), DT, 2, taper=0.0)
     e = rec.expected(_sampled, (4.0, 2.5), images=None)
     want = 2.5 * (2.0 / 3.0 + (1.0 - 1.0 / rec.n) * np.cos(rec.omega * DT) / 3.0)
     np.testing.assert_allclose(e, want, rtol=1e-10)

@@ -13,11 +13,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from .fits import PowerLawFit, fit_power_law
+from .record_model import RecordFit, check_record, fit_record
 from .segments import SegmentSpectra, segment_fits, segment_spectra, with_line_flag
 from .spectra import (G_STANDARD, Spectrum, displacement_spectrum, force_spectrum, friction_coefficient_spectrum,
                       rms_from_spectrum)
 
-__all__ = ["DisplacementAnalysis", "analyze_displacement", "C_F_NEEDS_MASS"]
+__all__ = ["DisplacementAnalysis", "analyze_displacement", "C_F_NEEDS_MASS", "METHODS"]
+
+METHODS = ("record", "whittle", "lsq")  # record: compare.analysis.record_model (default); the others: compare.analysis.fits
 
 C_F_NEEDS_MASS = ("C_F not computed: C_F = M^2 omega^4 C_x (eq. 3) needs the block mass M (--mass, kg); gamma, C_x "
                   "and C_mu do not depend on it")
@@ -31,8 +34,9 @@ class DisplacementAnalysis:
     ----------
     C_x : Spectrum
         Displacement spectrum of zeta = x - (x0 + v t) (m^2 s).
-    fit : PowerLawFit
-        C_x ~ omega^-gamma: ``fit.gamma``, its 95 % half-width ``fit.gamma_err``, the band (rad/s), the flags.
+    fit : RecordFit or PowerLawFit
+        C_x ~ omega^-gamma: ``fit.gamma``, its 95 % half-width ``fit.gamma_err``, the band (rad/s), the flags
+        (a :class:`~compare.analysis.record_model.RecordFit` also the floor and its crossover).
     mean_velocity : float
         The fitted sliding velocity v (m/s).
     zeta_rms : float
@@ -62,16 +66,16 @@ class DisplacementAnalysis:
     """
 
     C_x: Spectrum
-    fit: PowerLawFit
+    fit: RecordFit | PowerLawFit
     mean_velocity: float
     zeta_rms: float
     C_mu: Spectrum
-    fit_mu: PowerLawFit
+    fit_mu: RecordFit | PowerLawFit
     mu_rms: float
     g: float
     mass: float | None = None
     C_F: Spectrum | None = None
-    fit_F: PowerLawFit | None = None
+    fit_F: RecordFit | PowerLawFit | None = None
     F_rms: float | None = None
     segments: SegmentSpectra | None = None
     segment_fits: list | None = None
@@ -120,10 +124,14 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
     mass : float, optional
         Block mass M (kg): adds C_F = M^2 omega^4 C_x (eq. 3) and its exponent gamma - 4.
     band : tuple of float, optional
-        Fit band (rad/s); default: the widest straight stretch (see :func:`compare.analysis.fits.fit_power_law`).
-        C_mu and C_F are fitted over the band of the C_x fit.
-    method : {"whittle", "lsq"}, optional
-        Fit method; default :data:`compare.analysis.fits.DEFAULT_METHOD`.
+        Fit band (rad/s): the Fourier ordinates the likelihood sums over; default all of them (the record model), or
+        the widest straight stretch (:func:`compare.analysis.fits.fit_power_law`). C_mu and C_F are fitted over the
+        band of the C_x fit.
+    method : {"record", "whittle", "lsq"}, optional
+        Fit method. Default ``"record"``: the record model C_x = A omega^-gamma + B fitted by the debiased Whittle
+        likelihood of the whole record (:func:`compare.analysis.record_model.fit_record`; C_mu's and C_F's
+        exponents follow as gamma - 4). ``"whittle"`` and ``"lsq"`` fit the Welch spectrum over a band
+        (:func:`compare.analysis.fits.fit_power_law`); a record in uniform segments is fitted that way.
     g : float, optional
         Gravitational acceleration for C_mu (m/s^2).
     timeline : compare.analysis.timeline.Timeline, optional
@@ -145,19 +153,33 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
         t, x = t.t, t.x
     if mass is not None and not (mass > 0 and np.isfinite(mass)):
         raise ValueError(f"mass must be positive, in kg (got {mass!r})")
+    if method not in (None,) + METHODS:
+        raise ValueError(f"method must be one of {', '.join(METHODS)} (got {method!r})")
     segs = None
     if timeline is not None:  # time stamps in uniform segments: each on its own, and their spectra averaged
         segs = segment_spectra(t, x, timeline, quantity="x", unit="m^2 s", detrend="linear", name="x")
         C_x = segs.combined
+        if method in (None, "record"):  # the record model needs one uniform record; the segments' spectra carry no
+            method = None               # record, so their combination is fitted over its band
     else:
+        t, x = np.asarray(t, dtype=float), np.asarray(x, dtype=float)
+        check_record(x, "x", "m")
         C_x = displacement_spectrum(t, x)
-    fit = with_line_flag(fit_power_law(C_x, band=band, method=method), C_x)
+    if method in (None, "record") and segs is None:
+        z = x - np.polyval(np.polyfit(t - t[0], x, 1), t - t[0])
+        fit = with_line_flag(fit_record(z, float(C_x.provenance["dt"]), band=band), C_x)
+        fit_mu = fit.derived(4.0, 1.0 / g**2, "mu")
+    else:
+        fit = with_line_flag(fit_power_law(C_x, band=band, method=method), C_x)
+        fit_mu = None
     C_mu = friction_coefficient_spectrum(C_x, g)
-    fit_mu = with_line_flag(fit_power_law(C_mu, band=fit.band, method=fit.method), C_mu)
+    if fit_mu is None:
+        fit_mu = with_line_flag(fit_power_law(C_mu, band=fit.band, method=fit.method), C_mu)
     C_F = fit_F = F_rms = None
     if mass is not None:
         C_F = force_spectrum(C_x, mass)
-        fit_F = with_line_flag(fit_power_law(C_F, band=fit.band, method=fit.method), C_F)
+        fit_F = (fit.derived(4.0, mass**2, "F") if fit.method == "record" else
+                 with_line_flag(fit_power_law(C_F, band=fit.band, method=fit.method), C_F))
         F_rms = rms_from_spectrum(C_F)
     return DisplacementAnalysis(C_x=C_x, fit=fit, mean_velocity=float(C_x.provenance["mean_velocity"]),
                                 zeta_rms=rms_from_spectrum(C_x), C_mu=C_mu, fit_mu=fit_mu, mu_rms=rms_from_spectrum(C_mu),

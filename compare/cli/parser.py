@@ -132,12 +132,15 @@ def build_parser() -> argparse.ArgumentParser:
                     help="imposed sliding speed (m/s), force data: distance-domain spectrum and stroke length")
     an.add_argument("--cut", type=float, default=None, metavar="S",
                     help="seconds cut at each end of a stroke (default: 10 %% of the median stroke)")
-    an.add_argument("--method", default=None, choices=["whittle", "lsq"],
-                    help="exponent fit, for displacement and force data alike: whittle (the Whittle likelihood "
-                         "over the band) or lsq (least squares on the log-binned spectrum) (default: whittle)")
+    an.add_argument("--method", default=None, choices=["record", "whittle", "lsq"],
+                    help="exponent fit: record (displacement: the power law plus a white floor fitted to the whole "
+                         "record by the debiased Whittle likelihood; the default there), whittle (the Whittle "
+                         "likelihood over a band of the Welch spectrum; the default for force data and records in "
+                         "segments) or lsq (least squares on the log-binned spectrum)")
     an.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"),
-                    help="fit band (rad/s); default: the straightest stretch of at least a decade between four "
-                         "frequency steps and a sixteenth of the Nyquist frequency (printed with the fit)")
+                    help="fit band (rad/s); default: every Fourier frequency of the record (record), or the "
+                         "straightest stretch of at least a decade between four frequency steps and a sixteenth of "
+                         "the Nyquist frequency (whittle, lsq); printed with the fit")
     an.add_argument("--resample", type=float, default=None, metavar="DT",
                     help="time stamps that change rate, skip, repeat or step back: put the record on one grid of DT "
                          "seconds (faster segments low-passed first; the filter is stated) instead of analysing its "
