@@ -123,7 +123,7 @@ def cmd_analyze(args) -> int:
 
             an = analyze_displacement(data, mass=args.mass, band=band, method=args.method)
             sections, summary = build_measured_report(an, data)
-            summary.update(units=data.units, **mechanisms_of(data, an.mean_velocity))
+            summary.update(units=data.units, **mechanisms_of(data, an.mean_velocity, an.fit.flags))
     except ValueError as e:
         raise UserError(f"{args.data}: {e}") from None
     write_report(out, sections, summary, title=f"frictionnoise analyze: {Path(args.data).name}")

@@ -7,7 +7,7 @@ import numpy as np
 __all__ = ["mechanisms_of", "ranking_lines"]
 
 
-def mechanisms_of(data, v: float) -> dict:
+def mechanisms_of(data, v: float, flags=()) -> dict:
     """summary.json's ``mechanisms`` (best first, each :meth:`Mechanism.to_dict`) and ``stationarity`` of a
     measured displacement record at mean speed ``v`` (m/s); ``mechanisms_note`` says why there are none.
 
@@ -17,6 +17,9 @@ def mechanisms_of(data, v: float) -> dict:
         The record (``t`` in s, ``x`` in m).
     v : float
         Its mean sliding speed (Units: m/s).
+    flags : iterable of str, optional
+        The exponent fit's flags; one starting "not stationary" (the record model's split-half test) names no
+        mechanism.
 
     Returns
     -------
@@ -32,6 +35,9 @@ def mechanisms_of(data, v: float) -> dict:
     if not v > 0:
         return {"mechanisms": [], "stationarity": None,
                 "mechanisms_note": f"no mechanism named: the record does not slide forward (mean speed {v:.3g} m/s)"}
+    split = [f for f in flags if f.startswith("not stationary")]
+    if split:
+        return {"mechanisms": [], "stationarity": None, "mechanisms_note": f"no mechanism named: {split[0]}"}
     dt = float(np.median(np.diff(data.t)))
     st = stationarity(data.x, dt)
     if not st["stationary"]:
