@@ -1,6 +1,6 @@
 """Rebuild docs/results/identification.md: the confusion table of `identify` over compare.analysis.confusion's cells.
 
-    python -m benchmarks.confusion_table [--smoke] [--seeds N] [--out PATH]
+    python -m benchmarks.confusion_table [--smoke] [--seeds N] [--durations S ...] [--out PATH]
 
 Default: every cell of CELLS (models I, II, III and Ib at two or one parameter points, 60, 300 and 900 s at 1 kHz)
 with 100 seeds each (seeds 0-99), written to docs/results/identification.md. --smoke: a few 30 s cells, 2 seeds,
@@ -18,15 +18,14 @@ def _pct(k, n):
     return f"{k}/{n}" if n else "n/a"
 
 
-def table(rows, seeds: int, wall: float) -> str:
+def table(rows, seeds: int, wall: float, command: str = "python -m benchmarks.confusion_table") -> str:
     lines = [
         "# Identification: the confusion table",
         "",
         "Records simulated by each model's exact simulator at 1 kHz with a white sensor floor of "
         f"{FLOOR:g} m² s, identified by `compare.analysis.identify.identify` (every registered model's family fitted, "
         f"ranked by BIC, Vuong's test against the best, Holm-adjusted at 5 %). Seeds 0-{seeds - 1} per cell. Rebuilt "
-        "by `python -m benchmarks.confusion_table` "
-        f"({wall:.0f} s wall at load {os.getloadavg()[0]:.1f}).",
+        f"by `{command}` ({wall:.0f} s wall at load {os.getloadavg()[0]:.1f}).",
         "",
         "Columns: *first or indist.*: the true model not rejected, ranked first or indistinguishable from the first; "
         "*alone*: the true model first with verdict \"fits\" (model_Iv, model I's family plus a line, counts as model "
@@ -55,8 +54,11 @@ def main(argv=None):
     ap.add_argument("--smoke", action="store_true")
     ap.add_argument("--seeds", type=int, default=None)
     ap.add_argument("--out", default=None)
+    ap.add_argument("--durations", type=float, nargs="+", default=None, help="only the cells of these lengths (s)")
     a = ap.parse_args(argv)
     cells = SMOKE_CELLS if a.smoke else CELLS
+    if a.durations:
+        cells = tuple(c for c in cells if c.duration in a.durations)
     seeds = a.seeds or (2 if a.smoke else 100)
     out = a.out or (None if a.smoke else "docs/results/identification.md")
     t0 = time.perf_counter()
@@ -64,7 +66,10 @@ def main(argv=None):
     for cell in cells:
         rows.append((cell, run_cell(cell, range(seeds))))
         print(f"{cell.model} {cell.label} {cell.duration:g} s: {rows[-1][1]}", flush=True)
-    text = table(rows, seeds, time.perf_counter() - t0)
+    import sys
+
+    command = " ".join(["python -m benchmarks.confusion_table", *(sys.argv[1:] if argv is None else argv)])
+    text = table(rows, seeds, time.perf_counter() - t0, command)
     if out:
         Path(out).write_text(text)
         print(f"wrote {out}")

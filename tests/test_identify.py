@@ -129,3 +129,19 @@ def test_fn_identify_takes_a_trace():
     tr = fn.simulate(p, 30.0, seed=3)
     ranking = fn.identify(tr, v=p.v)
     assert isinstance(ranking[0], fn.Mechanism) and ranking[0].model == "model_II"
+
+
+def test_the_explanation_page_example():
+    # docs/explanation/identification.md: model I's reference case, 60 s at 1 kHz, seed 1, no floor
+    import frictionnoise as fn
+
+    p = fn.SpringBlockParams.reference()
+    ranking = fn.identify(fn.simulate(p, 60.0, seed=1), v=p.v)
+    verdicts = {m.model: m.verdict for m in ranking}
+    assert ranking[0].model == "model_I" and verdicts["model_I"] == "fits"
+    assert verdicts["model_II"] == verdicts["model_III"] == "rejected"
+    assert verdicts["model_Iv"] == verdicts["model_ageing"] == verdicts["model_Ib"] == "indistinguishable"
+    truth, _ = FAMILIES["model_I"].from_model(p)
+    for name in ("a", "L"):
+        value, half, _ = ranking[0].parameters[name]
+        assert abs(value - truth[name]) <= half, name
