@@ -29,11 +29,14 @@ def table(rows, seeds: int, wall: float, command: str = "python -m benchmarks.co
         "",
         "Columns: *first or indist.*: the true model not rejected, ranked first or indistinguishable from the first; "
         "*alone*: the true model first with verdict \"fits\" (model_Iv, model I's family plus a line, counts as model "
-        "I); *wrong alone*: another model first with \"fits\"; *indist.*: the first not named alone; *coverage*: the "
+        "I); *wrong alone*: another model first with \"fits\" and the true one rejected; *coincides*: another model "
+        "first with \"fits\" and the true one not rejected (its own feature unseen on this band: one family there); "
+        "*indist.*: the first not named alone; *coverage*: the "
         "true family's identified parameters whose 95 % interval holds the value the record was built with.",
         "",
-        "| model | parameters | T (s) | first or indist. | alone | wrong alone | indist. | coverage | ranked first |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| model | parameters | T (s) | first or indist. | alone | wrong alone | coincides | indist. | coverage | "
+        "ranked first |",
+        "|---|---|---|---|---|---|---|---|---|---|",
     ]
     cov_k = cov_n = 0
     for cell, r in rows:
@@ -42,7 +45,8 @@ def table(rows, seeds: int, wall: float, command: str = "python -m benchmarks.co
         cov_n += r["intervals"]
         best = ", ".join(f"{m} {k}" for m, k in sorted(r["best"].items(), key=lambda kv: -kv[1]))
         lines.append(f"| {cell.model} | {cell.label} | {cell.duration:g} | {_pct(r['first_or_indistinguishable'], n)} | "
-                     f"{_pct(r['alone'], n)} | {_pct(r['wrong_alone'], n)} | {_pct(r['indistinguishable'], n)} | "
+                     f"{_pct(r['alone'], n)} | {_pct(r['wrong_alone'], n)} | {_pct(r['coincides'], n)} | "
+                     f"{_pct(r['indistinguishable'], n)} | "
                      f"{_pct(r['covered'], r['intervals'])} | {best} |")
     lines += ["", f"Pooled coverage of the identified parameters' 95 % intervals: {_pct(cov_k, cov_n)}"
               + (f" ({100 * cov_k / cov_n:.0f} %)." if cov_n else "."), ""]

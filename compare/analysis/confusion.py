@@ -85,14 +85,15 @@ def run_cell(cell: Cell, seeds) -> dict:
     dict
         Counts over the seeds: ``n``, ``first_or_indistinguishable`` (the true model not rejected and ranked first
         or indistinguishable from the first), ``alone`` (ranked first with verdict "fits"), ``wrong_alone`` (another
-        model ranked first with "fits"; model_Iv counts as model I, its family), ``indistinguishable`` (the first
-        not alone), ``covered`` and ``intervals`` (the true family's identified parameters whose 95 % interval holds
+        model ranked first with "fits" and the true model rejected; model_Iv counts as model I, its family),
+        ``coincides`` (another model first with "fits", the true one not rejected: the same family on this band, its
+        own feature unseen), ``indistinguishable`` (the first not alone), ``covered`` and ``intervals`` (the true family's identified parameters whose 95 % interval holds
         the value the record was built with), ``best`` (model -> times ranked first).
     """
     fam = FAMILIES[cell.model]
     truth, v = fam.from_model(cell.params)
     same = {cell.model} | ({"model_Iv"} if cell.model == "model_I" else set())
-    out = {"n": 0, "first_or_indistinguishable": 0, "alone": 0, "wrong_alone": 0, "indistinguishable": 0,
+    out = {"n": 0, "first_or_indistinguishable": 0, "alone": 0, "wrong_alone": 0, "coincides": 0, "indistinguishable": 0,
            "covered": 0, "intervals": 0, "best": {}}
     for seed in seeds:
         ranking = identify(_record(cell, seed), DT, v)
@@ -105,7 +106,10 @@ def run_cell(cell: Cell, seeds) -> dict:
         ok_first = first.model in same or mine.verdict == "indistinguishable"
         out["first_or_indistinguishable"] += int(ok_first and mine.verdict != "rejected")
         out["alone"] += int(first.model in same and first.verdict == "fits")
-        out["wrong_alone"] += int(first.model not in same and first.verdict == "fits")
+        # a wrong model named alone: first with "fits" while the true model is rejected (a true model that only
+        # coincides with the first on this band, its own feature unseen, is not contradicted)
+        out["wrong_alone"] += int(first.model not in same and first.verdict == "fits" and mine.verdict == "rejected")
+        out["coincides"] += int(first.model not in same and first.verdict == "fits" and mine.verdict != "rejected")
         out["indistinguishable"] += int(first.verdict == "indistinguishable")
         for name, iv in mine.fit.intervals.items():
             if iv is not None and name in truth:
