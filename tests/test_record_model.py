@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 from scipy import special, stats
 
-from compare.analysis.record_model import _Profile, check_record, fit_record
+from compare.analysis.power_floor import PowerFloorProfile
+from compare.analysis.record_model import check_record, fit_record
 from compare.analysis.synthetic import power_law_record
 from compare.analysis.whittle import WhittleRecord
 
@@ -19,7 +20,7 @@ def test_fold_matches_hurwitz_zeta(gamma):
     rec = WhittleRecord(np.random.default_rng(0).standard_normal(256), DT, 1)
     u = rec.grid_u
     exact = special.zeta(gamma, u) + special.zeta(gamma, 1 - u)
-    np.testing.assert_allclose(_Profile([rec], True).fold(gamma), exact, rtol=1e-6)
+    np.testing.assert_allclose(PowerFloorProfile([rec], True).fold(gamma), exact, rtol=1e-6)
 
 
 def test_coverage_of_a_floored_omega4_record():

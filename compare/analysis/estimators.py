@@ -90,7 +90,7 @@ def welch(y: np.ndarray, dt: float, nperseg: int) -> tuple[np.ndarray, np.ndarra
     return f[1:], S[1:], n_segments  # drop the zero-frequency ordinate
 
 
-def _fast_length(n: int) -> int:
+def fast_length(n: int) -> int:
     """The largest length <= n that scipy.fft transforms fast, if it drops at most 0.5 % of n; else n.
 
     (A short series costs little whatever its length; cutting 4 % of a 2400-sample stroke would move the
@@ -113,7 +113,7 @@ def periodogram(y: np.ndarray, dt: float) -> tuple[float, np.ndarray]:
     prime factor would cost a slow FFT (10 s instead of 1.5 s at 10^7 samples), so the series is cut to the
     largest fast length when that drops at most 0.5 % (0.47 % of 10^7 samples), at the end.
     """
-    n = _fast_length(len(y))
+    n = fast_length(len(y))
     y = y[:n]
     Y = sp_fft.rfft(y - y.mean())
     P = (Y.real**2 + Y.imag**2) * (dt / (2.0 * np.pi * n))

@@ -13,7 +13,7 @@ B = 0 and the interval stays valid there.
 Reported with the exponent: the **identified band**, from the lowest fitted Fourier frequency to where the power law
 falls to the floor (omega_x = (A / B)^(1/gamma), or the highest when the floor never takes over); the floor and its
 crossover; a **bend test** (Rao's efficient score for changes of the exponent at knots every half decade inside the
-band, :func:`_bend_p`); and a **split-half test** of stationarity: the model fitted to each half of the record apart
+band, :func:`compare.analysis.power_floor.bend_p`); and a **split-half test** of stationarity: the model fitted to each half of the record apart
 and to both with shared parameters, twice the log-likelihood gain chi2 with 3 degrees of freedom (2 without a floor).
 
 Without a band given, a record whose spectrum bends (bend test p < :data:`TEST_LEVEL`: a corner, the other side of a
@@ -27,102 +27,16 @@ import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from scipy import optimize, stats
+from scipy import stats
 
+from .power_floor import PowerFloorProfile, bend_p, interval, keep_band, level_cov, minimum
 from .whittle import MAX_ORDER, WhittleRecord, order_for
 
 __all__ = ["RecordFit", "fit_record", "TEST_LEVEL", "GAMMA_MIN", "check_record"]
 
 TEST_LEVEL = 0.01  # the bend and split-half tests reject (and the band is narrowed, or the fit flagged) below it
 GAMMA_MIN = 1.05  # a sampled omega^-gamma with gamma <= 1 has infinite variance (its folded sum diverges)
-_CHI2_95 = float(stats.chi2.ppf(0.95, 1))
-_Z_95 = float(stats.norm.ppf(0.975))
 _HEADROOM = 0.95  # gamma < 2k + 0.95: the differenced spectrum's zero-frequency peak omega^-0.95 is still integrable
-_RATIO_RANGE = (-25.0, 25.0)  # ln of the floor's share of the mean expected periodogram
-
-
-def _hurwitz_tail(q: np.ndarray, gamma: float) -> np.ndarray:
-    """zeta(gamma, q) for q >= 3 by Euler-Maclaurin, to the q^(-gamma-3) term; the next term, below
-    gamma (gamma + 1) ... (gamma + 4) q^(-gamma-5) / 30240, is under 1e-6 of the folded sum (>= 2^gamma) for
-    1 < gamma <= 13."""
-    return (q ** (1.0 - gamma) / (gamma - 1.0) + 0.5 * q**-gamma + gamma / 12.0 * q ** (-gamma - 1.0)
-            - gamma * (gamma + 1.0) * (gamma + 2.0) / 720.0 * q ** (-gamma - 3.0))
-
-
-def _above_rounding(e: np.ndarray) -> np.ndarray:
-    """An expected periodogram with ordinates below the FFT's rounding (1e-13 of its largest: a differenced floor's
-    omega^2k at the lowest frequencies of a long record) raised to that level, so that none is zero or negative."""
-    return np.maximum(e, 1e-13 * float(np.max(e)))
-
-
-class _Profile:
-    """The power law + floor likelihood of one (or two equally long) differenced periodograms, profiled over A and
-    the floor for each gamma."""
-
-    def __init__(self, records, floor: bool, keep=None):
-        self.records = records
-        rec = records[0]
-        self.rec = rec
-        self.floor = floor
-        self.count = len(records)
-        self.keep = np.ones(len(rec.omega), dtype=bool) if keep is None else keep
-        self.omega = rec.omega[self.keep]
-        self.P = np.mean([r.periodogram for r in records], axis=0)[self.keep]
-        self.m = len(self.P)
-        u = rec.grid_u
-        self._logs = [np.log(u), np.log(1.0 - u), np.log(1.0 + u), np.log(2.0 - u), np.log(2.0 + u),
-                      np.log(3.0 - u)]
-        self._tails = (3.0 + u, 4.0 - u)
-        b = _above_rounding(rec.expected_from_grid(np.ones_like(u)))[self.keep]
-        self.b_mean = float(b.mean())
-        self.b = b / self.b_mean
-        self._cache = {}
-
-    def fold(self, gamma: float) -> np.ndarray:
-        """sum_m |u + m|^-gamma over all integers m, u in (0, 1/2] (the power law folded at Nyquist)."""
-        s = sum(np.exp(-gamma * lg) for lg in self._logs)
-        return s + _hurwitz_tail(self._tails[0], gamma) + _hurwitz_tail(self._tails[1], gamma)
-
-    def unit(self, gamma: float):
-        """(a / mean(a), mean(a)): the expected periodogram of omega^-gamma with A = (2 pi / dt)^gamma."""
-        hit = self._cache.get(gamma)
-        if hit is None:
-            a = _above_rounding(self.rec.expected_from_grid(self.fold(gamma)))[self.keep]
-            am = float(a.mean())
-            hit = (a / am, am)
-            if len(self._cache) > 256:
-                self._cache.clear()
-            self._cache[gamma] = hit
-        return hit
-
-    def _nll_ratio(self, a, t):
-        S = a + (math.exp(t) * self.b if t is not None else 0.0)
-        return self.m * math.log(float(np.mean(self.P / S))) + float(np.sum(np.log(S)))
-
-    def at(self, gamma: float):
-        """(nll, ln ratio or None): the negative log-likelihood with A and the floor at their best for ``gamma``."""
-        a, _ = self.unit(gamma)
-        best = (self._nll_ratio(a, None), None)
-        if self.floor:
-            grid = np.linspace(*_RATIO_RANGE, 11)
-            vals = [self._nll_ratio(a, t) for t in grid]
-            i = int(np.argmin(vals))
-            if vals[i] < best[0]:
-                lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]
-                r = optimize.minimize_scalar(lambda t: self._nll_ratio(a, t), bounds=(lo, hi), method="bounded",
-                                             options={"xatol": 1e-6})
-                if r.fun < best[0]:
-                    best = (float(r.fun), float(r.x))
-        return self.count * (best[0] + self.m), best[1]
-
-    def levels(self, gamma: float, t):
-        """(A, B) in the record's units for ``gamma`` and the ln floor share ``t`` (None: no floor)."""
-        a, am = self.unit(gamma)
-        S = a + (math.exp(t) * self.b if t is not None else 0.0)
-        alpha = float(np.mean(self.P / S))
-        A = alpha / am * (2.0 * math.pi / self.rec.dt) ** gamma
-        B = 0.0 if t is None else alpha * math.exp(t) / self.b_mean
-        return A, B
 
 
 @dataclass(frozen=True)
@@ -155,6 +69,7 @@ class RecordFit:
     method: str = "record"
     band_auto: bool = True
     n_points: int = 0
+    level_cov: tuple = ()
 
     @property
     def gamma_err(self) -> float:
@@ -174,6 +89,22 @@ class RecordFit:
     def level(self, omega):
         """The fitted power law A omega^-gamma at ``omega`` (rad/s), without the floor."""
         return self.prefactor * np.asarray(omega, dtype=float) ** (-self.gamma)
+
+    def ln_level(self, omega: float) -> tuple[float, float]:
+        """ln(A omega^-gamma) at ``omega`` (rad/s) and its standard error from the Fisher information of the fit
+        (``level_cov``: the covariance of (gamma, ln A), the floor profiled out).
+
+        Returns
+        -------
+        (float, float)
+            ln C and its 1-sigma error (dimensionless).
+        """
+        lw = math.log(omega)
+        value = math.log(self.prefactor) - self.gamma * lw
+        if not self.level_cov:
+            return value, math.nan
+        vgg, vga, vaa = self.level_cov
+        return value, math.sqrt(max(vgg * lw * lw - 2.0 * vga * lw + vaa, 0.0))
 
     def derived(self, power: float, factor: float, quantity: str) -> "RecordFit":
         """The fit of factor * omega^power * C (e.g. C_mu = omega^4 C_x / g^2): gamma and its interval less
@@ -202,83 +133,6 @@ class RecordFit:
                 f"{floor}{flag}")
 
 
-def _minimise(prof: _Profile, lo: float, hi: float, start: float | None):
-    """(gamma, nll, ln ratio) at the profile's minimum on [lo, hi]: a coarse scan, then Brent around its best."""
-    grid = np.linspace(lo, hi, 13)
-    if start is not None and lo < start < hi:
-        grid = np.sort(np.append(grid, start))
-    vals = [prof.at(g)[0] for g in grid]
-    i = int(np.argmin(vals))
-    a, b = grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]
-    r = optimize.minimize_scalar(lambda g: prof.at(g)[0], bounds=(a, b), method="bounded", options={"xatol": 1e-5})
-    g = float(r.x) if r.fun <= vals[i] else float(grid[i])
-    nll, t = prof.at(g)
-    return g, nll, t
-
-
-def _interval(prof: _Profile, g: float, nll: float, lo: float, hi: float) -> tuple[float, float, bool, bool]:
-    """The 95 % profile interval around g on [lo, hi]: (low, high, low reached the wall, high reached the wall)."""
-    cut = nll + 0.5 * _CHI2_95
-
-    def excess(x):
-        return prof.at(x)[0] - cut
-
-    h = 1e-2
-    curv = (prof.at(min(g + h, hi))[0] - 2 * nll + prof.at(max(g - h, lo))[0]) / h**2
-    step = 2.0 / math.sqrt(curv) if curv > 0 else 0.5
-    out = []
-    for sign, wall in ((-1.0, lo), (1.0, hi)):
-        inner, s = g, step
-        while True:
-            trial = g + sign * s
-            trial = max(trial, wall) if sign < 0 else min(trial, wall)
-            if excess(trial) > 0:
-                out.append((optimize.brentq(excess, min(inner, trial), max(inner, trial), xtol=1e-5), False))
-                break
-            if trial == wall:
-                out.append((wall, True))
-                break
-            inner, s = trial, 2.0 * s
-    return out[0][0], out[1][0], out[0][1], out[1][1]
-
-
-def _bend_p(prof: _Profile, gamma: float, t) -> float:
-    """p-value of Rao's efficient-score test for changes of slope within the band, at the fit.
-
-    Under the model each r_j = I_j / Ibar_j has mean 1 and variance 1 / count (nearly independent ordinates of a
-    nearly flat differenced spectrum), and a parameter theta's score is sum (r_j - 1) d ln Ibar_j / d theta. The
-    alternative adds a change of exponent at knots kappa every half decade inside the band: the power law times
-    prod (omega / kappa)_+^-delta, whose derivatives at delta = 0 are f_j ln(omega_j / kappa)_+ (f_j the power
-    law's share of Ibar_j). With X the derivatives for (gamma, ln A, floor) and Q those of the knots made orthogonal
-    to X, the statistic s^T (Q^T Q / count)^-1 s (s = Q^T (r - 1)) is chi2 with one degree per knot under the model.
-    """
-    a, _ = prof.unit(gamma)
-    share = math.exp(t) if t is not None else 0.0
-    S = a + share * prof.b
-    f = a / S
-    h = 1e-3
-    dlna = (np.log(prof.unit(gamma + h)[0]) - np.log(prof.unit(gamma - h)[0])) / (2 * h)
-    lw = np.log(prof.omega)
-    cols = [f * dlna, np.ones_like(f)]
-    if prof.floor:
-        cols.append(prof.b / S)
-    X = np.column_stack(cols)
-    decades = (lw[-1] - lw[0]) / math.log(10)
-    n_knots = max(1, int(math.floor(2 * decades)) - 1)
-    knots = lw[0] + (lw[-1] - lw[0]) * np.arange(1, n_knots + 1) / (n_knots + 1)
-    Q = np.column_stack([f * np.maximum(lw - kn, 0.0) for kn in knots])
-    Q = Q - X @ np.linalg.lstsq(X, Q, rcond=None)[0]
-    alpha = float(np.mean(prof.P / S))
-    r = prof.P / (alpha * S)
-    score = Q.T @ (r - 1.0)
-    V = Q.T @ Q / prof.count
-    try:
-        stat = float(score @ np.linalg.solve(V, score))
-    except np.linalg.LinAlgError:
-        return 1.0
-    return float(stats.chi2.sf(stat, len(knots)))
-
-
 def _pilot(x: np.ndarray, dt: float) -> float:
     """A first slope: the Whittle fit of a power law alone to the once-differenced record's periodogram over its
     lowest decade (where a floor is least), plus 2; clipped to [GAMMA_MIN, 2 MAX_ORDER]."""
@@ -290,27 +144,12 @@ def _pilot(x: np.ndarray, dt: float) -> float:
     return float(np.clip(2.0 - slope, GAMMA_MIN + 0.1, 2 * MAX_ORDER))
 
 
-def _keep(rec: WhittleRecord, band):
-    """The Fourier ordinates inside ``band`` (rad/s), or all of them; ValueError when fewer than 8 are inside."""
-    if band is None:
-        return None
-    lo, hi = map(float, band)
-    if not 0 < lo < hi:
-        raise ValueError(f"band must satisfy 0 < low < high (got {band!r})")
-    keep = (rec.omega >= lo * (1 - 1e-12)) & (rec.omega <= hi * (1 + 1e-12))
-    if keep.sum() < 8:
-        raise ValueError(f"band ({lo:.4g}, {hi:.4g}) rad/s holds {int(keep.sum())} Fourier frequencies of the record "
-                         f"(they run from {rec.omega[0]:.4g} to {rec.omega[-1]:.4g} rad/s in steps of "
-                         f"{rec.omega[0]:.4g}); widen it to at least 8, or leave --band out")
-    return keep
-
-
 def _fit_order(x, dt, k, floor, band):
     rec = WhittleRecord(x, dt, k)
-    prof = _Profile([rec], floor, _keep(rec, band))
+    prof = PowerFloorProfile([rec], floor, keep_band(rec, band))
     lo, hi = max(GAMMA_MIN, 2 * k - 3.0), 2 * k + _HEADROOM
-    g, nll, t = _minimise(prof, lo, hi, None)
-    g_lo, g_hi, wall_lo, wall_hi = _interval(prof, g, nll, lo, hi)
+    g, nll, t = minimum(prof, lo, hi, None)
+    g_lo, g_hi, wall_lo, wall_hi = interval(prof, g, nll, lo, hi)
     return rec, prof, (g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi)
 
 
@@ -318,10 +157,10 @@ def _split_half_p(x, dt, k, floor, g0, band) -> float:
     """p-value of the split-half likelihood-ratio test of stationarity (module docstring)."""
     h = len(x) // 2
     halves = [WhittleRecord(x[:h], dt, k), WhittleRecord(x[h:2 * h], dt, k)]
-    keep = _keep(halves[0], band) if band is not None else None
+    keep = keep_band(halves[0], band) if band is not None else None
     lo, hi = max(GAMMA_MIN, 2 * k - 3.0), 2 * k + _HEADROOM
-    apart = sum(_minimise(_Profile([r], floor, keep), lo, hi, g0)[1] for r in halves)
-    together = _minimise(_Profile(halves, floor, keep), lo, hi, g0)[1]
+    apart = sum(minimum(PowerFloorProfile([r], floor, keep), lo, hi, g0)[1] for r in halves)
+    together = minimum(PowerFloorProfile(halves, floor, keep), lo, hi, g0)[1]
     lr = max(0.0, 2.0 * (together - apart))
     return float(stats.chi2.sf(lr, 3 if floor else 2))
 
@@ -338,7 +177,7 @@ def _narrowed(x, dt, k, floor, omega, bend):
             if b[1] / b[0] < 10 * (1 - 1e-9):
                 continue
             rec, prof, res = _fit_order(x, dt, k, floor, b)
-            trials.append((_bend_p(prof, res[0], res[2]), b, rec, prof, res))
+            trials.append((bend_p(prof, res[0], res[2]), b, rec, prof, res))
         if not trials:
             break
         p, (lo, hi), rec, prof, res = max(trials, key=lambda tr: tr[0])
@@ -425,7 +264,7 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
         k = int(order)
         rec, prof, res = _fit_order(x, dt, k, floor, band)
     g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
-    bend = _bend_p(prof, g, t)
+    bend = bend_p(prof, g, t)
     if band is None and bend < TEST_LEVEL:
         rec, prof, res, bend, trimmed = _narrowed(x, dt, k, floor, rec.omega, bend)
         g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
@@ -451,4 +290,5 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
     return RecordFit(gamma=g, gamma_low=float(g_lo), gamma_high=float(g_hi), prefactor=A, floor=B,
                      floor_rms=math.sqrt(2.0 * math.pi * B / dt), crossover=cross, band=band_out, order=k,
                      n_samples=len(x), nll=nll, stationarity_p=p, bend_p=bend, quantity=quantity,
-                     flags=tuple(flags), notes=tuple(notes), band_auto=auto, n_points=prof.m)
+                     flags=tuple(flags), notes=tuple(notes), band_auto=auto, n_points=prof.m,
+                     level_cov=level_cov(prof, g, t))

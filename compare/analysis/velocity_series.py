@@ -27,7 +27,8 @@ class VelocitySeries:
     omega : float
         The angular frequency of the comparison (rad/s).
     omega_auto : bool
-        True when ``omega`` is the default: the geometric centre of the band common to every record's fit band.
+        True when ``omega`` is the default: inside the band common to every record's fit band, where the least
+        precise record's level is most precise.
     common_band : tuple of float
         The intersection of the records' fit bands (rad/s).
     v : ndarray
@@ -76,7 +77,9 @@ class VelocitySeries:
 
 
 def _level(an: DisplacementAnalysis, omega: float) -> tuple:
-    """ln C_x at omega and its standard error, from the spectrum's points within a factor LEVEL_HALF_WIDTH.
+    """ln C_x at omega and its standard error: from the record model's fit where the record has one
+    (:meth:`compare.analysis.record_model.RecordFit.ln_level`, the Fisher information of gamma and A), else from the
+    spectrum's points within a factor LEVEL_HALF_WIDTH (below).
 
     Each point is moved to omega along the record's fitted slope, so the average is not biased by the window's
     asymmetry. A Welch ordinate averaged over ``dof`` chi-square degrees of freedom has E[ln C] = ln C_true +
@@ -85,6 +88,8 @@ def _level(an: DisplacementAnalysis, omega: float) -> tuple:
     """
     from scipy.special import digamma, polygamma
 
+    if hasattr(an.fit, "ln_level") and an.fit.level_cov:
+        return an.fit.ln_level(omega)
     spec = an.C_x
     m = (spec.omega >= omega / LEVEL_HALF_WIDTH) & (spec.omega <= omega * LEVEL_HALF_WIDTH)
     if not m.any():
@@ -111,6 +116,17 @@ def _exponent(lnv, y, s) -> tuple:
     return float(b), float(stats.norm.ppf(0.975) * np.sqrt(cov[1, 1])), "per-record"
 
 
+def _best_omega(analyses: list, lo: float, hi: float) -> float:
+    """The frequency of the comparison: inside the band every record's power law holds (lo-hi), where the least
+    precise record's level is most precise (the smallest largest standard error of ln C_x over a log grid of 200);
+    the geometric centre of the band for fits without a level covariance."""
+    grid = np.geomspace(lo, hi, 200)
+    if not all(hasattr(a.fit, "ln_level") and a.fit.level_cov for a in analyses):
+        return float(np.sqrt(lo * hi))
+    worst = [max(a.fit.ln_level(w)[1] for a in analyses) for w in grid]
+    return float(grid[int(np.argmin(worst))])
+
+
 def velocity_series(analyses: list, omega: float | None = None) -> VelocitySeries:
     """C_x at one omega against v over several records, the exponent, the q = omega / v collapse, model I's level.
 
@@ -119,8 +135,9 @@ def velocity_series(analyses: list, omega: float | None = None) -> VelocitySerie
     analyses : list of DisplacementAnalysis
         Two or more records (:func:`compare.analysis.displacement.analyze_displacement`) at different speeds.
     omega : float, optional
-        Angular frequency (rad/s) of the comparison; default: the geometric centre of the band common to every
-        record's fit band (an error if the bands do not overlap).
+        Angular frequency (rad/s) of the comparison; default: inside the band common to every record's fit band
+        (an error if the bands do not overlap), where the least precise record's level is most precise
+        (:func:`_best_omega`; the band's geometric centre for fits of a binned spectrum).
 
     Returns
     -------
@@ -138,7 +155,7 @@ def velocity_series(analyses: list, omega: float | None = None) -> VelocitySerie
         if not hi > lo:
             raise ValueError(f"the records' fit bands do not overlap (common band {lo:.4g}-{hi:.4g} rad/s): give --omega "
                              "inside every record's spectrum")
-        omega = float(np.sqrt(lo * hi))
+        omega = _best_omega(analyses, lo, hi)
     elif not (np.isfinite(omega) and omega > 0):
         raise ValueError(f"omega must be a positive angular frequency in rad/s (got {omega})")
     levels = np.array([_level(a, omega) for a in analyses])

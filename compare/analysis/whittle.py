@@ -40,7 +40,7 @@ import numpy as np
 from scipy import fft as sp_fft
 from scipy import optimize, signal, stats
 
-from .estimators import _fast_length
+from .estimators import fast_length
 
 __all__ = ["WhittleRecord", "WhittleFit", "negloglik", "maximum_likelihood", "profile_interval", "folded",
            "order_for", "MAX_ORDER", "TAPER"]
@@ -144,7 +144,7 @@ class WhittleRecord:
         if not np.all(np.isfinite(x)):
             raise ValueError(f"the record holds {int(np.sum(~np.isfinite(x)))} NaN/inf values")
         y = np.diff(x, n=order) / dt**order if order else x - x.mean()
-        n = _fast_length(len(y))
+        n = fast_length(len(y))
         if n < 16:
             raise ValueError(f"only {len(x)} samples: too few for a spectral fit (at least {16 + order})")
         y = y[:n]

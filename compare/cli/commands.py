@@ -169,19 +169,10 @@ def _check_analyze_numbers(args) -> None:
 
 def _fit_text(f: dict) -> str:
     """A fit as the terminal shows it: exponent, 95 % interval, method, band, the floor (record model), flags."""
-    if "gamma_interval" in f:
-        lo, hi = f["gamma_interval"]
-        head = f"{f['gamma']:.3f} +- {f['gamma_err']:.3f} (95 % [{lo:.3f}, {hi:.3f}], {f['method']})"
-    else:
-        head = f"{f['gamma']:.3f} +- {f['gamma_err']:.3f} (95 %, {f['method']})"
-    floor = ""
-    if f.get("floor"):
-        floor = (f"; white floor {f['floor_rms']:.3g} m rms" + (f", above the power law from {f['crossover']:.3g} rad/s"
-                                                             if f.get("crossover") else ""))
-    elif "floor" in f:
-        floor = "; no white floor resolved"
-    return (head + f" over {f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s" + floor
-            + ("" if f["power_law"] else f" [not a power law: {'; '.join(f['flags'])}]"))
+    ci = f"95 % [{f['gamma_interval'][0]:.3f}, {f['gamma_interval'][1]:.3f}]" if "gamma_interval" in f else "95 %"
+    floor = "" if "floor" not in f else f"; white floor {f['floor_rms']:.3g} m rms, over it above {f['band'][1]:.3g} rad/s"
+    flags = "" if f["power_law"] else f" [not a power law: {'; '.join(f['flags'])}]"
+    return f"{f['gamma']:.3f} +- {f['gamma_err']:.3f} ({ci}, {f['method']}) over {f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s{floor}{flags}"
 
 
 def _force_lines(summary: dict, index, most: int = 10) -> list:
@@ -210,9 +201,7 @@ def _displacement_lines(summary: dict, index) -> list:
     if "fit_F" in summary:
         lines.append(f"  C_F = M^2 omega^4 C_x (M = {summary['mass_kg']:g} kg, eq. 3): force exponent "
                      f"{_fit_text(summary['fit_F'])}; F_rms = {summary['F_rms_N']:.4g} N")
-    else:
-        lines += [f"  {n}" for n in summary["notes"]]
-    return lines + [f"  {n}" for n in summary["fit"].get("notes", []) if isinstance(summary["fit"].get("notes"), list)]
+    return lines + [f"  {n}" for n in ([] if "fit_F" in summary else summary["notes"]) + summary["fit"].get("notes", [])]
 
 
 def cmd_render(args) -> int:

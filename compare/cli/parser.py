@@ -147,7 +147,8 @@ def build_parser() -> argparse.ArgumentParser:
                          "uniform segments separately and together")
     an.add_argument("--omega", type=float, default=None, metavar="W",
                     help="several files: the angular frequency (rad/s) at which C_x is compared across speeds "
-                         "(default: the geometric centre of the band common to every record's fit band)")
+                         "(default: inside the band common to every record's fit band, where the least precise "
+                         "record's level is most precise)")
     an.add_argument("-o", "--output", default=None, help="output folder (default: analyze-<file stem>; several files: analyze-series-<first stem>)")
     an.set_defaults(func=cmd_analyze)
     return ap

@@ -35,6 +35,10 @@ def analyze_series(args, read) -> int:
         print(f"{path}: v = {a.mean_velocity:.4g} m/s, gamma = {a.fit.gamma:.3f} +- {a.fit.gamma_err:.3f} over "
               f"{a.fit.band[0]:.3g}-{a.fit.band[1]:.3g} rad/s")
     s = series
+    if s.omega_auto:
+        print(f"omega = {s.omega:.4g} rad/s: inside every record's fit band ({s.common_band[0]:.3g}-"
+              f"{s.common_band[1]:.3g} rad/s), where the least precise record's level is most precise "
+              "(--omega W compares at another frequency)")
     print(f"wrote {out / 'index.html'}: C_x(omega = {s.omega:.4g} rad/s{', automatic' if s.omega_auto else ''}) ~ "
           f"v^({s.exponent:.3f} +- {s.exponent_err:.3f}) (95 %, {s.exponent_err_source}); collapse gain in "
           f"q = omega / v {s.collapse['collapse_gain']:.3g}; model I alpha^2/(N a) = "
