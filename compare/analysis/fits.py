@@ -284,14 +284,15 @@ def _automatic_band(spectrum: Spectrum, bins_per_decade: int, min_decades: float
     if hi <= lo * 1.5:
         raise ValueError(
             f"too few resolved frequencies for an automatic band ({lo:.4g}-{hi:.4g} rad/s); "
-            "use a longer record or a shorter nperseg"
+            "use a longer record, or fit the whole record by the record model (analyze's default for displacement, "
+            "compare.analysis.record_model.fit_record)"
         )
     b, lnw, lnC, var = _binned(spectrum, bins_per_decade)
     inside = (b.omega >= lo) & (b.omega <= hi)
     idx = np.flatnonzero(inside)
     avail = (lnw[idx[-1]] - lnw[idx[0]]) / math.log(10) if len(idx) > 1 else 0.0
     if len(idx) < 4:
-        raise ValueError("too few log bins for an automatic band; pass band= explicitly")
+        raise ValueError("too few log bins for an automatic band; give the band (band=, --band LO HI)")
     md = min(min_decades, avail)
     if md < min_decades:
         notes.append(f"only {avail:.2f} decades resolved; fitted over all of them")

@@ -2,7 +2,7 @@
 :func:`compare.analysis.record_model.fit_record`.
 
 For a record's differenced periodogram (:class:`compare.analysis.whittle.WhittleRecord`) and the model
-C^(s)(omega) = A sum_m |omega + 2 pi m / dt|^-gamma + B, :class:`PowerFloorProfile` gives the debiased Whittle
+C^(s)(omega) = A sum_m abs(omega + 2 pi m / dt)^-gamma + B, :class:`PowerFloorProfile` gives the debiased Whittle
 negative log-likelihood with A and the floor's share at their best for each gamma (A in closed form, the share by a
 bounded one-dimensional search), so :func:`minimum` and :func:`interval` work on a function of gamma alone.
 :func:`bend_p` is the score test for changes of slope, :func:`level_cov` the Fisher covariance of (gamma, ln A).
@@ -71,7 +71,7 @@ class PowerFloorProfile:
         self._cache = {}
 
     def fold(self, gamma: float) -> np.ndarray:
-        """sum_m |u + m|^-gamma over all integers m, u in (0, 1/2] (the power law folded at Nyquist)."""
+        """sum_m abs(u + m)^-gamma over all integers m, u in (0, 1/2] (the power law folded at Nyquist)."""
         s = sum(np.exp(-gamma * lg) for lg in self._logs)
         return s + _hurwitz_tail(self._tails[0], gamma) + _hurwitz_tail(self._tails[1], gamma)
 

@@ -26,7 +26,7 @@ __all__ = ["power_law_record", "sampled_power_law"]
 
 
 def sampled_power_law(omega, gamma: float, prefactor: float, dt: float) -> np.ndarray:
-    """The sampled record's spectrum of C_x = A omega^-gamma: sum_m A |omega + 2 pi m / dt|^-gamma, exactly.
+    """The sampled record's spectrum of C_x = A omega^-gamma: sum_m A abs(omega + 2 pi m / dt)^-gamma, exactly.
 
     Parameters
     ----------

@@ -8,7 +8,7 @@ differencing order for a spectral slope).
 The record ``x`` (n samples, step ``dt``) is differenced ``k`` times, ``y = diff(x, k) / dt^k``, and the periodogram
 of ``y`` with a taper h (sum h_t^2 = 1; a Tukey taper, :data:`TAPER`) is taken at the Fourier frequencies
 omega_j = 2 pi j / (n dt), j = 1 .. ceil(n/2) - 1, in the eq. (2) convention of Xu, Zhou & Persson (2025):
-I_j = dt |sum_t h_t y_t e^{-i omega_j t dt}|^2 / (2 pi) (h_t = n^-1/2 without a taper). A model
+I_j = dt abs(sum_t h_t y_t e^{-i omega_j t dt})^2 / (2 pi) (h_t = n^-1/2 without a taper). A model
 C_x(omega) (Units: m^2 s for a displacement) enters through the *expected* periodogram of the differenced record
 (Sykulski, Olhede, Guillaumin, Lilly & Early 2019, Biometrika 106, 251, eq. 8):
 
@@ -77,7 +77,7 @@ def order_for(gamma: float) -> int:
 
 
 def folded(spectrum, dt: float, images: int = 3):
-    """The sampled record's spectrum from a continuous one: C^(s)(omega) = sum_m C(|omega + 2 pi m / dt|).
+    """The sampled record's spectrum from a continuous one: C^(s)(omega) = sum_m C(abs(omega + 2 pi m / dt)).
 
     Parameters
     ----------
@@ -86,7 +86,7 @@ def folded(spectrum, dt: float, images: int = 3):
     dt : float
         Sampling step (Units: s).
     images : int, optional
-        Images summed on each side (|m| <= images). A spectrum falling as omega^-gamma near Nyquist leaves out
+        Images summed on each side (abs(m) <= images). A spectrum falling as omega^-gamma near Nyquist leaves out
         about (2 images + 1)^-gamma of the Nyquist level per side.
 
     Returns
@@ -236,7 +236,7 @@ def negloglik(x, dt: float, spectrum, params, order: int, *, images: int | None 
     params : sequence
         The model's parameters.
     order : int
-        Differencing order k; the gain |2 sin(omega dt/2)/dt|^(2k) is applied to the model.
+        Differencing order k; the gain (2 sin(omega dt/2)/dt)^(2k) is applied to the model.
     images : int or None, optional
         Aliasing images (:func:`folded`).
 

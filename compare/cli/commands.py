@@ -170,7 +170,7 @@ def _check_analyze_numbers(args) -> None:
 def _fit_text(f: dict) -> str:
     """A fit as the terminal shows it: exponent, 95 % interval, method, band, the floor (record model), flags."""
     ci = f"95 % [{f['gamma_interval'][0]:.3f}, {f['gamma_interval'][1]:.3f}]" if "gamma_interval" in f else "95 %"
-    floor = "" if "floor" not in f else f"; white floor {f['floor_rms']:.3g} m rms, over it above {f['band'][1]:.3g} rad/s"
+    floor = "" if "floor" not in f else f"; white floor {f['floor_rms']:.3g} m rms, over the power law above {f['crossover'] or float('inf'):.3g} rad/s"
     flags = "" if f["power_law"] else f" [not a power law: {'; '.join(f['flags'])}]"
     return f"{f['gamma']:.3f} +- {f['gamma_err']:.3f} ({ci}, {f['method']}) over {f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s{floor}{flags}"
 
