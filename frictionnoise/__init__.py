@@ -16,7 +16,7 @@ rad/s; spectra in the two-sided angular convention of eq. (2) of Xu, Zhou & Pers
   :func:`render_scene`, :func:`compare_scene`, :func:`save_trace` and :func:`load_trace`; :func:`save_netcdf` and
   :func:`load_netcdf` write and read a trace or a spectrum as netCDF for other tools (the ``netcdf`` extra);
 - **measured data**: :func:`read_measured`, :func:`analyze_displacement` for x(t) and :func:`analyze_force` for a
-  friction-force record.
+  friction-force record; :func:`identify` ranks the paper's mechanisms for x(t) (:class:`Mechanism`).
 
 The names above are imported on first use (PEP 562 ``__getattr__``): ``import frictionnoise`` loads no numerics.
 :data:`G`, :func:`package_version` and :func:`atomic_write` are the shared helpers of :mod:`frictionnoise.base`, which
@@ -54,6 +54,7 @@ _LAZY = {
     "MeasuredData": "frictionnoise.measurements", "read_measured": "frictionnoise.measurements",
     "DisplacementAnalysis": "frictionnoise.measurements", "analyze_displacement": "frictionnoise.measurements",
     "ForceAnalysis": "frictionnoise.measurements", "analyze_force": "frictionnoise.measurements",
+    "identify": "compare.analysis.identify", "Mechanism": "compare.analysis.identify",
 }
 
 __all__ = ["G", "package_version", "atomic_write", *_LAZY]

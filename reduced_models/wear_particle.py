@@ -36,6 +36,7 @@ from frictionnoise.base import check_fields, check_seconds
 from ._version import package_version
 from .wear_particle_kernel import run
 from .wear_particle_quadrature import mean_time_pairs
+from .wear_particle_spectrum_kernel import b2_sum, closure_terms, telegraph_sum
 from .trace import ModelTrace
 
 __all__ = ["DurationLaw", "WearParticleParams", "simulate", "theory_force_spectrum", "theory_spectrum",
@@ -342,37 +343,28 @@ def theory_force_spectrum(params: WearParticleParams, omega, *, closure: str = "
         C_F at ``omega`` (Units: N^2 s).
     """
     P = params
-    w = np.atleast_1d(np.asarray(omega, dtype=float))
+    if closure not in ("exact", "cumulant"):
+        raise ValueError(f"closure must be 'exact' or 'cumulant' (got {closure!r})")
+    w = np.ascontiguousarray(np.atleast_1d(np.asarray(omega, dtype=float)).ravel())
     TA, TB, W = mean_time_pairs(P, order)
     cA = P.c_A * (TA / P.trapped.tau_min) ** P.kappa_A
     cB = P.c_B * (TB / P.sliding.tau_min) ** P.kappa_B
-    cA2, cB2 = cA**2, cB**2
     out = np.empty(len(w))
     if P.mode == "telegraph":
-        dc2 = (cA - cB) ** 2
         pApB = TA * TB / (TA + TB) ** 2
-        tc = TA * TB / (TA + TB)
-        for i, wi in enumerate(w):
-            out[i] = np.sum(W * dc2 * pApB * tc / (np.pi * (1 + (wi * tc) ** 2)))
+        telegraph_sum(w, W * (cA - cB) ** 2 * pApB, TA * TB / (TA + TB), out)
         return P.n_particles * out * _avg_gain(w, dt_avg)
-
-    def one_minus_cos(law, wi, tau):
-        if closure == "exact":
-            return 1.0 - law.mean_cos(np.full(np.shape(tau), wi), tau)
-        if closure != "cumulant":
-            raise ValueError(f"closure must be 'exact' or 'cumulant' (got {closure!r})")
-        if law.kind == "exponential":
-            s2 = tau**2
-        elif law.kind == "fixed":
-            s2 = 0.0 * tau
-        else:
-            a = law.shape
-            s2 = tau**2 / (a * (a - 2)) if a > 2 else np.full(np.shape(tau), np.inf)
-        return 1.0 - np.exp(-s2 * wi**2 / 2) * np.cos(wi * tau)
-
-    for i, wi in enumerate(w):
-        num = cA2 * one_minus_cos(P.trapped, wi, TA) + cB2 * one_minus_cos(P.sliding, wi, TB)
-        out[i] = np.sum(W * num / (wi**2 * (TA + TB)))
+    # Each state's term of (B2) depends on its own mean time only, save for the weight 1 / (tau + tau'): summing
+    # that weight over the other state's times first makes the cost per frequency the number of distinct times of
+    # each state (96 + 96 at order 12 over 4 decades) instead of their pairs (96 x 96); the same sum, reordered.
+    out[:] = 0.0
+    for law, T, c in ((P.trapped, TA, cA), (P.sliding, TB, cB)):
+        Tu, inv = np.unique(T, return_inverse=True)
+        K = np.bincount(inv, weights=W / (TA + TB), minlength=len(Tu))
+        cu = np.empty(len(Tu))
+        cu[inv] = c
+        mode, s, tab = closure_terms(law, closure, w, Tu)
+        b2_sum(w, Tu, K, cu**2, mode, s, tab, out)
     return P.n_particles / np.pi * out * _avg_gain(w, dt_avg)
 
 

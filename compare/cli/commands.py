@@ -98,6 +98,7 @@ def cmd_analyze(args) -> int:
 
     from ..report.html import write_report
     from ..io.measured import units_line
+    from .mechanisms import mechanisms_of, ranking_lines
 
     force = args.force_col is not None
     _check_analyze_numbers(args)
@@ -129,11 +130,11 @@ def cmd_analyze(args) -> int:
 
             an = analyze_displacement(data, mass=args.mass, band=band, method=args.method)
             sections, summary = build_measured_report(an, data)
-            summary["units"] = data.units
+            summary.update(units=data.units, **mechanisms_of(data, an.mean_velocity, an.fit.flags))
     except ValueError as e:
         raise UserError(f"{args.data}: {e}") from None
     write_report(out, sections, summary, title=f"frictionnoise analyze: {Path(args.data).name}")
-    print(f"{args.data}: {units_line(data)}")
+    print("\n".join(([] if force else ranking_lines(summary)) + [f"{args.data}: {units_line(data)}"]))
     for line in (_force_lines if force else _displacement_lines)(summary, out / "index.html"):
         print(line)
     return 0

@@ -91,7 +91,8 @@ def _anchor(key: str) -> str:
 
 def _verdict_cell(v) -> str:
     cls = {True: "agree", False: "disagree", None: "none"}[v.agree]
-    return f"<td class='{cls}'>{esc(v.word)}</td>"
+    note = getattr(v, "note", "")
+    return f"<td class='{cls}'>{esc(v.word)}{'<br>' + esc(note) if note else ''}</td>"
 
 
 def verdict_table(results) -> str:

@@ -49,6 +49,8 @@ class Verdict:
     agree : True, False, or None where no verdict is given (a fit flagged as not a power law; nothing to compare).
     by : how far from the reference, in words and numbers.
     flags : the power-law flags of the fits the verdict rests on (then ``agree`` is None).
+    expected : why a disagreement is the expected outcome ("" when it is not): the reference is a counterfactual
+        the scene is built to depart from (e.g. model III without load sharing). Shown beside the verdict.
     """
     study: str
     what: str
@@ -57,6 +59,7 @@ class Verdict:
     agree: bool | None
     by: str
     flags: tuple = ()
+    expected: str = ""
 
     def __post_init__(self):
         if self.flags and self.agree is not None:
@@ -67,9 +70,15 @@ class Verdict:
         """"agrees", "disagrees" or "no verdict"."""
         return {True: "agrees", False: "disagrees", None: "no verdict"}[self.agree]
 
+    @property
+    def note(self) -> str:
+        """"as expected: <why>" for an expected disagreement, "" otherwise."""
+        return f"as expected: {self.expected}" if self.expected and self.agree is False else ""
+
     def to_dict(self) -> dict:
         return {"study": self.study, "what": self.what, "measured": self.measured, "reference": self.reference,
-                "agree": self.agree, "verdict": self.word, "by": self.by, "flags": list(self.flags)}
+                "agree": self.agree, "verdict": self.word, "by": self.by, "flags": list(self.flags),
+                "expected": self.expected}
 
 
 def gamma_verdict(study: str, what: str, fit, expected: float, reference: str, slope: bool = False,
@@ -103,13 +112,14 @@ def interval_verdict(study: str, what: str, value: float, err: float, expected: 
                    if err > 0 else f"{d:+.{digits}f}")
 
 
-def ratio_verdict(study: str, what: str, ratios, factor: float, reference: str) -> Verdict:
+def ratio_verdict(study: str, what: str, ratios, factor: float, reference: str, expected: str = "") -> Verdict:
     """Per-band ratios measured / reference (a list of numbers or of {"ratio": r}) against a stated factor: agrees
-    when every band lies within it; "by" names the worst band's factor."""
+    when every band lies within it; "by" names the worst band's factor. ``expected``: why a disagreement is the
+    expected outcome (see :class:`Verdict`)."""
     r = [b["ratio"] if isinstance(b, dict) else float(b) for b in ratios]
     worst = max(max(r), 1 / min(r))
     return Verdict(study, what, f"{span(min(r), max(r))} per band", reference, worst <= factor,
-                   f"worst band x{num(worst)} (limit x{factor:g})")
+                   f"worst band x{num(worst)} (limit x{factor:g})", expected=expected)
 
 
 def summary_lines(summary: dict) -> list:
@@ -123,8 +133,9 @@ def summary_lines(summary: dict) -> list:
 
     out = []
     for v in summary.get("verdicts", []):
+        note = f" ({plain(v['expected'])}: as expected)" if v.get("expected") and v.get("agree") is False else ""
         out.append(f"  {v['verdict']:10s} {v['study']}: {plain(v['what'])} = {plain(v['measured'])} against "
-                   f"{plain(v['reference'])}: {plain(v['by'])}")
+                   f"{plain(v['reference'])}: {plain(v['by'])}{note}")
     return out
 
 

@@ -6,7 +6,7 @@ import time
 
 import numpy as np
 
-from ..html import esc, pct, span
+from ..html import esc, num, pct, span
 from ...analysis.balances import SAMPLES_PER_PERIOD, balances  # noqa: F401  (balances re-exported for the studies)
 from ...analysis.spectra import band_average
 
@@ -45,13 +45,19 @@ def band_ratios(spec, theory_values, edges) -> list:
 
 
 def ratio_rows(ratios) -> list:
-    return [[f"{span(b['band'][0], b['band'][1])}", f"{b['ratio']:.3f}"] for b in ratios]
+    """Table rows (band, ratio) of per-band ratios, each ratio to three significant figures."""
+    return [[f"{span(b['band'][0], b['band'][1])}", num(b['ratio'])] for b in ratios]
 
 
 def ratio_range(ratios, fmt=".2f") -> str:
-    """"lo-hi" of the per-band ratios."""
+    """"lo-hi" of the per-band ratios, in ``fmt`` when both ends keep two significant figures in it (0.95-1.04),
+    else to three significant figures (1.5e-04-6.9e-04, not 0.00-0.00)."""
     r = [b["ratio"] for b in ratios]
-    return f"{min(r):{fmt}}-{max(r):{fmt}}"
+    lo, hi = min(r), max(r)
+    decimals = int(fmt.strip(".f")) if fmt.endswith("f") else 0
+    if fmt.endswith("f") and lo > 0 and math.floor(math.log10(lo)) + decimals >= 1:
+        return f"{lo:{fmt}}-{hi:{fmt}}"
+    return span(lo, hi, 2 if decimals <= 2 else 3)
 
 
 def log_err(ratios) -> float:

@@ -1,0 +1,118 @@
+"""The confusion study of :func:`compare.analysis.identify.identify`: records simulated by each registered model's
+exact simulator, with a white sensor floor, identified; per cell (model, parameter point, duration) the fraction of
+seeds whose true model ranks first or indistinguishable from the first, is named alone, is displaced by a wrong
+model named alone, and the coverage of the true family's 95 % intervals for the parameters the record identifies.
+
+:data:`CELLS` are the stated grid; ``benchmarks/confusion_table.py`` runs it and writes docs/results/identification.md.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+import reduced_models as rm
+
+from .families import FAMILIES
+from .identify import identify
+
+__all__ = ["Cell", "CELLS", "SMOKE_CELLS", "run_cell", "DT", "FLOOR"]
+
+DT = 1e-3  # 1 kHz
+FLOOR = 1e-24  # m^2 s: a displacement sensor's white noise of rms sqrt(2 pi FLOOR / DT) = 79 pm
+
+
+@dataclass(frozen=True)
+class Cell:
+    """One cell of the study: a registered model at one parameter point, recorded for ``duration`` seconds.
+
+    Attributes
+    ----------
+    model : str
+        Key of :data:`reduced_models.MODELS`.
+    label : str
+        The parameter point in words.
+    params : object
+        The model's parameters (SI units).
+    duration : float
+        Record length (Units: s).
+    """
+
+    model: str
+    label: str
+    params: object
+    duration: float
+
+
+def _points():
+    sb, wp, af, ms = rm.spring_block, rm.wear_particle, rm.asperity_force, rm.multiscale
+    return [
+        ("model_I", "reference (a = 1 mm, v/a = 0.5 rad/s, omega_c = 548 rad/s)", sb.SpringBlockParams.reference()),
+        ("model_I", "a = 10 mm (v/a = 0.05 rad/s)", sb.SpringBlockParams(a=1e-2)),
+        ("model_II", "tau 10 ms-100 s, 1000 particles", wp.WearParticleParams()),
+        ("model_II", "tau 1 ms-1 s, kappa 0.1", wp.WearParticleParams(trapped=wp.DurationLaw(1e-3, 1.0),
+                                                                    sliding=wp.DurationLaw(1e-3, 1.0),
+                                                                    kappa_A=0.1, kappa_B=0.1)),
+        # model III's grid step dx / v = p w / (N v) must divide the 1 ms output step: v = 0.1 m/s, N = 10
+        ("model_III", "w = 1 cm, v = 0.1 m/s, N = 10 (2 pi v / w = 63 rad/s)",
+         af.AsperityForceParams(v=0.1, N=10.0)),
+        ("model_Ib", "reference (micro level above 18 rad/s)", ms.MultiscaleParams.reference()),
+    ]
+
+
+CELLS = tuple(Cell(m, lab, p, T) for T in (60.0, 300.0, 900.0) for (m, lab, p) in _points())
+SMOKE_CELLS = tuple(Cell(m, lab, p, 30.0) for (m, lab, p) in _points()[::2])
+
+
+def _record(cell: Cell, seed: int) -> np.ndarray:
+    tr = rm.MODELS[cell.model].simulate(cell.params, cell.duration, DT, seed=seed)
+    noise = np.random.default_rng([seed, 1]).normal(0.0, math.sqrt(2 * math.pi * FLOOR / DT), len(tr.x))
+    return tr.x + noise
+
+
+def run_cell(cell: Cell, seeds) -> dict:
+    """Identify one record per seed of ``cell``.
+
+    Parameters
+    ----------
+    cell : Cell
+    seeds : iterable of int
+        The simulators' seeds (the floor's noise is seeded by (seed, 1)).
+
+    Returns
+    -------
+    dict
+        Counts over the seeds: ``n``, ``first_or_indistinguishable`` (the true model not rejected and ranked first
+        or indistinguishable from the first), ``alone`` (ranked first with verdict "fits"), ``wrong_alone`` (another
+        model ranked first with "fits" and the true model rejected; model_Iv counts as model I, its family),
+        ``coincides`` (another model first with "fits", the true one not rejected: the same family on this band, its
+        own feature unseen), ``indistinguishable`` (the first not alone), ``covered`` and ``intervals`` (the true family's identified parameters whose 95 % interval holds
+        the value the record was built with), ``best`` (model -> times ranked first).
+    """
+    fam = FAMILIES[cell.model]
+    truth, v = fam.from_model(cell.params)
+    same = {cell.model} | ({"model_Iv"} if cell.model == "model_I" else set())
+    out = {"n": 0, "first_or_indistinguishable": 0, "alone": 0, "wrong_alone": 0, "coincides": 0, "indistinguishable": 0,
+           "covered": 0, "intervals": 0, "best": {}}
+    for seed in seeds:
+        ranking = identify(_record(cell, seed), DT, v)
+        out["n"] += 1
+        if not ranking:
+            continue
+        first = ranking[0]
+        out["best"][first.model] = out["best"].get(first.model, 0) + 1
+        mine = next(m for m in ranking if m.model == cell.model)
+        ok_first = first.model in same or mine.verdict == "indistinguishable"
+        out["first_or_indistinguishable"] += int(ok_first and mine.verdict != "rejected")
+        out["alone"] += int(first.model in same and first.verdict == "fits")
+        # a wrong model named alone: first with "fits" while the true model is rejected (a true model that only
+        # coincides with the first on this band, its own feature unseen, is not contradicted)
+        out["wrong_alone"] += int(first.model not in same and first.verdict == "fits" and mine.verdict == "rejected")
+        out["coincides"] += int(first.model not in same and first.verdict == "fits" and mine.verdict != "rejected")
+        out["indistinguishable"] += int(first.verdict == "indistinguishable")
+        for name, iv in mine.fit.intervals.items():
+            if iv is not None and name in truth:
+                out["intervals"] += 1
+                out["covered"] += int(iv[0] <= truth[name] <= iv[1])
+    return out

@@ -1,0 +1,443 @@
+"""A spectral family fitted to one record by the Whittle likelihood, the sensor floor a nuisance term.
+
+The record is differenced twice (every family's common omega^-4 range becomes flat) and held as a
+:class:`~compare.analysis.whittle.WhittleRecord`; a family (:mod:`compare.analysis.families`) plus a white floor
+C_0 (Units: m^2 s; a sensor's white noise of rms sigma at step dt has C_0 = sigma^2 dt / (2 pi), eq. 2) is its model.
+Positive parameters are fitted as their base-10 logarithms.
+
+The fit runs on the Whittle likelihood of the differenced periodogram with adjacent ordinates grouped
+(:class:`Grouped`: the lowest 64 alone, then bins 1 % wide in frequency, each bin's m ordinates entering as
+m [ln mu_b + mean(I)_b / mu_b], exact when the model's mean is constant over the bin; the model varies by under
+2e-4 across a bin for any slope up to omega^-8), its mean the differencing gain times the model folded at Nyquist
+and the floor; a grid over the corner parameters gives the start. This leaves out the finite record's leakage,
+small once two differences flatten the spectrum; ``exact=True`` polishes the maximum on the debiased likelihood of
+:mod:`compare.analysis.whittle` (records of at most :data:`EXACT_N` samples: its mean costs 0.03 s per evaluation at
+2e4 samples and 1.5 s at 4e5). Every family compared on one record must be fitted alike.
+
+The 95 % intervals come from the curvature of the grouped negative log-likelihood at the maximum over every free
+parameter and the floor (finite differences on the fitted scale; log-fitted parameters get asymmetric ends). A
+parameter whose feature (:meth:`Family.feature`) lies outside the band where the fitted family stands above the
+floor is "not identified": no interval; so is a scale whose 95 % interval spans more than a factor 100.
+"""
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import optimize, stats
+
+from .families import Family, identified
+from .whittle import WhittleFit, WhittleRecord, maximum_likelihood
+
+__all__ = ["FamilyFit", "Grouped", "fit_family", "record_for", "sampled_spectrum", "cell_of", "ORDER", "EXACT_N"]
+
+ORDER = 2  # differences: every family's omega^-4 range flat, the floor rising as omega^4
+EXACT_N = 2**15  # records up to this many samples get the debiased likelihood's maximum
+_Z95 = float(stats.norm.ppf(0.975))
+_GRID = 5  # trial points per corner parameter when choosing a start
+_ALONE = 64  # lowest ordinates kept alone
+_FINE_GROUPS = 20_000  # linear groups of a family that is not smooth: 4000 ordinates per model III zero spacing at
+#   400 s and v / w = 10 /s become 400 groups
+_BIN = 0.01  # relative width of a bin above them
+_WIDEST = 2.0  # a scale whose 95 % interval spans more than two decades is not identified
+
+
+def record_for(x, dt: float) -> WhittleRecord:
+    """The :class:`~compare.analysis.whittle.WhittleRecord` every family is fitted to (differenced :data:`ORDER`
+    times), so that their likelihoods compare.
+
+    Parameters
+    ----------
+    x : array_like
+        Displacement record (Units: m), uniformly sampled.
+    dt : float
+        Sampling step (Units: s).
+    """
+    return WhittleRecord(np.asarray(x, dtype=float), dt, ORDER)
+
+
+class Grouped:
+    """A record's differenced periodogram with adjacent ordinates grouped (module docstring).
+
+    Parameters
+    ----------
+    record : WhittleRecord
+    fine : bool, optional
+        Linear groups of :attr:`run` adjacent ordinates instead of 1 % bins (for a family that is not smooth on the
+        bins' scale), at most :data:`_FINE_GROUPS` of them.
+
+    Attributes
+    ----------
+    omega : ndarray
+        Each group's mean frequency (Units: rad/s).
+    index : ndarray
+        Each ordinate's group.
+    mean : ndarray
+        Each group's mean ordinate.
+    count : ndarray
+        Ordinates per group.
+    gain : ndarray
+        The differencing gain |2 sin(omega dt / 2) / dt|^(2k) at ``omega``.
+    """
+
+    def __init__(self, record: WhittleRecord, fine: bool = False):
+        w, I = record.omega, record.periodogram
+        k = min(_ALONE, len(w))
+        self.run = max(1, math.ceil(len(w) / _FINE_GROUPS)) if fine else 0  # ordinates per linear group
+        if fine:
+            idx = np.concatenate([np.arange(k), k + (np.arange(len(w) - k) // self.run)])
+        elif len(w) > k:
+            edges = np.geomspace(w[k], w[-1] * (1 + 1e-12), max(2, int(math.log(w[-1] / w[k]) / _BIN) + 1))
+            idx = np.concatenate([np.arange(k), k + np.searchsorted(edges[1:-1], w[k:], side="right")])
+        else:
+            idx = np.arange(len(w))
+        self.count = np.bincount(idx).astype(float)
+        keep = self.count > 0
+        self.omega = (np.bincount(idx, weights=w) / np.maximum(self.count, 1))[keep]
+        self.mean = (np.bincount(idx, weights=I) / np.maximum(self.count, 1))[keep]
+        self.count = self.count[keep]
+        self.index = (np.cumsum(keep) - 1)[idx]  # each ordinate's group
+        self.periodogram = I
+        self.dt = record.dt
+        self.gain = np.abs(2.0 * np.sin(self.omega * record.dt / 2.0) / record.dt) ** (2 * record.order)
+
+    def ordinate_loglik(self, sampled, q) -> np.ndarray:
+        """Each ordinate's log-likelihood -(ln mu + I / mu), mu its group's mean (Vuong's test compares them)."""
+        mu = (self.gain * sampled(self.omega, q))[self.index]
+        return -(np.log(mu) + self.periodogram / mu)
+
+    def negloglik(self, sampled, q) -> float:
+        """sum_b m_b [ln mu_b + mean_b / mu_b], mu_b = gain x ``sampled(omega_b, q)`` (inf where mu <= 0)."""
+        mu = self.gain * sampled(self.omega, q)
+        if not np.all(mu > 0):
+            return math.inf
+        return float(np.sum(self.count * (np.log(mu) + self.mean / mu)))
+
+
+@dataclass(frozen=True)
+class FamilyFit:
+    """A family's maximum-likelihood fit to one record.
+
+    Attributes
+    ----------
+    family : str
+    theta : dict
+        Name -> fitted value (the parameters' units, :class:`~compare.analysis.families.Param`).
+    floor : float
+        The white floor C_0 (Units: m^2 s).
+    nll : float
+        The debiased Whittle negative log-likelihood at the maximum.
+    intervals : dict
+        Name -> (low, high) 95 % ends, or None where the parameter is not identified.
+    band : tuple
+        (low, high) (rad/s): the lowest Fourier frequency to where the fitted family meets the floor.
+    n_free : int
+        Parameters the record identifies, the floor included (the information criterion's count).
+    held : tuple of str
+        Parameters held at their neutral value (their feature does not show) and those sharing its feature.
+    v : float
+        The sliding speed the family was evaluated at (Units: m/s).
+    """
+
+    family: str
+    theta: dict
+    floor: float
+    nll: float
+    intervals: dict
+    band: tuple
+    n_free: int
+    v: float
+    converged: bool = True
+    params: tuple = field(default=(), repr=False)
+    held: tuple = ()
+
+    def parameters(self, fam: Family) -> dict:
+        """Name -> [value, 95 % half-width, unit] or "not identified" (summary.json's form). A log-fitted
+        parameter's half-width is the larger distance from its value to an end of its interval."""
+        out = {}
+        for p in fam.params:
+            iv = self.intervals.get(p.name)
+            if iv is None:
+                out[p.name] = "not identified"
+            else:
+                val = self.theta[p.name]
+                out[p.name] = [float(val), float(max(val - iv[0], iv[1] - val)), p.unit]
+        return out
+
+
+def _to_theta(fam: Family, q) -> dict:
+    return {p.name: (10.0 ** q[i] if p.log else float(q[i])) for i, p in enumerate(fam.params)}
+
+
+# a corner parameter x places its feature at frequency c x^e (c in units of the speed v): how a search spreads it
+_FEATURE_LAW = {"a": (2.0, -1), "a2": (2.0, -1), "w": (2 * math.pi, -1), "D_c": (1.0, -1), "omega_c": (None, 1),
+                "omega3": (None, 1), "omega_lo": (None, 1), "omega_hi": (None, 1)}
+_REACH = 30.0  # a search keeps a corner's feature within this factor of the band's ends
+
+
+def _param_at(name: str, f: float, v: float) -> float:
+    """log10 of corner parameter ``name`` whose feature lies at angular frequency ``f`` (rad/s)."""
+    c, e = _FEATURE_LAW[name]
+    return math.log10(f) if c is None else math.log10(c * v / f)
+
+
+def _bounds(fam: Family, v: float, lo: float, hi: float):
+    """The search box on the fitted scale: each parameter's own bounds, a corner's narrowed so that its feature
+    stays within :data:`_REACH` of the band (lo, hi) (rad/s) (beyond, the record cannot tell where it is), and the
+    floor's log10 (m^2 s)."""
+    out = []
+    for p in fam.params:
+        b = (math.log10(p.bounds[0]), math.log10(p.bounds[1])) if p.log else p.bounds
+        if p.name in _FEATURE_LAW:
+            ends = sorted((_param_at(p.name, lo / _REACH, v), _param_at(p.name, hi * _REACH, v)))
+            b = (max(b[0], ends[0]), min(b[1], ends[1]))
+        out.append(b)
+    return out + [(-80.0, 20.0)]
+
+
+_IMAGES = 2  # aliasing images each side: a family falling as omega^-4 leaves out 5^-4 of its Nyquist level
+
+
+_SUB = 4  # sub-points averaged over each ordinate's cell for a family that is not smooth
+
+
+def cell_of(record: WhittleRecord, fam: Family):
+    """The width (rad/s) of a linear group of ordinates (:class:`Grouped` with ``fine``) for a family that is not
+    smooth, else None."""
+    if fam.smooth:
+        return None
+    return max(1, math.ceil(len(record.omega) / _FINE_GROUPS)) * 2.0 * math.pi / (record.n * record.dt)
+
+
+def sampled_spectrum(fam: Family, v: float, dt: float, cell: float | None = None):
+    """The sampled record's spectrum of family ``fam`` at speed ``v`` (m/s) and step ``dt`` (s): the family folded at
+    Nyquist (:func:`~compare.analysis.whittle.folded`'s sum, all images in one call of the family) plus the white
+    floor, which a sensor adds after sampling.
+
+    ``cell`` (rad/s, the ordinates' spacing 2 pi / (n dt)): the family is averaged over each ordinate's cell at
+    :data:`_SUB` points, a first account of the finite record's leakage for a family with exact zeros (model III's
+    window): without it an ordinate at a zero, which leakage fills, reads thousands of times its mean.
+
+    Returns
+    -------
+    callable
+        ``spectrum(omega, q)`` (Units: m^2 s), ``q`` the fitted-scale parameters with log10 of the floor last.
+    """
+    step = 2.0 * math.pi / dt
+    shifts = np.array([0.0] + [m * step for m in range(1, _IMAGES + 1) for _ in (0, 1)])
+    signs = np.array([1.0] + [s for _ in range(_IMAGES) for s in (1.0, -1.0)])
+
+    offsets = np.zeros(1) if cell is None else cell * ((np.arange(_SUB) + 0.5) / _SUB - 0.5)
+
+    def spectrum(w, q):
+        w = np.asarray(w, dtype=float)
+        wo = (w[None, :] + offsets[:, None]).ravel()
+        ws = np.abs(shifts[:, None] + signs[:, None] * wo[None, :])
+        vals = fam.shape(_to_theta(fam, q), ws.ravel(), v).reshape(ws.shape).sum(axis=0)
+        return vals.reshape(len(offsets), len(w)).mean(axis=0) + 10.0 ** q[-1]
+    return spectrum
+
+
+def _start(G: Grouped, fam: Family, v: float, start_theta: dict | None):
+    """A start: the floor from the top tenth of the band, every level from the band's middle, the corners from a
+    grid over the band (the best of the grouped likelihood), unless ``start_theta`` is given."""
+    w, I = G.omega, G.mean
+    C = I / G.gain
+    top = w > 0.9 * w[-1]
+    floor0 = math.log10(max(float(np.mean(C[top])), 1e-300))
+    mid = (w > w[0] * 10) & (w < w[-1] / 10) if w[-1] > 100 * w[0] else slice(None)
+    lev4 = math.log10(max(float(np.median((C * w**4)[mid])), 1e-300))
+    spectrum = sampled_spectrum(fam, v, G.dt, None if fam.smooth else G.run * (G.omega[1] - G.omega[0]))
+    lo, hi = w[0], w[-1]
+    base = []
+    for p in fam.params:
+        if start_theta is not None and p.name in start_theta:
+            val = start_theta[p.name]
+            base.append(math.log10(val) if p.log else val)
+        elif p.name in ("L", "L2"):
+            base.append(lev4 - (2.0 if p.name == "L2" else 0.0))
+        elif p.name == "S":
+            base.append(lev4)
+        elif p.log:
+            base.append(None)  # a corner: from the grid below
+        else:
+            base.append(0.5 * (p.bounds[0] + p.bounds[1]) if p.name != "s" else 2.0)
+    base.append(floor0)
+    free = [i for i, b in enumerate(base) if b is None]
+    if not free:
+        return np.array(base, dtype=float)
+    # each corner parameter's trial values place its feature over the band (and one beyond each end)
+    freqs = np.geomspace(lo / 3, hi * 3, _GRID)
+    if not fam.smooth:
+        # a family with repeating zeros (model III's window) has a likelihood with a mode at every shift of its zeros
+        # against the ordinates: the zeros' spacing is read from the periodogram's own periodicity (the strongest
+        # periods of its logarithm along the ordinates, and twice and three times them)
+        freqs = np.concatenate([freqs, _zero_spacings(G)])
+    fixed_start = {"Q": 1.0, "omega_0": math.log10(hi * 1e3)}  # a resonance of quality 10; its spring damping unseen
+    trials = [[fixed_start[fam.params[i].name]] if fam.params[i].name in fixed_start
+              else [_param_at(fam.params[i].name, f, v) for f in freqs] for i in free]
+    bnd = _bounds(fam, v, lo, hi)
+    best, best_v = None, math.inf
+    for combo in itertools.product(*trials):
+        q = np.array([c if c is not None else 0.0 for c in base], dtype=float)
+        q[free] = combo
+        if fam.name == "model_II" and q[3] <= q[2]:
+            continue
+        q = np.clip(q, [b[0] for b in bnd], [b[1] for b in bnd])
+        # the level that best matches this shape (the median ratio of ordinate to model)
+        for j in [k for k, p in enumerate(fam.params) if p.name in ("L", "S")]:
+            e = G.gain * spectrum(w, q)
+            q[j] += math.log10(max(float(np.median(I / e)), 1e-300))
+        val = G.negloglik(spectrum, q)
+        if val < best_v:
+            best, best_v = q, val
+    return best
+
+
+def _zero_spacings(G: Grouped, peaks: int = 4) -> np.ndarray:
+    """Candidate spacings (rad/s) of a comb of zeros in an ungrouped periodogram: the ``peaks`` strongest periods of
+    log I along the ordinates (between 3 ordinates and a third of them), each also doubled and tripled."""
+    y = np.log(np.maximum(G.mean, 1e-300))
+    y = y - np.convolve(y, np.ones(101) / 101, mode="same")  # the slow trend out
+    P = np.abs(np.fft.rfft(y)) ** 2
+    k = np.arange(len(P))
+    ok = (k >= 3) & (k <= len(y) / 3)
+    top = k[ok][np.argsort(P[ok])[-peaks:]]
+    step = G.omega[-1] - G.omega[-2]  # the linear groups' spacing
+    spacing = len(y) / top * step
+    return np.concatenate([spacing, 2 * spacing, 3 * spacing])
+
+
+def _band(record: WhittleRecord, fam: Family, theta: dict, floor: float, v: float):
+    """From the lowest Fourier frequency to where the family meets the floor (Nyquist if it never does)."""
+    w = record.omega
+    above = fam.shape(theta, w, v) > floor
+    hi = float(w[np.nonzero(above)[0][-1]]) if above.any() else float(w[0])
+    return float(w[0]), hi
+
+
+def _identify(record: WhittleRecord, fam: Family, v: float, q):
+    """(q, identified per parameter, band) at fitted parameters ``q``."""
+    q = np.array(q, dtype=float)
+    theta = _to_theta(fam, q)
+    band = _band(record, fam, theta, 10.0 ** q[-1], v)
+    feats = fam.features(theta, v)
+    return q, [identified(feats[p.name], band) for p in fam.params], band
+
+
+def _hessian(f, q, h=1e-3):
+    n = len(q)
+    H = np.empty((n, n))
+    f0 = f(q)
+    for i in range(n):
+        for j in range(i, n):
+            ei, ej = np.eye(n)[i] * h, np.eye(n)[j] * h
+            if i == j:
+                H[i, i] = (f(q + ei) - 2 * f0 + f(q - ei)) / h**2
+            else:
+                H[i, j] = H[j, i] = (f(q + ei + ej) - f(q + ei - ej) - f(q - ei + ej) + f(q - ei - ej)) / (4 * h**2)
+    return H
+
+
+def _errors(H) -> np.ndarray:
+    """Standard errors from the curvature H of a negative log-likelihood; a parameter along a flat or negative
+    direction (the record does not constrain it) gets NaN and the others are read with it left out, the flattest
+    first."""
+    keep = list(range(len(H)))
+    err = np.full(len(H), np.nan)
+    while keep:
+        sub = H[np.ix_(keep, keep)]
+        ev = np.linalg.eigvalsh(sub) if np.all(np.isfinite(sub)) else np.array([-1.0])
+        if ev.min() > 1e-10 * max(ev.max(), 1e-300):
+            err[keep] = np.sqrt(np.diag(np.linalg.inv(sub)))
+            return err
+        keep.pop(int(np.argmin(np.abs(np.diag(sub)) / np.sqrt(np.abs(np.diag(sub)).max() + 1e-300)))
+                 if np.all(np.isfinite(np.diag(sub))) else 0)
+    return err
+
+
+def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dict | None = None,
+               exact: bool = False) -> FamilyFit:
+    """Maximum-likelihood fit of family ``fam`` plus a white floor to ``record``, with 95 % intervals.
+
+    Parameters
+    ----------
+    record : WhittleRecord
+        From :func:`record_for` (displacement, Units: m).
+    fam : Family
+        The family (:data:`compare.analysis.families.FAMILIES`).
+    v : float
+        The record's mean sliding speed (Units: m/s).
+    start_theta : dict, optional
+        Name -> value to start from (e.g. the values a simulated record was built with); the grid otherwise.
+    exact : bool, optional
+        Polish the maximum on the debiased likelihood (records of at most :data:`EXACT_N` samples; 5-15 s more per
+        family on a loaded 2-core machine at 2e4 samples). Every family compared on one record must be fitted alike.
+
+    Returns
+    -------
+    FamilyFit
+    """
+    G = Grouped(record, fine=not fam.smooth)
+    spectrum = sampled_spectrum(fam, v, record.dt, cell_of(record, fam))
+    bounds = _bounds(fam, v, G.omega[0], G.omega[-1])
+    q0 = _start(G, fam, v, start_theta)
+
+    def grouped(q):
+        val = G.negloglik(spectrum, q)
+        return val if math.isfinite(val) else 1e300
+
+    res = optimize.minimize(grouped, q0, method="L-BFGS-B", bounds=bounds)
+    q, ident, band = _identify(record, fam, v, res.x)
+    neutral = [i for i, p in enumerate(fam.params) if not ident[i] and p.neutral is not None]
+    if neutral:
+        # a feature the record does not show: hold its amplitude at the neutral value, and the parameters that share
+        # its feature (its corner) where they are, and fit the rest again
+        feats = fam.features(_to_theta(fam, q), v)
+        names = {fam.params[i].name for i in neutral}
+        held = {j for j, p in enumerate(fam.params) if any(feats[p.name] == feats[n] for n in names)}
+        for i in held:
+            p = fam.params[i]
+            if i in neutral:
+                q[i] = math.log10(p.neutral) if p.log else p.neutral
+            bounds[i] = (q[i], q[i])
+        neutral = sorted(held)
+        res = optimize.minimize(grouped, np.clip(q, [b[0] for b in bounds], [b[1] for b in bounds]),
+                                method="L-BFGS-B", bounds=bounds)
+    if exact and record.n <= EXACT_N:
+        fit = maximum_likelihood(record, spectrum, res.x, bounds=bounds, images=None)
+    else:
+        fit = WhittleFit(tuple(map(float, res.x)), float(res.fun), bool(res.success))
+    q, ident, band = _identify(record, fam, v, fit.params)
+    for i in neutral:
+        ident[i] = False
+    theta = _to_theta(fam, q)
+    floor = 10.0 ** q[-1]
+    # the curvature over every free parameter and the floor, so that an identified parameter's interval carries its
+    # correlation with the ones the band does not pin down (a resonance above the band still tilts its top); the
+    # held ones stay out. Intervals are then given to the identified parameters only.
+    idx = [i for i in range(len(q) - 1) if i not in neutral] + [len(q) - 1]
+
+    def nll_sub(s):
+        r = q.copy()
+        r[idx] = s
+        return grouped(r)
+
+    err = _errors(_hessian(nll_sub, q[idx]))
+    intervals = {}
+    for k, i in enumerate(idx[:-1]):
+        p = fam.params[i]
+        if not ident[i]:
+            continue
+        lo, hi = q[i] - _Z95 * err[k], q[i] + _Z95 * err[k]
+        intervals[p.name] = (10.0**lo, 10.0**hi) if p.log else (lo, hi)
+        if not math.isfinite(err[k]) or (p.log and hi - lo > _WIDEST):
+            intervals[p.name] = None
+    for i, ok in enumerate(ident):
+        if not ok:
+            intervals[fam.params[i].name] = None
+    n_free = 1 + sum(1 for i in idx[:-1] if ident[i])  # what the information criterion counts: what the band shows
+    return FamilyFit(fam.name, theta, floor, fit.nll, intervals, band, n_free, v, fit.converged, tuple(q),
+                     tuple(fam.params[i].name for i in neutral))

@@ -1,0 +1,312 @@
+"""Which of the paper's mechanisms a displacement record points to: every registered model's spectral family fitted
+(:mod:`compare.analysis.family_fit`), ranked, and compared with the best by a likelihood-ratio test in both
+directions.
+
+Ranking: by the Bayesian information criterion of the Whittle fit, nll + k ln(n) / 2 (n Fourier ordinates, k
+fitted parameters with the floor), so a family that only adds a feature the record does not show ranks below the
+one without it; criteria within 1 of the lowest count as a tie, won by the family with fewer parameters. Models whose families coincide (model_Iv is model I's family plus a line) share one fit.
+
+Comparison: each model against the best by Vuong's test (Vuong 1989, Econometrica 57, 307) on the per-ordinate
+log-likelihood differences d_j: Z = sum d_j / (sqrt(n) sd(d)); the one-sided p-value 1 - Phi(Z) is the chance of a
+lead this large were the model as close to the record as the best. The parameter counts enter the ranking only
+(Schwarz's correction inside Z would reject a family that nests the best and adds a feature the record does not
+show, for a penalty far larger than its tiny sd(d)): a richer family that fits no better is "indistinguishable", not
+rejected. Where two families coincide on the record (sd(d) = 0) p = 1. The p-values of the comparisons are adjusted by Holm's step-down method
+(Holm 1979). A model is "rejected" at adjusted p < alpha. The best "fits" when every other model is rejected or
+coincides with it on the record (the same family, or one extending it by features the record does not identify:
+model_Iv, or the ageing model with its step outside the band, are model I there); else the best is
+"indistinguishable". Every model not rejected but the best is "indistinguishable", with what would separate it. A record
+flagged as not stationary gets no mechanism.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+from scipy import stats
+
+import reduced_models
+
+from .families import FAMILIES, MARGIN, Family
+from .family_fit import FamilyFit, Grouped, cell_of, fit_family, record_for, sampled_spectrum
+
+__all__ = ["Mechanism", "identify", "holm", "vuong", "stationarity"]
+
+_BASE = ("model_I",)  # fitted first: the families below extend its spectrum and start from its fit
+_EXTENDS_I = ("model_Ib", "model_ageing")
+_TIE = 1.0  # information criteria closer than this rank as equal (a difference of 1 is no evidence either way)
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """One registered model's standing for a record.
+
+    Attributes
+    ----------
+    model : str
+        Its key in :data:`reduced_models.MODELS`.
+    verdict : str
+        "fits", "indistinguishable" or "rejected".
+    p_value : float
+        Holm-adjusted p-value of the test "as close to the record as the best" (1 for the best itself).
+    parameters : dict
+        Name -> [value, 95 % half-width, unit] or "not identified".
+    separate : str
+        What would separate it from the best ("" for a rejected model or a best that fits alone).
+    bic : float
+        Its information criterion (lower is better).
+    fit : FamilyFit
+    """
+
+    model: str
+    verdict: str
+    p_value: float
+    parameters: dict
+    separate: str
+    bic: float
+    fit: FamilyFit
+
+    def to_dict(self) -> dict:
+        """summary.json's form of this standing.
+
+        Returns
+        -------
+        dict
+            ``model``, ``verdict``, ``p_value``, ``parameters``, ``separate``, ``bic``, ``band_rad_s`` (rad/s),
+            ``floor_m2s`` (m^2 s) and ``cannot_separate`` (the model's parameters the family lumps together).
+        """
+        return {"model": self.model, "verdict": self.verdict, "p_value": float(self.p_value),
+                "parameters": self.parameters, "separate": self.separate, "bic": float(self.bic),
+                "band_rad_s": [float(b) for b in self.fit.band], "floor_m2s": float(self.fit.floor),
+                "cannot_separate": FAMILIES[self.model].cannot_separate}
+
+
+def holm(p) -> np.ndarray:
+    """Holm's step-down adjustment of p-values (each adjusted p-value compared with the level directly).
+
+    Parameters
+    ----------
+    p : array_like
+        Raw p-values.
+
+    Returns
+    -------
+    numpy.ndarray
+        Adjusted p-values, monotone in the raw ones, at most 1.
+    """
+    p = np.asarray(p, dtype=float)
+    m = len(p)
+    order = np.argsort(p)
+    adj = np.empty(m)
+    running = 0.0
+    for rank, i in enumerate(order):
+        running = max(running, (m - rank) * p[i])
+        adj[i] = min(1.0, running)
+    return adj
+
+
+def vuong(l_best: np.ndarray, l_other: np.ndarray) -> tuple[float, float]:
+    """Vuong's statistic and its one-sided p-value that the other model is as close to the record as the best.
+
+    Parameters
+    ----------
+    l_best, l_other : ndarray
+        Per-ordinate log-likelihoods of the two fitted models.
+
+    Returns
+    -------
+    (float, float)
+        Z and 1 - Phi(Z); (0, 1) where the two coincide on the record.
+    """
+    d = l_best - l_other
+    n = len(d)
+    sd = float(np.std(d))
+    lr = float(np.sum(d))
+    if not sd > 1e-12 * max(1.0, float(np.mean(np.abs(l_best)))):
+        return 0.0, 1.0
+    z = lr / (math.sqrt(n) * sd)
+    return z, float(stats.norm.sf(z))
+
+
+def _coincides(best: str, other: str, fits: dict, level: float) -> bool:
+    """Whether ``other``'s fitted family is ``best``'s on this record: the same family, or one that extends it by
+    features the record does not identify (held neutral or without interval) or that do not raise the likelihood
+    significantly (2 (nll_best - nll_other) below the chi^2 quantile ``level`` of the extra parameters: a likelihood
+    ratio test of nested families, conservative where the extra features vanish at a bound)."""
+    fam_b, fam_o = FAMILIES[best], FAMILIES[other]
+    if fam_b.shape is fam_o.shape:
+        return True
+    base = {p.name for p in fam_b.params}
+    if not base <= {p.name for p in fam_o.params}:
+        return False
+    extra = [p.name for p in fam_o.params if p.name not in base]
+    if all(fits[other].intervals.get(n) is None for n in extra):
+        return True
+    return 2 * (fits[best].nll - fits[other].nll) < float(stats.chi2.ppf(level, len(extra)))
+
+
+def _separate(best: str, other: str, fits: dict, v: float) -> str:
+    """What would tell ``other`` from ``best`` on a record like this one."""
+    fam_o, fit_o = FAMILIES[other], fits[other]
+    if FAMILIES[best].shape is fam_o.shape:
+        bits = ["the same spectral family on this band"]
+        if fam_o.line or FAMILIES[best].line:
+            bits.append("the vibration's line (and its harmonics) in the raw spectrum, or a record without the "
+                        "substrate's vibration")
+        return "; ".join(bits)
+    bits = []
+    lo, hi = fit_o.band
+    feats = fam_o.features(fit_o.theta, v)
+    shared_names = {p.name for p in FAMILIES[best].params}
+    for p in fam_o.params:
+        f = feats[p.name]
+        if fit_o.intervals.get(p.name) is not None or f is None or p.name in shared_names:
+            continue
+        if p.name in fit_o.held:
+            where = "its feature does not show on this band: a record reaching further in frequency"
+        elif f < lo * MARGIN:
+            where = f"a longer record (its feature near {f:.3g} rad/s lies below the band)"
+        elif f > hi / MARGIN:
+            where = f"a faster sampling or a quieter sensor (its feature near {f:.3g} rad/s lies above the band)"
+        else:
+            where = f"a longer record or a quieter sensor (its feature near {f:.3g} rad/s is too faint to place)"
+        bits.append(f"{other}'s {p.name}: {where}")
+    r_b, r_o = reduced_models.MODELS[best].RESPONSE, reduced_models.MODELS[other].RESPONSE
+    if r_b != r_o:
+        bits.append(f"an independent force record (the x-F phase differs between the {r_b} and {r_o} responses)")
+    bits.append("a velocity series (the corners move with v as each model predicts)")
+    return "; ".join(dict.fromkeys(bits))
+
+
+def stationarity(x, dt: float, bands: int = 8, level: float = 0.01) -> dict:
+    """Whether a record's two halves share one spectrum: the twice-differenced periodograms of the halves averaged
+    over ``bands`` log-spaced bands from each half's lowest frequency to Nyquist; each band's log ratio is
+    normal with variance 2/m (m ordinates per half, exponential ordinates) under stationarity.
+
+    Parameters
+    ----------
+    x : array_like
+        The record (Units: m).
+    dt : float
+        Sampling step (Units: s).
+    bands : int, optional
+        Number of bands.
+    level : float, optional
+        Family-wise level (Bonferroni over the bands).
+
+    Returns
+    -------
+    dict
+        ``stationary`` (bool: no band differs both significantly and by more than a factor 1.5), ``ratios`` (second
+        half over first, per band), ``z`` and ``bands`` (rad/s).
+    """
+    x = np.asarray(x, dtype=float)
+    h = len(x) // 2
+    r1, r2 = record_for(x[:h], dt), record_for(x[h:2 * h], dt)
+    m = min(len(r1.omega), len(r2.omega))
+    w = r1.omega[:m]
+    edges = np.geomspace(w[0], w[-1] * (1 + 1e-12), bands + 1)
+    idx = np.searchsorted(edges[1:-1], w, side="right")
+    cnt = np.bincount(idx, minlength=bands).astype(float)
+    a = np.bincount(idx, weights=r1.periodogram[:m], minlength=bands)
+    b = np.bincount(idx, weights=r2.periodogram[:m], minlength=bands)
+    ok = (cnt > 0) & (a > 0) & (b > 0)
+    ratio = np.where(ok, b / np.where(a > 0, a, 1.0), np.nan)
+    z = np.where(ok, np.log(np.where(ok, ratio, 1.0)) / np.sqrt(2.0 / np.maximum(cnt, 1)), 0.0)
+    crit = float(stats.norm.isf(level / (2 * bands)))
+    bad = ok & (np.abs(z) > crit) & (np.abs(np.log(np.where(ok, ratio, 1.0))) > math.log(1.5))
+    return {"stationary": not bool(bad.any()), "ratios": [float(r) for r in ratio], "z": [float(v) for v in z],
+            "bands": [[float(edges[i]), float(edges[i + 1])] for i in range(bands)]}
+
+
+def identify(x, dt: float | None = None, v: float | None = None, *, models=None, alpha: float = 0.05,
+             stationary: bool | None = None) -> list:
+    """The registered models ranked for a displacement record, best first, with verdicts and parameters.
+
+    Parameters
+    ----------
+    x : array_like or record
+        Displacement record (Units: m), uniformly sampled, the slide included (twice differenced away); or a record
+        with attributes ``t`` (s) and ``x`` (m) (a :class:`~compare.io.measured.MeasuredData`, a model's or a
+        scene's trace), then ``dt`` is read from ``t``.
+    dt : float
+        Sampling step (Units: s).
+    v : float, optional
+        Mean sliding speed (Units: m/s); default (x[-1] - x[0]) / duration.
+    models : iterable of str, optional
+        Keys of :data:`reduced_models.MODELS` to compare; default every registered model.
+    alpha : float, optional
+        Level of the Holm-adjusted comparisons.
+    stationary : bool, optional
+        False for a record flagged as not stationary: no mechanism is named (an empty list). None (default): the
+        record's halves are compared by :func:`stationarity`.
+
+    Returns
+    -------
+    list of Mechanism
+        Best first.
+    """
+    if hasattr(x, "t") and hasattr(x, "x"):
+        t = np.asarray(x.t, dtype=float)
+        if getattr(x, "segmented", False):
+            raise ValueError("the record's time stamps break into segments: identification needs one uniform record "
+                             "(resample it, or pass one segment)")
+        dt = float(np.median(np.diff(t))) if dt is None else dt
+        x = x.x
+    if dt is None or not (dt > 0 and math.isfinite(dt)):
+        raise ValueError(f"the sampling step dt must be positive, in s (got {dt!r})")
+    x = np.asarray(x, dtype=float)
+    if stationary is None:
+        stationary = stationarity(x, dt)["stationary"]
+    if not stationary:
+        return []
+    if v is None:
+        v = float((x[-1] - x[0]) / (dt * (len(x) - 1)))
+    if not (v > 0 and math.isfinite(v)):
+        raise ValueError(f"the mean sliding speed must be positive (got {v!r} m/s); pass v")
+    names = list(models) if models is not None else list(reduced_models.MODELS)
+    for n in names:
+        if n not in FAMILIES:
+            raise ValueError(f"no spectral family for model {n!r}; families: {', '.join(FAMILIES)}")
+    rec = record_for(x, dt)
+    G = Grouped(rec)
+    n_ord = len(rec.omega)
+    fits, shared = {}, {}
+    base = None  # model I's fit: the start of the families that extend it
+    for n in sorted(names, key=lambda n: n not in _BASE):
+        fam: Family = FAMILIES[n]
+        key = id(fam.shape)
+        if key not in shared:
+            start = base.theta if base is not None and n in _EXTENDS_I else None
+            shared[key] = fit_family(rec, fam, v, start_theta=start)
+            if n in _BASE:
+                base = shared[key]
+        f = shared[key]
+        fits[n] = f if f.family == n else replace(f, family=n)
+    bic = {n: fits[n].nll + fits[n].n_free * math.log(n_ord) / 2 for n in names}
+    # near-ties (within _TIE: a richer family whose extra features stay neutral, up to the optimiser's precision) go
+    # to the family with fewer parameters
+    ranked = sorted(names, key=lambda n: bic[n])
+    close = [n for n in ranked if bic[n] <= bic[ranked[0]] + _TIE]
+    first = min(close, key=lambda n: (len(FAMILIES[n].params), names.index(n)))
+    ranked = [first] + [n for n in ranked if n != first]
+    best = ranked[0]
+    G_fine = None if all(FAMILIES[n].smooth for n in names) else Grouped(rec, fine=True)
+    ll = {n: (G if FAMILIES[n].smooth else G_fine).ordinate_loglik(sampled_spectrum(FAMILIES[n], v, dt,
+                                                                                     cell_of(rec, FAMILIES[n])),
+                                                                    np.asarray(fits[n].params)) for n in names}
+    raw = [vuong(ll[best], ll[n])[1] for n in ranked[1:]]
+    adj = holm(raw) if raw else np.array([])
+    rejected = {n: bool(p < alpha) for n, p in zip(ranked[1:], adj)}
+    alone = all(rejected[n] or _coincides(best, n, fits, 1 - alpha) for n in ranked[1:])
+    out = []
+    for i, n in enumerate(ranked):
+        if i == 0:
+            verdict, p, sep = ("fits" if alone else "indistinguishable"), 1.0, ""
+        else:
+            verdict = "rejected" if rejected[n] else "indistinguishable"
+            p = float(adj[i - 1])
+            sep = "" if rejected[n] else _separate(best, n, fits, v)
+        out.append(Mechanism(n, verdict, p, fits[n].parameters(FAMILIES[n]), sep, bic[n], fits[n]))
+    return out

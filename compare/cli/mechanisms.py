@@ -1,0 +1,69 @@
+"""The mechanism ranking of ``frictionnoise analyze``: :func:`compare.analysis.identify.identify` on a displacement
+record, as summary.json's ``mechanisms`` and the terminal's first lines."""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["mechanisms_of", "ranking_lines"]
+
+
+def mechanisms_of(data, v: float, flags=()) -> dict:
+    """summary.json's ``mechanisms`` (best first, each :meth:`Mechanism.to_dict`) and ``stationarity`` of a
+    measured displacement record at mean speed ``v`` (m/s); ``mechanisms_note`` says why there are none.
+
+    Parameters
+    ----------
+    data : compare.io.measured.MeasuredData
+        The record (``t`` in s, ``x`` in m).
+    v : float
+        Its mean sliding speed (Units: m/s).
+    flags : iterable of str, optional
+        The exponent fit's flags; one starting "not stationary" (the record model's split-half test) names no
+        mechanism.
+
+    Returns
+    -------
+    dict
+        ``mechanisms`` (list), ``stationarity`` (dict or None) and ``mechanisms_note`` (str).
+    """
+    from ..analysis.identify import identify, stationarity
+
+    if getattr(data, "segmented", False):
+        return {"mechanisms": [], "stationarity": None,
+                "mechanisms_note": "no mechanism named: the time stamps break into segments (identification needs "
+                                   "one uniform record; --resample makes one)"}
+    if not v > 0:
+        return {"mechanisms": [], "stationarity": None,
+                "mechanisms_note": f"no mechanism named: the record does not slide forward (mean speed {v:.3g} m/s)"}
+    split = [f for f in flags if f.startswith("not stationary")]
+    if split:
+        return {"mechanisms": [], "stationarity": None, "mechanisms_note": f"no mechanism named: {split[0]}"}
+    dt = float(np.median(np.diff(data.t)))
+    st = stationarity(data.x, dt)
+    if not st["stationary"]:
+        return {"mechanisms": [], "stationarity": st,
+                "mechanisms_note": "no mechanism named: the record's two halves have different spectra (not stationary)"}
+    ranking = identify(data.x, dt, v, stationary=True)
+    return {"mechanisms": [m.to_dict() for m in ranking], "stationarity": st, "mechanisms_note": ""}
+
+
+def _value(p) -> str:
+    if isinstance(p, str):
+        return p
+    value, half, unit = p
+    return f"{value:.3g} +- {half:.2g}" + (f" {unit}" if unit else "")
+
+
+def ranking_lines(summary: dict) -> list:
+    """The ranking as the terminal shows it, best first: model, verdict, p-value, identified parameters, and what
+    would separate an indistinguishable one."""
+    mechs = summary.get("mechanisms") or []
+    if not mechs:
+        return [f"mechanism: {summary.get('mechanisms_note') or 'none named'}"]
+    lines = ["mechanisms (best first; p: Holm-adjusted, against the best):"]
+    for m in mechs:
+        params = ", ".join(f"{k} = {_value(v)}" for k, v in m["parameters"].items() if not isinstance(v, str))
+        lines.append(f"  {m['model']:13s} {m['verdict']:17s} p = {m['p_value']:.2g}" + (f"; {params}" if params else ""))
+        if m["separate"]:
+            lines.append(f"      to separate: {m['separate']}")
+    return lines
