@@ -391,3 +391,17 @@ def test_a_channel_without_a_spectrum_is_one_line_exit_2(tmp_path, capsys, value
     assert main(["analyze", str(path), "-o", str(out)]) == 2
     err = capsys.readouterr().err.strip()
     assert match in err and len(err.splitlines()) == 1 and not out.exists(), err
+
+
+def test_a_record_in_pieces_says_why_it_is_fitted_by_least_squares(tmp_path, capsys):
+    # a gap cuts a model I record into two uniform pieces: their combined Welch spectrum keeps no single periodogram,
+    # so neither the record model nor the Whittle fit applies; the terminal and summary.json say so under the fit
+    tr = simulate(SpringBlockParams.reference(), 120.0, dt_out=2e-3, seed=2)
+    t = np.concatenate([tr.t[:30000], tr.t[30000:] + 1.0])  # a 1 s gap in the middle
+    f = tmp_path / "pieces.csv"
+    _write(f, t, 1e6 * tr.x)
+    assert main(["analyze", str(f), "-o", str(tmp_path / "out")]) == 0
+    out = capsys.readouterr().out
+    assert "lsq" in out and "fitted by least squares" in out and "pieces or strokes" in out
+    fit = json.loads((tmp_path / "out" / "summary.json").read_text())["fit"]
+    assert fit["method"] == "lsq" and any("least squares" in note for note in fit["notes"])

@@ -119,7 +119,7 @@ class PowerLawFit:
             "gamma_se": self.gamma_se, "prefactor": self.prefactor, "n_points": self.n_points,
             "chi2_red": self.chi2_red, "band_auto": self.band_auto, "quantity": self.quantity,
             "confidence": 0.95, "method": self.method, "power_law": self.power_law, "flags": list(self.flags),
-            "curvature": self.curvature, "curvature_z": self.curvature_z,
+            "curvature": self.curvature, "curvature_z": self.curvature_z, "notes": list(self.notes),
         }
 
     def __str__(self) -> str:
@@ -338,7 +338,8 @@ def fit_power_law(spectrum: Spectrum, band=None, *, bins_per_decade: int = 10,
         method = DEFAULT_METHOD
         if method == "whittle" and spectrum.periodogram is None:
             method = "lsq"
-            notes.append("no raw periodogram kept with this spectrum; fitted by least squares")
+            notes.append("the spectrum keeps no single raw periodogram (a record in pieces or strokes, or stored "
+                         "data), so the Whittle fit cannot apply: fitted by least squares on its log-binned ordinates")
     if method not in METHODS:
         raise ValueError(f"method must be one of {', '.join(METHODS)} (got {method!r})")
     if method == "whittle" and spectrum.periodogram is None:

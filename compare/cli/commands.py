@@ -180,7 +180,9 @@ def _fit_text(f: dict) -> str:
     ci = f"95 % [{f['gamma_interval'][0]:.3f}, {f['gamma_interval'][1]:.3f}]" if "gamma_interval" in f else "95 %"
     floor = "" if "floor" not in f else f"; white floor {f['floor_rms']:.3g} m rms, over the power law above {f['crossover'] or float('inf'):.3g} rad/s"
     flags = "" if f["power_law"] else f" [not a power law: {'; '.join(f['flags'])}]"
-    return f"{f['gamma']:.3f} +- {f['gamma_err']:.3f} ({ci}, {f['method']}) over {f['band'][0]:.3g}-{f['band'][1]:.3g} rad/s{floor}{flags}"
+    notes = "".join(f"\n  {note}" for note in f.get("notes", ()) if "least squares" in note)  # why not the default
+    return (f"{f['gamma']:.3f} +- {f['gamma_err']:.3f} ({ci}, {f['method']}) over {f['band'][0]:.3g}-{f['band'][1]:.3g} "
+            f"rad/s{floor}{flags}{notes}")
 
 
 def _force_lines(summary: dict, index, most: int = 10) -> list:
