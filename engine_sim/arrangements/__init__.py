@@ -259,11 +259,40 @@ class Arrangement(SideMixin):
         def by_mass(L_max, why):
             return Limit("block.M", M, mass_limit(sc, L_max), "kg", why)
 
-        f = self.column_friction(L)
-        L_lag = load_limit(self.column_friction, p.k0 * lt)
-        out.append(by_mass(L_lag, f"a pad column's largest friction {f:.4g} N stretches its tangential spring "
-                                  f"(k0 = {p.k0:.4g} N/m) by {f / p.k0 * 1e3:.3g} mm; beyond its length "
-                                  f"{lt * 1e3:.3g} mm the pad passes the spring's anchor"))
+        # The pad lags x behind its normal spring's anchor, so the pre-compressed normal spring (force F_s, length
+        # LN) tilts by x / LN and pushes the pad backwards with F_s x / LN: k0 x = f + F_s x / LN, and the lag is
+        # x = f / (k0 - F_s / LN). The run starts with the drive already carrying the steady friction f0 per pad,
+        # released at once on the block, which lurches on its pads' springs: the block's share of one pad, M / N on
+        # k0, reaches at most f0 / sqrt(k0 M / N) (an undamped release), and the friction law's viscous part
+        # c v_lurch adds to the stickiest patch's friction f. The lag x must stay below LT, where the pad passes its
+        # tangential spring's anchor.
+        spring_push = (lambda load: max(load - col_w, 0.0) / ln) if self.preloaded else (lambda load: 0.0)
+        v_ss = max(sc.steady_velocity, 0.0)
+
+        def lurch(load):
+            m_share = max(load - col_w, 0.0) / (G * sc.drive_part.load_factor()) if sc.drive_part.load_factor() > 0 \
+                else M / p.N
+            f0 = sc.law_part.force(v_ss, load, sc.friction.c)
+            return f0 / math.sqrt(p.k0 * m_share) if m_share > 0 else 0.0
+
+        def friction(load):
+            return self.column_friction(load) + sc.law_part.force(v_ss + lurch(load), load, sc.friction.c) \
+                - sc.law_part.force(v_ss, load, sc.friction.c)
+
+        def lag(load):
+            k_eff = p.k0 - spring_push(load)
+            return friction(load) / k_eff if k_eff > 0 else math.inf
+
+        x = lag(L)
+        L_lag = load_limit(lag, lt)
+        M_lag = mass_limit(sc, L_lag)
+        k_need = friction(L) / lt + spring_push(L)
+        out.append(by_mass(L_lag, f"a pad column's largest friction {friction(L):.4g} N (the stickiest patch at the start's "
+                                  f"lurch, {lurch(L) * 1e3:.3g} mm/s), against its "
+                                  f"tangential spring k0 = {p.k0:.4g} N/m less the tilted normal spring's push "
+                                  f"{spring_push(L):.4g} N/m, lags the pad {x * 1e3:.3g} mm; beyond the spring's "
+                                  f"length {lt * 1e3:.3g} mm the pad passes its anchor (lower block.M below "
+                                  f"{M_lag:.4g} kg or raise pads.k0 above {k_need:.4g} N/m)"))
         if self.preloaded:
             F_s = L - col_w
             out.append(by_mass(ln * p.k_normal + col_w, f"the normal spring's pre-compression {F_s / p.k_normal * 1e3:.3g} "
