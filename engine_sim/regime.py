@@ -34,12 +34,14 @@ from frictionnoise.base import G
 
 from .arrangements import SPRING_DAMPING_X, SPRING_OMEGA_DT
 
-__all__ = ["Limit", "limits", "check_regimes", "mass_limit", "SOFTENING", "HANG_FRACTION", "LOST_CONTACT_S"]
+__all__ = ["Limit", "limits", "check_regimes", "mass_limit", "SOFTENING", "HANG_FRACTION", "LOST_CONTACT_S", "PARTIAL_LOSS_FRACTION"]
 
 SOFTENING = 0.1  # the normal spring's geometric softening F_s / LN may change the pad's tangential stiffness by 10 %
 HANG_FRACTION = 0.01  # a pad may hang over at most 1 % of its track's length
 # a run whose pads all leave their tracks for longer than this stops (engine_sim.run), its trace marked partial
 LOST_CONTACT_S = 0.1
+# a run with at least this fraction of its pads off their tracks (others on theirs) for LOST_CONTACT_S warns
+PARTIAL_LOSS_FRACTION = 0.1
 
 
 @dataclass(frozen=True)
