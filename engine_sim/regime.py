@@ -15,6 +15,8 @@ the field, its value and the limit (:func:`check_regimes`). What each limit prot
 - the contact's thickness: the distance a pad falls in one step under its load, (N_pad / m) dt^2, must stay below
   the track's segment radius, so a pad that leaves a rough track for one step never lands past the segment's
   centre line (pymunk pushes overlaps beyond its slop back out, from whichever side is nearer);
+- a normal vibration (``engine_sim.vibration``): its peak speed A omega over one step below the segment radius,
+  and its amplitude below the normal spring's travel LN - F_s / k_normal;
 - the time step: omega dt < ``SPRING_OMEGA_DT`` and c dt / m < ``SPRING_DAMPING_X`` for every spring, the block's
   modes on its mounts and the drive spring included;
 
@@ -106,6 +108,8 @@ def limits(sc) -> list:
     """Every regime limit of a scenario, the parts' own first (:class:`Limit` each)."""
     out = list(sc.arrangement_part.limits())
     out += sc.drive_part.limits()
+    if sc.vibration_part is not None:
+        out += sc.vibration_part.limits()
     return out
 
 

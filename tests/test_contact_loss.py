@@ -30,7 +30,9 @@ def test_a_scene_that_drops_its_load_stops_with_a_partial_trace():
     n_lost = ContactWatch(1e-3).limit + 1
     assert len(tr.t) < 1001  # stopped before the 1 s asked
     assert (nc[-n_lost:] == 0).all()  # the last 0.101 s without a contact
-    assert (nc[1:100] > 0).all()  # and the block stood on its asperities before the shaker lifted it
+    # and the block stood on its asperities until the shaker's upward acceleration passed g:
+    # A omega^2 sin(omega t) = g at t = asin(1/3) / omega = 8.9 ms (3 g peak at 6.1 Hz)
+    assert (nc[1:8] > 0).all()
     t_lost = float(meta["stop_reason"].split("from t = ")[1].split(" s")[0])
     assert np.isclose(t_lost, tr.t[-n_lost], atol=1e-3)
 

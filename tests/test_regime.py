@@ -130,3 +130,34 @@ def test_time_step_against_the_sole_block_on_its_feet():
     with pytest.raises(ScenarioError, match=f"run.dt = 0.0001 s exceeds the limit {lim:.4g} s: the block on its 30 "
                                             "normal foot springs"):
         scenario_from_dict(d)
+
+
+def _vibrated(**vib):
+    return _with("pads_friction_patches", vibration={"target": "substrate", "direction": "normal", **vib})
+
+
+def test_a_normal_vibration_faster_than_the_segment_radius_per_step_is_refused():
+    """The trial's 2 m at 1 Hz: A omega dt = 1.26 mm per step of 1e-4 s against a segment radius of 50 um (pymunk
+    crosses a segment past about 1.2-1.5 radii per step); the limit is A = r / (omega dt) exactly."""
+    with pytest.raises(ScenarioError) as e:
+        scenario_from_dict(_vibrated(amplitude=2.0, frequency=1.0), where="v.toml")
+    msg = str(e.value)
+    lim = 50e-6 / (2 * math.pi * 1.0 * 1e-4)
+    assert "\n" not in msg and msg.startswith(f"v.toml: vibration.amplitude = 2 m exceeds the limit {lim:.4g} m")
+    assert msg.endswith("s)") and "lower vibration.amplitude below" in msg
+    scenario_from_dict(_vibrated(amplitude=0.99 * lim, frequency=1.0))  # just inside: accepted
+
+
+def test_a_normal_vibration_beyond_the_pads_spring_travel_is_refused():
+    """At 0.01 Hz the speed allows 8 m; the normal spring's travel, LN less its pre-compression, does not."""
+    sc = load_scenario("pads_friction_patches")
+    travel = LN * 1e-3 - (sc.normal_load_per_pad - sc.pads.mass * G) / sc.pads.k_normal
+    with pytest.raises(ScenarioError, match=f"exceeds the limit {travel:.4g} m: a normal excursion"):
+        scenario_from_dict(_vibrated(amplitude=1.01 * travel, frequency=0.01))
+    scenario_from_dict(_vibrated(amplitude=0.99 * travel, frequency=0.01))
+
+
+def test_a_parallel_vibration_sets_no_such_limit():
+    d = _with("pads_friction_patches", vibration={"target": "substrate", "direction": "parallel", "amplitude": 2.0,
+                                                  "frequency": 1.0})
+    assert not [lim for lim in limits(scenario_from_dict(d)) if lim.field.startswith("vibration")]
