@@ -49,7 +49,8 @@ PARTIAL_LOSS_FRACTION = 0.1
 @dataclass(frozen=True)
 class Limit:
     """One regime limit: ``field`` (the scenario field it bounds, e.g. ``"block.M"``), its ``value`` and the
-    ``limit`` (SI, in ``unit``), ``upper`` (True: value <= limit) and ``why`` (what breaks beyond, one clause)."""
+    ``limit`` (SI, in ``unit``), ``upper`` (True: value <= limit), ``why`` (what breaks beyond, one clause) and
+    ``fix`` (other changes that would bring the scene inside, beside moving the field past its limit)."""
 
     field: str
     value: float
@@ -57,6 +58,7 @@ class Limit:
     unit: str
     why: str
     upper: bool = True
+    fix: str = ""  # other changes that bring the scene inside, after the field's own ("or raise pads.k0 above ...")
 
     @property
     def ok(self) -> bool:
@@ -65,7 +67,9 @@ class Limit:
     def message(self) -> str:
         word = "exceeds the limit" if self.upper else "is below the limit"
         u = f" {self.unit}" if self.unit else ""
-        return f"{self.field} = {self.value:.4g}{u} {word} {self.limit:.4g}{u}: {self.why}"
+        move = f"{'lower' if self.upper else 'raise'} {self.field} {'below' if self.upper else 'above'} {self.limit:.4g}{u}"
+        return (f"{self.field} = {self.value:.4g}{u} {word} {self.limit:.4g}{u}: {self.why} "
+                f"({move}{' or ' + self.fix if self.fix else ''})")
 
 
 def mass_limit(sc, load_limit: float) -> float:
@@ -100,8 +104,8 @@ def dt_limit(field: str, sc, omega: float = 0.0, damping_rate: float = 0.0, what
     lims = [SPRING_OMEGA_DT / omega] if omega > 0 else []
     lims += [SPRING_DAMPING_X / damping_rate] if damping_rate > 0 else []
     lim = min(lims) if lims else math.inf
-    return Limit(field, sc.run.dt, lim, "s", f"{what} (omega dt < {SPRING_OMEGA_DT}, c dt / m < {SPRING_DAMPING_X} "
-                                            "for pymunk's explicit springs)")
+    return Limit(field, sc.run.dt, lim, "s", f"{what}: omega dt < {SPRING_OMEGA_DT} and c dt / m < "
+                                            f"{SPRING_DAMPING_X} for pymunk's explicit springs")
 
 
 def limits(sc) -> list:

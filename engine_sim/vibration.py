@@ -122,12 +122,11 @@ class Vibration:
             Limit("vibration.amplitude", s.amplitude, rs / (w * dt), "m",
                   f"its peak normal speed A omega = {s.amplitude * w:.4g} m/s moves a pad {s.amplitude * w * dt * 1e6:.3g} "
                   f"um per step of run.dt = {dt:.3g} s, beyond the track's segment radius {rs * 1e6:.3g} um, where "
-                  f"pymunk lets a pad pass through the segment (lower vibration.amplitude below "
-                  f"{rs / (w * dt):.4g} m, or run.dt below {rs / (s.amplitude * w):.3g} s)"),
+                  "pymunk lets a pad pass through the segment",
+                  fix=f"lower run.dt below {rs / (s.amplitude * w):.3g} s"),
             Limit("vibration.amplitude", s.amplitude, travel, "m",
                   f"a normal excursion of A beyond the pads' normal spring travel {travel * 1e3:.4g} mm (its length "
-                  f"{ln * 1e3:.3g} mm less its pre-compression) drives a pad through its spring's anchor (lower "
-                  f"vibration.amplitude below {travel:.4g} m)"),
+                  f"{ln * 1e3:.3g} mm less its pre-compression) drives a pad through its spring's anchor"),
         ]
 
     def describe(self) -> dict:

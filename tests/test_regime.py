@@ -161,3 +161,24 @@ def test_a_parallel_vibration_sets_no_such_limit():
     d = _with("pads_friction_patches", vibration={"target": "substrate", "direction": "parallel", "amplitude": 2.0,
                                                   "frequency": 1.0})
     assert not [lim for lim in limits(scenario_from_dict(d)) if lim.field.startswith("vibration")]
+
+
+@pytest.mark.parametrize("name", sorted(shipped_scenarios()))
+def test_every_limit_message_ends_with_what_would_bring_the_scene_inside(name):
+    for lim in limits(load_scenario(name)):
+        msg = lim.message()
+        move = f"({'lower' if lim.upper else 'raise'} {lim.field} {'below' if lim.upper else 'above'} {lim.limit:.4g}"
+        assert move in msg and msg.endswith(")") and "\n" not in msg, msg
+
+
+def test_the_remedies_of_the_overloaded_scene_bring_it_inside():
+    """At 1.1 of the limit the message offers both: M below the limit, or k0 above the value at which the pad's
+    lag at this load is LT. Each, applied (with 0.1 % to spare for the 4 digits printed), passes the limit."""
+    lim = _mass_limit(load_scenario("constant_velocity"))
+    with pytest.raises(ScenarioError) as e:
+        scenario_from_dict(_with("constant_velocity", block={"M": 1.1 * lim}))
+    msg = str(e.value)
+    k_need = float(msg.split("raise pads.k0 above ")[1].split(" N/m")[0])
+    m_need = float(msg.split("lower block.M below ")[1].split(" kg")[0])
+    scenario_from_dict(_with("constant_velocity", block={"M": 1.1 * lim}, pads={"k0": 1.001 * k_need}))
+    scenario_from_dict(_with("constant_velocity", block={"M": 0.999 * m_need}))

@@ -256,8 +256,8 @@ class Arrangement(SideMixin):
         lt, ln = LT / U.LENGTH, LN / U.LENGTH  # m
         out = []
 
-        def by_mass(L_max, why):
-            return Limit("block.M", M, mass_limit(sc, L_max), "kg", why)
+        def by_mass(L_max, why, fix=""):
+            return Limit("block.M", M, mass_limit(sc, L_max), "kg", why, fix=fix)
 
         # The pad lags x behind its normal spring's anchor, so the pre-compressed normal spring (force F_s, length
         # LN) tilts by x / LN and pushes the pad backwards with F_s x / LN: k0 x = f + F_s x / LN, and the lag is
@@ -285,29 +285,29 @@ class Arrangement(SideMixin):
 
         x = lag(L)
         L_lag = load_limit(lag, lt)
-        M_lag = mass_limit(sc, L_lag)
         k_need = friction(L) / lt + spring_push(L)
-        out.append(by_mass(L_lag, f"a pad column's largest friction {friction(L):.4g} N (the stickiest patch at the start's "
-                                  f"lurch, {lurch(L) * 1e3:.3g} mm/s), against its "
-                                  f"tangential spring k0 = {p.k0:.4g} N/m less the tilted normal spring's push "
-                                  f"{spring_push(L):.4g} N/m, lags the pad {x * 1e3:.3g} mm; beyond the spring's "
-                                  f"length {lt * 1e3:.3g} mm the pad passes its anchor (lower block.M below "
-                                  f"{M_lag:.4g} kg or raise pads.k0 above {k_need:.4g} N/m)"))
+        out.append(by_mass(L_lag, f"a pad column's largest friction {friction(L):.4g} N (the stickiest patch at the "
+                                  f"start's lurch, {lurch(L) * 1e3:.3g} mm/s), against its tangential spring k0 = "
+                                  f"{p.k0:.4g} N/m less the tilted normal spring's push {spring_push(L):.4g} N/m, lags "
+                                  f"the pad {x * 1e3:.3g} mm; beyond the spring's length {lt * 1e3:.3g} mm the pad "
+                                  "passes its anchor", f"raise pads.k0 above {k_need:.4g} N/m"))
         if self.preloaded:
             F_s = L - col_w
             out.append(by_mass(ln * p.k_normal + col_w, f"the normal spring's pre-compression {F_s / p.k_normal * 1e3:.3g} "
-                                                       f"mm (load / k_normal) must stay below its length {ln * 1e3:.3g} mm"))
+                                                       f"mm (load / k_normal) must stay below its length {ln * 1e3:.3g} mm",
+                               f"raise pads.k_normal above {F_s / ln:.4g} N/m"))
             out.append(by_mass(SOFTENING * p.k0 * ln + col_w,
                                f"the pre-compressed normal spring (force {F_s:.4g} N, length {ln * 1e3:.3g} mm) softens "
                                f"the pad's tangential stiffness by F_s / LN = {F_s / ln:.4g} N/m, more than "
-                               f"{SOFTENING:g} k0"))
+                               f"{SOFTENING:g} k0", f"raise pads.k0 above {F_s / ln / SOFTENING:.4g} N/m"))
             depth = sc.substrate_part.pad_depth(HANG_FRACTION, p.radius)
             if depth > 0:
                 N_pad = self.contact_load(L)
                 out.append(Limit("pads.k_normal", p.k_normal, N_pad / depth, "N/m",
                                  f"a pad's load {N_pad:.4g} N / k_normal = {N_pad / p.k_normal * 1e6:.3g} um must "
                                  f"cover the depth it follows below the track's datum, {depth * 1e6:.3g} um on "
-                                 f"{100 * (1 - HANG_FRACTION):g} % of its path, or it hangs over the valleys"))
+                                 f"{100 * (1 - HANG_FRACTION):g} % of its path, or it hangs over the valleys",
+                                 fix="raise block.M"))
         if sc.substrate_part.pad_depth(HANG_FRACTION, p.radius) > 0:
             dt = sc.run.dt / _substeps(sc)
             rs = sc.substrate.segment_radius
@@ -315,7 +315,8 @@ class Arrangement(SideMixin):
             out.append(by_mass(load_limit(self.contact_load, rs * p.mass / dt**2),
                                f"a pad falls (N_pad / m) dt^2 = {N_pad / p.mass * dt * dt * 1e6:.3g} um in one step "
                                f"under its load; beyond the segment radius {rs * 1e6:.3g} um a pad leaving a rough "
-                               "track for a step lands past the segment's centre line"))
+                               "track for a step lands past the segment's centre line",
+                               f"lower run.dt below {math.sqrt(rs * p.mass / N_pad):.3g} s"))
         out.append(dt_limit("run.dt", sc, math.sqrt(p.N * p.k0 / M), p.N * p.c0 / M,
                             f"the block on its {p.N} tangential pad springs"))
         return out
