@@ -100,7 +100,7 @@ class SideMixin:
     def side(self, scene, lay, q_pad) -> dict:
         """Shapes of the side view (display mm): substrate pieces, their surface (coloured by friction where it
         varies), the pads (true contact arcs, schematic bodies), their springs and the block."""
-        from ..side_view import cap_outline, zigzag
+        from ..side_view import body_outline, cap_outline, zigzag
 
         bx = scene.block.position.x
         R = self.spec.radius * U.LENGTH
@@ -125,12 +125,12 @@ class SideMixin:
             arc = cap_outline(px, py, R, hc)
             arc[:, 1] = lay.y(arc[:, 1])
             y_top = arc[-1, 1] + lay.body
-            pucks.append(np.vstack([arc, [(arc[-1, 0], y_top), (arc[0, 0], y_top)]]))
+            pucks.append(body_outline(px, px, py, R, lay.E, y_top))  # its true shape, heights exaggerated
             normal.append(zigzag((px, y_top), (px, lay.block_bottom), coils=5, width=0.05 * lay.pad_win))
             post_x = x0 - 0.42 * lay.pad_win
             y_mid = arc[-1, 1] + 0.5 * lay.body
             posts.append(np.array([(post_x, lay.block_bottom), (post_x, y_mid)]))
-            tangential.append(zigzag((post_x, y_mid), (arc[0, 0], y_mid), coils=4, width=0.025 * lay.pad_win))
+            tangential.append(zigzag((post_x, y_mid), (px - R, y_mid), coils=4, width=0.025 * lay.pad_win))
         shapes = {
             "substrate": ("polys", fills, {"facecolors": "0.82", "edgecolors": "none", "zorder": 1,
                                            "label": "substrate (each pad's own track)"}),
@@ -142,7 +142,8 @@ class SideMixin:
             "normal": ("segments", normal, {"colors": "tab:purple", "linewidths": 1.0, "zorder": 3,
                                             "label": f"normal spring k_normal = {self.spec.k_normal:.4g} N/m"}),
             "pads": ("polys", pucks, {"facecolors": "tab:orange", "edgecolors": "k", "linewidths": 0.8, "zorder": 4,
-                                      "label": f"pad (radius {self.spec.radius * 1e3:.3g} mm)"}),
+                                      "label": f"pad radius {self.spec.radius * 1e3:.3g} mm (true shape, heights "
+                                               f"x{lay.E})"}),
         }
         shapes["block"] = ("rect", ((-lay.width / 2 + 0.05 * lay.slot, lay.block_bottom), lay.width - 0.1 * lay.slot,
                                     lay.block), {"facecolor": "tab:blue", "alpha": 0.45, "edgecolor": "tab:blue",
