@@ -15,6 +15,8 @@ the field, its value and the limit (:func:`check_regimes`). What each limit prot
 - the contact's thickness: the distance a pad falls in one step under its load, (N_pad / m) dt^2, must stay below
   the track's segment radius, so a pad that leaves a rough track for one step never lands past the segment's
   centre line (pymunk pushes overlaps beyond its slop back out, from whichever side is nearer);
+- a normal vibration (``engine_sim.vibration``): its peak speed A omega over one step below the segment radius,
+  and its amplitude below the normal spring's travel LN - F_s / k_normal;
 - the time step: omega dt < ``SPRING_OMEGA_DT`` and c dt / m < ``SPRING_DAMPING_X`` for every spring, the block's
   modes on its mounts and the drive spring included;
 
@@ -34,18 +36,21 @@ from frictionnoise.base import G
 
 from .arrangements import SPRING_DAMPING_X, SPRING_OMEGA_DT
 
-__all__ = ["Limit", "limits", "check_regimes", "mass_limit", "SOFTENING", "HANG_FRACTION", "LOST_CONTACT_S"]
+__all__ = ["Limit", "limits", "check_regimes", "mass_limit", "SOFTENING", "HANG_FRACTION", "LOST_CONTACT_S", "PARTIAL_LOSS_FRACTION"]
 
 SOFTENING = 0.1  # the normal spring's geometric softening F_s / LN may change the pad's tangential stiffness by 10 %
 HANG_FRACTION = 0.01  # a pad may hang over at most 1 % of its track's length
 # a run whose pads all leave their tracks for longer than this stops (engine_sim.run), its trace marked partial
 LOST_CONTACT_S = 0.1
+# a run with at least this fraction of its pads off their tracks (others on theirs) for LOST_CONTACT_S warns
+PARTIAL_LOSS_FRACTION = 0.1
 
 
 @dataclass(frozen=True)
 class Limit:
     """One regime limit: ``field`` (the scenario field it bounds, e.g. ``"block.M"``), its ``value`` and the
-    ``limit`` (SI, in ``unit``), ``upper`` (True: value <= limit) and ``why`` (what breaks beyond, one clause)."""
+    ``limit`` (SI, in ``unit``), ``upper`` (True: value <= limit), ``why`` (what breaks beyond, one clause) and
+    ``fix`` (other changes that would bring the scene inside, beside moving the field past its limit)."""
 
     field: str
     value: float
@@ -53,6 +58,7 @@ class Limit:
     unit: str
     why: str
     upper: bool = True
+    fix: str = ""  # other changes that bring the scene inside, after the field's own ("or raise pads.k0 above ...")
 
     @property
     def ok(self) -> bool:
@@ -61,7 +67,9 @@ class Limit:
     def message(self) -> str:
         word = "exceeds the limit" if self.upper else "is below the limit"
         u = f" {self.unit}" if self.unit else ""
-        return f"{self.field} = {self.value:.4g}{u} {word} {self.limit:.4g}{u}: {self.why}"
+        move = f"{'lower' if self.upper else 'raise'} {self.field} {'below' if self.upper else 'above'} {self.limit:.4g}{u}"
+        return (f"{self.field} = {self.value:.4g}{u} {word} {self.limit:.4g}{u}: {self.why} "
+                f"({move}{' or ' + self.fix if self.fix else ''})")
 
 
 def mass_limit(sc, load_limit: float) -> float:
@@ -96,14 +104,16 @@ def dt_limit(field: str, sc, omega: float = 0.0, damping_rate: float = 0.0, what
     lims = [SPRING_OMEGA_DT / omega] if omega > 0 else []
     lims += [SPRING_DAMPING_X / damping_rate] if damping_rate > 0 else []
     lim = min(lims) if lims else math.inf
-    return Limit(field, sc.run.dt, lim, "s", f"{what} (omega dt < {SPRING_OMEGA_DT}, c dt / m < {SPRING_DAMPING_X} "
-                                            "for pymunk's explicit springs)")
+    return Limit(field, sc.run.dt, lim, "s", f"{what}: omega dt < {SPRING_OMEGA_DT} and c dt / m < "
+                                            f"{SPRING_DAMPING_X} for pymunk's explicit springs")
 
 
 def limits(sc) -> list:
     """Every regime limit of a scenario, the parts' own first (:class:`Limit` each)."""
     out = list(sc.arrangement_part.limits())
     out += sc.drive_part.limits()
+    if sc.vibration_part is not None:
+        out += sc.vibration_part.limits()
     return out
 
 

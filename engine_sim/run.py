@@ -1,6 +1,7 @@
 """engine_sim.run: simulate a scenario and record it (SI trace)."""
 from __future__ import annotations
 
+import math
 import os
 import signal
 import threading
@@ -14,7 +15,8 @@ from .checkpoint import Checkpoint, CheckpointError, round_trip
 from .epoch import default_epoch
 from .loop import MAINTAIN_EVERY, Loop, warm_up
 from .record import EngineTrace, Recorder
-from .regime import LOST_CONTACT_S
+from .regime import LOST_CONTACT_S, PARTIAL_LOSS_FRACTION
+from .sample_layout import F_N
 from .scenario import Scenario, load_scenario
 from .scene import Scene, describe
 
@@ -108,14 +110,16 @@ def _record(scene, rec, k: int, n_out: int, e_out: int, interrupts, checkpoint, 
     # every maintenance: a log's progress lines need fresh figures
     loop = Loop(scene, rec, n_out, k, on_maintain=report)
     round_trip_s = 0.0
-    watch = ContactWatch(scene.sc.run.dt_out)
+    watch = ContactWatch(scene.sc.run.dt_out, scene.sc.pads.N)
     try:
         while loop.k < n_out:
             interrupts.check()  # the one place a signal takes effect: here loop.k == rec.k
             loop.step()
             k = loop.k
-            if watch.lost(loop.recorder.n_contact[loop.recorder.k - 1]):
-                return loop.scene, loop.recorder, "contact_lost", round_trip_s
+            r = loop.recorder
+            stop = watch.see(r.n_contact[r.k - 1], r.out[r.k - 1, F_N], r.k - 1)
+            if stop is not None:
+                return loop.scene, loop.recorder, stop, round_trip_s, watch
             # an epoch: continue from the restored copy, as a resumed run will (not before the last sample, which no
             # step follows: that round trip would be wasted, and it would wake every sleeping grain the last sample
             # reads)
@@ -127,22 +131,60 @@ def _record(scene, rec, k: int, n_out: int, e_out: int, interrupts, checkpoint, 
         if loop.recorder.k == 0:
             raise  # nothing recorded yet
         checkpoint.on_interrupt()
-        return loop.scene, loop.recorder, "interrupt", round_trip_s
-    return loop.scene, loop.recorder, None, round_trip_s
+        return loop.scene, loop.recorder, "interrupt", round_trip_s, watch
+    return loop.scene, loop.recorder, None, round_trip_s, watch
 
 
 class ContactWatch:
-    """Counts the recorded samples with no pad on its track: more than :data:`engine_sim.regime.LOST_CONTACT_S`
-    of them in a row and the run has lost its load (the block lifted off, or every pad thrown off its track):
-    the run stops there, its trace marked partial (``metadata["stopped_by"] = "contact_lost"``)."""
+    """Watches the recorded samples for a scene that has left its regime, over runs of more than
+    :data:`engine_sim.regime.LOST_CONTACT_S` of recorded samples in a row:
 
-    def __init__(self, dt_out: float):
+    - no pad on its track: the run has lost its load (the block lifted off, or every pad thrown off its track); it
+      stops, ``"contact_lost"``;
+    - the summed normal force F_n below zero: the pads are pushed through their tracks (pymunk resolves an overlap
+      beyond its slop from whichever side is nearer); it stops, ``"pushed_through"``;
+    - at least :data:`engine_sim.regime.PARTIAL_LOSS_FRACTION` of the pads off their tracks while others keep
+      theirs: the load rests on fewer pads than the scene has; the run goes on and :attr:`warnings` says when
+      (once).
+
+    :meth:`see` takes each sample and returns the stop, or None; :attr:`start` holds the first sample of the run
+    that stopped it."""
+
+    def __init__(self, dt_out: float, n_pads: int = 0):
+        self.dt_out = dt_out
         self.limit = max(1, int(round(LOST_CONTACT_S / dt_out)))
-        self.run = 0
+        self.n_pads = n_pads
+        self.partial_at = max(1, math.ceil(PARTIAL_LOSS_FRACTION * n_pads))
+        self.runs = {"contact_lost": 0, "pushed_through": 0, "partial": 0}
+        self.start = {}
+        self.warnings = []
+
+    def _count(self, key, hit: bool, k: int) -> bool:
+        if hit:
+            if self.runs[key] == 0:
+                self.start[key] = k
+            self.runs[key] += 1
+        else:
+            self.runs[key] = 0
+        return self.runs[key] > self.limit
 
     def lost(self, n_contact) -> bool:
-        self.run = self.run + 1 if n_contact == 0 else 0
-        return self.run > self.limit
+        """Whether no pad has touched its track for longer than the limit (one sample at a time)."""
+        return self.see(n_contact, 1.0, 0) == "contact_lost"
+
+    def see(self, n_contact, F_n, k: int):
+        """Take sample ``k`` (its contact count and summed normal force, any unit); return the stop or None."""
+        n_off = self.n_pads - int(n_contact)
+        if self._count("contact_lost", n_contact == 0, k):
+            return "contact_lost"
+        if self._count("pushed_through", F_n < 0, k):
+            return "pushed_through"
+        if self._count("partial", 0 < n_contact and n_off >= self.partial_at, k) and not self.warnings:
+            t0 = self.start["partial"] * self.dt_out
+            self.warnings.append(f"{n_off} of {self.n_pads} pads lost contact with their tracks for longer than "
+                                 f"{LOST_CONTACT_S:g} s from t = {t0:.3f} s (recorded time) while the others kept "
+                                 "theirs: the load rested on fewer pads than the scene has")
+        return None
 
 
 def run(scenario, duration: float | None = None, seed: int | None = None, progress=None, *,
@@ -165,7 +207,10 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     ``metadata["partial"] = True`` (``metadata["stopped_by"] = "interrupt"``). A run whose pads all leave their
     tracks for longer than :data:`engine_sim.regime.LOST_CONTACT_S` (0.1 s) of recorded time stops there and
     returns the trace so far, marked partial, ``metadata["stopped_by"] = "contact_lost"`` and
-    ``metadata["stop_reason"]`` saying when.
+    ``metadata["stop_reason"]`` saying why, from when and the time it stopped (recorded time); one whose summed
+    normal force stays negative as long (pads pushed through their tracks) likewise, ``"pushed_through"``. A run
+    with a tenth of its pads or more off their tracks as long, while others keep theirs, goes on and says so in
+    ``metadata["warnings"]`` (:class:`ContactWatch`).
 
     Parameters
     ----------
@@ -214,7 +259,7 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
         if on_plan is not None:
             on_plan(e_out * dt_out, ckpt.every * dt_out if ckpt.every else None)
         report = None if progress is None else (lambda k: progress((n_warm + k) * dt_out, total))
-        scene, rec, stop, round_trip_s = _record(scene, rec, k0, n_out, e_out, intr, ckpt, report)
+        scene, rec, stop, round_trip_s, watch = _record(scene, rec, k0, n_out, e_out, intr, ckpt, report)
     partial = stop is not None
     wall = time.perf_counter() - t0
     if progress is not None and not partial:
@@ -229,16 +274,21 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
         "epoch_s": e_out * dt_out, "epoch_given": epoch is not None, "round_trips_s": round_trip_s,
         "checkpoint_every_s": ckpt.every * dt_out if ckpt.every else None,
     }
-    if stop == "contact_lost":
-        t_lost = rec.t[rec.k - 1 - ContactWatch(dt_out).limit] - rec.t[0]
-        meta["stopped_by"] = "contact_lost"
-        meta["stop_reason"] = (f"contact lost: no pad touched its track from t = {t_lost:.3f} s for longer than "
-                               f"{LOST_CONTACT_S:g} s (the block lifted off, or its pads thrown off their tracks); "
-                               "the run stopped")
+    if stop in ("contact_lost", "pushed_through"):
+        t_from = rec.t[watch.start[stop]] - rec.t[0]
+        t_stop = rec.t[rec.k - 1] - rec.t[0]
+        what = ("contact lost: no pad touched its track" if stop == "contact_lost" else
+                "pads pushed through their tracks: the summed normal force F_n stayed negative")
+        cause = ("the block lifted off, or its pads thrown off their tracks" if stop == "contact_lost" else
+                 "the load or a vibration drove the pads through the track segments")
+        meta["stopped_by"] = stop
+        meta["stop_reason"] = (f"{what} from t = {t_from:.3f} s for longer than {LOST_CONTACT_S:g} s ({cause}); the "
+                               f"run stopped at t = {t_stop:.3f} s (recorded time, after the warm-up)")
     elif partial:
         meta["stopped_by"] = "interrupt"
         meta["interrupted_by"] = signal.Signals(intr.signum).name if intr.signum else "KeyboardInterrupt"
         meta["checkpoint_at_s"] = ckpt.saved_k * dt_out if (ckpt.path is not None and ckpt.saved_k) else None
+    meta["warnings"] = list(watch.warnings)
     meta.update(scene.wear.run_metadata())
     meta.update(scene.substrate.provenance())
     return rec.trace(meta)

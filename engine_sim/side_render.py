@@ -86,6 +86,7 @@ class SideRenderer:
                      f"{s.arrangement.side_note(lay)}", loc="left", fontsize=9)
         self._key()
         h = self.fig.get_figheight()
+        self._colourbar(h)
         self.fig.subplots_adjust(left=0.01, right=0.99, top=1 - 0.62 / h, bottom=0.62 / h)
         self.fig.canvas.draw()
         return np.asarray(self.fig.canvas.buffer_rgba())
@@ -104,6 +105,17 @@ class SideRenderer:
         ax.text(xb + 0.01 * lay.width, y + h / 2, f"{um:g} um" + (f" (drawn x{lay.E})" if lay.E > 1 else ""),
                 ha="left", va="center", fontsize=8)
 
+    def _colourbar(self, h: float):
+        """The friction coefficient's colour scale, labelled, at the frame's upper right (once per renderer): the
+        band under each track's surface takes its colour from it."""
+        if not self.coloured or getattr(self, "cbar", None) is not None:
+            return
+        cax = self.fig.add_axes((0.70, 1 - 0.36 / h, 0.28, 0.1 / h))
+        sm = matplotlib.cm.ScalarMappable(norm=self.norm, cmap="viridis")
+        self.cbar = self.fig.colorbar(sm, cax=cax, orientation="horizontal")
+        self.cbar.ax.tick_params(labelsize=7, length=2, pad=1)
+        self.cbar.ax.set_title("friction coefficient of the track (band under its surface)", fontsize=8, pad=2)
+
     def _key(self):
         handles, labels = [], []
         for kind, _, style in self.shapes.values():
@@ -119,9 +131,6 @@ class SideRenderer:
             labels.append(lab)
         handles.append(Line2D([], [], color="k", lw=1))
         labels.append("surface the pads touch")
-        if self.coloured:
-            handles.append(Patch(facecolor=matplotlib.cm.viridis(0.6)))
-            labels.append(f"patch friction {self.norm.vmin:.2g}-{self.norm.vmax:.2g} (colour)")
         for label, colour in self.scene.wear.key():
             handles.append(Line2D([], [], ls="", marker="o", ms=7, mfc=colour, mec="none"))
             labels.append(label)

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = ["SideLayout", "zigzag", "capsule_envelope", "circle_envelope", "nice_exaggeration", "cap_outline",
-           "capsule_outline"]
+           "capsule_outline", "body_outline"]
 
 _NICE = (1, 2, 5, 10, 20, 50, 100, 200, 500, 1000)
 
@@ -109,6 +109,25 @@ def capsule_outline(ax: float, bx: float, y: float, r: float, h: float, n: int =
     pl = np.column_stack([ax + r * np.cos(left), y + r * np.sin(left)])
     pr = np.column_stack([bx + r * np.cos(right), y + r * np.sin(right)])
     return np.concatenate([pl, pr])
+
+
+def body_outline(ax: float, bx: float, y: float, r: float, E: float, y_top: float, n: int = 41) -> np.ndarray:
+    """A pad's (``ax == bx``: a circle) or a foot's (a horizontal capsule, axis ax -> bx) outline in display mm, its
+    true shape (axis at true height ``y``, radius ``r``, mm) with heights times ``E`` up to the display height
+    ``y_top``, closed by a flat top there: the affine image of the body (every contact stays a contact) and its
+    true width wherever the image reaches its equator; above the equator, vertical sides at the true width."""
+    phi = np.linspace(math.pi, 2 * math.pi, n)  # the lower half, left to right
+    x = np.where(phi < 1.5 * math.pi, ax, bx) + r * np.cos(phi)
+    yd = E * (y + r * np.sin(phi))
+    keep = yd <= y_top
+    x, yd = x[keep], yd[keep]
+    if E * y <= y_top:  # the equator below the top: the sides rise vertically from it at the true width
+        left = [(ax - r, y_top), (ax - r, E * y)]
+        right = [(bx + r, E * y), (bx + r, y_top)]
+    else:  # cut where the true outline reaches the top's true height
+        half = math.sqrt(max(r * r - (y_top / E - y) ** 2, 0.0))
+        left, right = [(ax - half, y_top)], [(bx + half, y_top)]
+    return np.vstack([left, np.column_stack([x, yd]), right])
 
 
 @dataclass

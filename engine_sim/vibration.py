@@ -37,6 +37,8 @@ from typing import ClassVar
 import numpy as np
 import pymunk
 
+from frictionnoise.base import G
+
 from . import units as U
 
 __all__ = ["VibrationSpec", "Vibration", "MIN_STEPS_PER_PERIOD", "VIB_COLS", "ANCHOR_MASS"]
@@ -93,6 +95,39 @@ class Vibration:
         if spec.amplitude > 0 and spec.target == "block" and spec.direction == "normal" and sc.arrangement_part.guided:
             raise ValueError("vibration.direction = 'normal' with target 'block' needs a block free vertically; the "
                              f"arrangement {sc.pads.arrangement!r} guides it (its guide would take the force)")
+
+    def limits(self) -> list:
+        """A normal vibration's regime limits (:class:`engine_sim.regime.Limit`), none for a parallel one:
+
+        - its peak relative normal speed A omega, over one step, against the track's segment radius: pymunk has no
+          continuous collision detection, and a pad that approaches a segment faster than about 1.2-1.5 segment radii
+          per step passes through it; the limit keeps A omega dt below one radius;
+        - its amplitude against the pads' normal spring travel: the shaken part may move by A relative to the part
+          that does not follow it, opening or closing each normal spring by up to A; beyond its length less its
+          pre-compression, LN - F_s / k_normal, the spring passes through its own anchor."""
+        from .arrangements import LN
+        from .regime import Limit
+
+        s, sc = self.spec, self.sc
+        if not self.active or s.direction != "normal":
+            return []
+        w = 2 * math.pi * s.frequency
+        rs = sc.substrate.segment_radius
+        dt = sc.run.dt
+        ln = LN / U.LENGTH
+        p = sc.pads
+        F_s = max(sc.normal_load_per_pad - p.mass * G, 0.0) if sc.arrangement_part.preloaded else 0.0
+        travel = ln - F_s / p.k_normal
+        return [
+            Limit("vibration.amplitude", s.amplitude, rs / (w * dt), "m",
+                  f"its peak normal speed A omega = {s.amplitude * w:.4g} m/s moves a pad {s.amplitude * w * dt * 1e6:.3g} "
+                  f"um per step of run.dt = {dt:.3g} s, beyond the track's segment radius {rs * 1e6:.3g} um, where "
+                  "pymunk lets a pad pass through the segment",
+                  fix=f"lower run.dt below {rs / (s.amplitude * w):.3g} s"),
+            Limit("vibration.amplitude", s.amplitude, travel, "m",
+                  f"a normal excursion of A beyond the pads' normal spring travel {travel * 1e3:.4g} mm (its length "
+                  f"{ln * 1e3:.3g} mm less its pre-compression) drives a pad through its spring's anchor"),
+        ]
 
     def describe(self) -> dict:
         """``metadata["scene"]["vibration"]``: the spec (SI) and the velocity amplitude A omega (m/s)."""
@@ -242,9 +277,16 @@ class Vibration:
             "vib_dial": ("line", (cx + r * np.cos(th), cy + ry * np.sin(th)), {"color": "tab:purple", "lw": 1.0}),
             "vib_hand": ("segments", [((cx, cy), (cx + r * math.sin(ph), cy + ry * math.cos(ph)))],
                          {"colors": "tab:purple", "linewidths": 2.0, "label": f"{what} vibration phase"}),
-            "vib_caption": ("caption", f"{what} {s.direction} {s.amplitude * 1e6:.3g} um at {s.frequency:.4g} Hz: "
-                                       f"s = {self._s(scene.steps) * 1e3:+.1f} um", {}),
+            "vib_caption": ("caption", f"{what} {s.direction} {_length(s.amplitude)} at {s.frequency:.4g} Hz: "
+                                       f"s = {_length(self._s(scene.steps) / U.LENGTH, s.amplitude, '+')}", {}),
         }
+
+
+def _length(x: float, scale: float | None = None, sign: str = "") -> str:
+    """``x`` (m) in the unit of ``scale`` (m; default ``x``): um below 1 mm, mm below 1 m, else m."""
+    a = abs(x if scale is None else scale)
+    value, unit = (x * 1e6, "um") if a < 1e-3 else (x * 1e3, "mm") if a < 1.0 else (x, "m")
+    return f"{value:{sign}.4g} {unit}"
 
 
 def _ride_the_field(space, anchor):

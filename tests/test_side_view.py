@@ -120,3 +120,38 @@ def test_zigzag_runs_from_end_to_end():
     z = zigzag((0.0, 0.0), (0.0, 2.0), coils=5, width=0.1)
     assert np.allclose(z[0], (0, 0)) and np.allclose(z[-1], (0, 2)) and len(z) == 2 * 5 + 4
     assert np.allclose(np.abs(z[2:-2, 0]), 0.1)
+
+
+@pytest.mark.parametrize("name", ["pads_friction_patches", "pads_with_wear", "pads_rough_profile", "asperity_field"])
+def test_pads_and_feet_are_drawn_in_their_true_shape_with_heights_exaggerated(name):
+    """Only heights are exaggerated: a body drawn h display mm tall (flat top) is as wide as the true body at the
+    true height h / E above its lowest point, 2 sqrt(R^2 - (R - h/E)^2) plus the foot's flat length, and as wide
+    as the true body (2R, or the foot's length) once h / E reaches R. Drawn as the exaggerated contact cap with
+    vertical sides, pads_with_wear's pads were 0.5 mm wide for 0.6 mm and asperity_field's feet 0.3 mm for 0.4."""
+    r, _ = _frame(name, outputs=20)
+    sc, E = r.scene.sc, r.layout.E
+    R = sc.pads.radius * 1e3  # mm
+    # a sole's foot: pymunk's segment (its axis a -> b, scene mm) thickened by R; a pad: a circle
+    shape = next(iter(r.scene.pads[0].shapes))
+    flat = abs(shape.b.x - shape.a.x) if r.scene.arrangement.name == "sole" else 0.0
+    assert f"heights x{E}" in r.shapes["pads"][2]["label"]
+    for body in r.shapes["pads"][1]:
+        h = min((body[:, 1].max() - body[:, 1].min()) / E, R)
+        want = flat + 2 * np.sqrt(R * R - (R - h) ** 2)
+        # the outline samples the arc at 41 points and cuts it exactly at the top: float arithmetic only
+        assert body[:, 0].max() - body[:, 0].min() == pytest.approx(want, rel=1e-9)
+    if E <= 2:  # these reach their equator: the full width
+        assert all(b[:, 0].max() - b[:, 0].min() == pytest.approx(flat + 2 * R) for b in r.shapes["pads"][1])
+
+
+def test_the_patch_friction_has_a_labelled_colour_scale():
+    r, _ = _frame("pads_friction_patches", outputs=5)
+    cbar = r.cbar
+    assert "friction coefficient" in cbar.ax.get_title()
+    lo, hi = r.scene.substrate.mu_range(r.scene.sc.friction.mu0)
+    assert cbar.mappable.norm.vmin == pytest.approx(lo) and cbar.mappable.norm.vmax == pytest.approx(hi, abs=1e-9)
+
+
+def test_a_scene_without_patches_draws_no_colour_scale():
+    r, _ = _frame("asperity_field", outputs=5)
+    assert getattr(r, "cbar", None) is None

@@ -358,3 +358,16 @@ def test_energy_balance_past_the_onset_closes_when_the_output_resolves_the_vibra
             assert abs(b["energy_balance_rel"]) < 1e-3, (k, b)
         else:  # stated, not bounded: the report says so (compare.report.studies._common.energy_text)
             assert np.isfinite(b["energy_balance_rel"]) and "stated, not bounded" in energy_text(b)
+
+
+def test_the_vibration_caption_states_its_displacement_in_the_amplitude_s_unit():
+    """A 2 m shake printed "s = +1175570.5 um": the displacement is given in the amplitude's own unit."""
+    from engine_sim.vibration import _length
+    assert _length(2.0) == "2 m" and _length(1.1755705, 2.0, "+") == "+1.176 m"
+    assert _length(2e-5) == "20 um" and _length(-1.3e-5, 2e-5, "+") == "-13 um" and _length(0.02) == "20 mm"
+    d = tomllib.loads(shipped_scenarios()["pads_friction_patches"].read_text())
+    d["vibration"] = {"target": "substrate", "direction": "parallel", "amplitude": 2e-4, "frequency": 10.0}
+    scene = Scene(scenario_from_dict(d), 0)
+    scene.advance(37)
+    caption = scene.vibration.draw(scene, 0.0, 1.0)["vib_caption"][1]
+    assert "200 um at 10 Hz: s = +" in caption and caption.endswith(" um")

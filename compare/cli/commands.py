@@ -303,9 +303,14 @@ def _run_into(args, sc, out, ck) -> int:
     out.mkdir(parents=True, exist_ok=True)
     path = save_trace(tr, out / "trace.npz")
     meta = tr.metadata
-    if meta["partial"]:  # interrupted, or stopped when the scene lost every contact (exit 1)
-        at, why = meta.get("checkpoint_at_s"), meta.get("stop_reason") or f"interrupted ({meta['interrupted_by']})"
-        print(f"frictionnoise: {why} at t = {tr.t[-1]:.3f} s: partial trace (marked partial) written to {path}"
+    for w in meta.get("warnings", ()):
+        print(f"frictionnoise: warning: {w}", file=sys.stderr)
+    if meta["partial"]:  # interrupted, or stopped when the scene left its regime (exit 1)
+        at = meta.get("checkpoint_at_s")
+        why = meta.get("stop_reason") or (f"interrupted ({meta['interrupted_by']}) at t = {tr.t[-1]:.3f} s of "
+                                          "recorded time (the progress line counts the warm-up too)")
+        print(f"frictionnoise: {why}: partial trace (marked partial) written to {path} and "
+              f"{path.with_suffix('.json')}"
               + (f"; rerun the same command to resume from t = {at:g} s" if at else ""), file=sys.stderr)
         return 1 if "stop_reason" in meta else 143 if meta["interrupted_by"] == "SIGTERM" else 130
     if ck is not None and ck.exists():

@@ -100,7 +100,7 @@ class SideMixin:
     def side(self, scene, lay, q_pad) -> dict:
         """Shapes of the side view (display mm): substrate pieces, their surface (coloured by friction where it
         varies), the pads (true contact arcs, schematic bodies), their springs and the block."""
-        from ..side_view import cap_outline, zigzag
+        from ..side_view import body_outline, cap_outline, zigzag
 
         bx = scene.block.position.x
         R = self.spec.radius * U.LENGTH
@@ -125,12 +125,12 @@ class SideMixin:
             arc = cap_outline(px, py, R, hc)
             arc[:, 1] = lay.y(arc[:, 1])
             y_top = arc[-1, 1] + lay.body
-            pucks.append(np.vstack([arc, [(arc[-1, 0], y_top), (arc[0, 0], y_top)]]))
+            pucks.append(body_outline(px, px, py, R, lay.E, y_top))  # its true shape, heights exaggerated
             normal.append(zigzag((px, y_top), (px, lay.block_bottom), coils=5, width=0.05 * lay.pad_win))
             post_x = x0 - 0.42 * lay.pad_win
             y_mid = arc[-1, 1] + 0.5 * lay.body
             posts.append(np.array([(post_x, lay.block_bottom), (post_x, y_mid)]))
-            tangential.append(zigzag((post_x, y_mid), (arc[0, 0], y_mid), coils=4, width=0.025 * lay.pad_win))
+            tangential.append(zigzag((post_x, y_mid), (px - R, y_mid), coils=4, width=0.025 * lay.pad_win))
         shapes = {
             "substrate": ("polys", fills, {"facecolors": "0.82", "edgecolors": "none", "zorder": 1,
                                            "label": "substrate (each pad's own track)"}),
@@ -142,7 +142,8 @@ class SideMixin:
             "normal": ("segments", normal, {"colors": "tab:purple", "linewidths": 1.0, "zorder": 3,
                                             "label": f"normal spring k_normal = {self.spec.k_normal:.4g} N/m"}),
             "pads": ("polys", pucks, {"facecolors": "tab:orange", "edgecolors": "k", "linewidths": 0.8, "zorder": 4,
-                                      "label": f"pad (radius {self.spec.radius * 1e3:.3g} mm)"}),
+                                      "label": f"pad radius {self.spec.radius * 1e3:.3g} mm (true shape, heights "
+                                               f"x{lay.E})"}),
         }
         shapes["block"] = ("rect", ((-lay.width / 2 + 0.05 * lay.slot, lay.block_bottom), lay.width - 0.1 * lay.slot,
                                     lay.block), {"facecolor": "tab:blue", "alpha": 0.45, "edgecolor": "tab:blue",
@@ -256,29 +257,58 @@ class Arrangement(SideMixin):
         lt, ln = LT / U.LENGTH, LN / U.LENGTH  # m
         out = []
 
-        def by_mass(L_max, why):
-            return Limit("block.M", M, mass_limit(sc, L_max), "kg", why)
+        def by_mass(L_max, why, fix=""):
+            return Limit("block.M", M, mass_limit(sc, L_max), "kg", why, fix=fix)
 
-        f = self.column_friction(L)
-        L_lag = load_limit(self.column_friction, p.k0 * lt)
-        out.append(by_mass(L_lag, f"a pad column's largest friction {f:.4g} N stretches its tangential spring "
-                                  f"(k0 = {p.k0:.4g} N/m) by {f / p.k0 * 1e3:.3g} mm; beyond its length "
-                                  f"{lt * 1e3:.3g} mm the pad passes the spring's anchor"))
+        # The pad lags x behind its normal spring's anchor, so the pre-compressed normal spring (force F_s, length
+        # LN) tilts by x / LN and pushes the pad backwards with F_s x / LN: k0 x = f + F_s x / LN, and the lag is
+        # x = f / (k0 - F_s / LN). The run starts with the drive already carrying the steady friction f0 per pad,
+        # released at once on the block, which lurches on its pads' springs: the block's share of one pad, M / N on
+        # k0, reaches at most f0 / sqrt(k0 M / N) (an undamped release), and the friction law's viscous part
+        # c v_lurch adds to the stickiest patch's friction f. The lag x must stay below LT, where the pad passes its
+        # tangential spring's anchor.
+        spring_push = (lambda load: max(load - col_w, 0.0) / ln) if self.preloaded else (lambda load: 0.0)
+        v_ss = max(sc.steady_velocity, 0.0)
+
+        def lurch(load):
+            m_share = max(load - col_w, 0.0) / (G * sc.drive_part.load_factor()) if sc.drive_part.load_factor() > 0 \
+                else M / p.N
+            f0 = sc.law_part.force(v_ss, load, sc.friction.c)
+            return f0 / math.sqrt(p.k0 * m_share) if m_share > 0 else 0.0
+
+        def friction(load):
+            return self.column_friction(load) + sc.law_part.force(v_ss + lurch(load), load, sc.friction.c) \
+                - sc.law_part.force(v_ss, load, sc.friction.c)
+
+        def lag(load):
+            k_eff = p.k0 - spring_push(load)
+            return friction(load) / k_eff if k_eff > 0 else math.inf
+
+        x = lag(L)
+        L_lag = load_limit(lag, lt)
+        k_need = friction(L) / lt + spring_push(L)
+        out.append(by_mass(L_lag, f"a pad column's largest friction {friction(L):.4g} N (the stickiest patch at the "
+                                  f"start's lurch, {lurch(L) * 1e3:.3g} mm/s), against its tangential spring k0 = "
+                                  f"{p.k0:.4g} N/m less the tilted normal spring's push {spring_push(L):.4g} N/m, lags "
+                                  f"the pad {x * 1e3:.3g} mm; beyond the spring's length {lt * 1e3:.3g} mm the pad "
+                                  "passes its anchor", f"raise pads.k0 above {k_need:.4g} N/m"))
         if self.preloaded:
             F_s = L - col_w
             out.append(by_mass(ln * p.k_normal + col_w, f"the normal spring's pre-compression {F_s / p.k_normal * 1e3:.3g} "
-                                                       f"mm (load / k_normal) must stay below its length {ln * 1e3:.3g} mm"))
+                                                       f"mm (load / k_normal) must stay below its length {ln * 1e3:.3g} mm",
+                               f"raise pads.k_normal above {F_s / ln:.4g} N/m"))
             out.append(by_mass(SOFTENING * p.k0 * ln + col_w,
                                f"the pre-compressed normal spring (force {F_s:.4g} N, length {ln * 1e3:.3g} mm) softens "
                                f"the pad's tangential stiffness by F_s / LN = {F_s / ln:.4g} N/m, more than "
-                               f"{SOFTENING:g} k0"))
+                               f"{SOFTENING:g} k0", f"raise pads.k0 above {F_s / ln / SOFTENING:.4g} N/m"))
             depth = sc.substrate_part.pad_depth(HANG_FRACTION, p.radius)
             if depth > 0:
                 N_pad = self.contact_load(L)
                 out.append(Limit("pads.k_normal", p.k_normal, N_pad / depth, "N/m",
                                  f"a pad's load {N_pad:.4g} N / k_normal = {N_pad / p.k_normal * 1e6:.3g} um must "
                                  f"cover the depth it follows below the track's datum, {depth * 1e6:.3g} um on "
-                                 f"{100 * (1 - HANG_FRACTION):g} % of its path, or it hangs over the valleys"))
+                                 f"{100 * (1 - HANG_FRACTION):g} % of its path, or it hangs over the valleys",
+                                 fix="raise block.M"))
         if sc.substrate_part.pad_depth(HANG_FRACTION, p.radius) > 0:
             dt = sc.run.dt / _substeps(sc)
             rs = sc.substrate.segment_radius
@@ -286,7 +316,8 @@ class Arrangement(SideMixin):
             out.append(by_mass(load_limit(self.contact_load, rs * p.mass / dt**2),
                                f"a pad falls (N_pad / m) dt^2 = {N_pad / p.mass * dt * dt * 1e6:.3g} um in one step "
                                f"under its load; beyond the segment radius {rs * 1e6:.3g} um a pad leaving a rough "
-                               "track for a step lands past the segment's centre line"))
+                               "track for a step lands past the segment's centre line",
+                               f"lower run.dt below {math.sqrt(rs * p.mass / N_pad):.3g} s"))
         out.append(dt_limit("run.dt", sc, math.sqrt(p.N * p.k0 / M), p.N * p.c0 / M,
                             f"the block on its {p.N} tangential pad springs"))
         return out

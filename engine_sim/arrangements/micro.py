@@ -154,7 +154,8 @@ class Micro(Tracks):
         out.append(Limit("block.M", sc.block.M, mass_limit(sc, L_max), "kg",
                          f"a micro-pad's largest friction {f:.4g} N stretches its tangential spring (micro_k = "
                          f"{p.micro_k:.4g} N/m) by {f / p.micro_k * 1e3:.3g} mm; beyond its length "
-                         f"{LT / U.LENGTH * 1e3:.3g} mm the micro-pad passes the spring's anchor"))
+                         f"{LT / U.LENGTH * 1e3:.3g} mm the micro-pad passes the spring's anchor",
+                         fix=f"raise pads.micro_k above {f / (LT / U.LENGTH):.4g} N/m"))
         return out
 
     def sliders(self, sc):

@@ -88,7 +88,7 @@ class Sole(Arrangement):
     def side(self, scene, lay, q_pad):
         """The feet as pymunk has them (capsules: flat undersides, rounded ends) up to the contact zone's top, their
         normal springs to the block, and the asperities under them, in true positions across the whole sole."""
-        from ..side_view import capsule_outline, zigzag
+        from ..side_view import body_outline, capsule_outline, zigzag
 
         bx = scene.block.position.x
         tr = scene.tracks[0]
@@ -107,17 +107,20 @@ class Sole(Arrangement):
                 out = capsule_outline(a.x - bx, b.x - bx, 0.5 * (a.y + b.y) - tr.y, R, hc)
                 out[:, 1] = lay.y(out[:, 1])
                 y_top = out[0, 1] + lay.body
-                feet.append(np.vstack([out, [(out[-1, 0], y_top), (out[0, 0], y_top)]]))
+                # its true shape, heights exaggerated, true length (rounded ends included)
+                feet.append(body_outline(min(a.x, b.x) - bx, max(a.x, b.x) - bx, 0.5 * (a.y + b.y) - tr.y, R, lay.E,
+                                         y_top))
                 xm = 0.5 * (a.x + b.x) - bx
                 springs.append(zigzag((xm, y_top), (xm, lay.block_bottom), coils=4, width=0.3 * lay.slot))
         return {
             "substrate": ("polys", [fill], {"facecolors": "0.82", "edgecolors": "none", "zorder": 1,
-                                            "label": "substrate: asperity caps (pymunk's circles)"}),
+                                            "label": "substrate: asperity caps"}),
             "surface": ("segments", _pieces(xd, yd, yd > lay.floor), {"colors": "k", "linewidths": 0.8, "zorder": 2}),
             "normal": ("segments", springs, {"colors": "tab:purple", "linewidths": 0.8, "zorder": 3,
                                              "label": f"normal spring k_normal = {self.spec.k_normal:.4g} N/m"}),
             "pads": ("polys", feet, {"facecolors": "tab:orange", "edgecolors": "k", "linewidths": 0.6, "zorder": 4,
-                                     "label": f"foot ({self.spec.foot_length * 1e3:.3g} mm, rounded ends)"}),
+                                     "label": f"foot {0.9 * self.spec.foot_length * 1e3:.3g} mm on a {self.spec.foot_length * 1e3:.3g} "
+                                              f"mm pitch (true shape, heights x{lay.E})"}),
             "block": ("rect", ((-lay.width / 2, lay.block_bottom), lay.width, lay.block),
                       {"facecolor": "tab:blue", "alpha": 0.45, "edgecolor": "tab:blue", "zorder": 2,
                        "label": f"block M = {self.sc.block.M:.4g} kg, free vertically"}),
