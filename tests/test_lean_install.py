@@ -54,6 +54,14 @@ def test_scenarios_copy_writes_the_shipped_file_and_never_overwrites(tmp_path, c
     assert mine.read_text() == "# my edits\n"  # nothing overwritten
 
 
+def test_readme_copy_of_a_shipped_scene_runs(tmp_path, monkeypatch):
+    # README: `frictionnoise scenarios tilted_plane --copy mine.toml`, a scene to start your own, then run it
+    monkeypatch.chdir(tmp_path)
+    assert main(["scenarios", "tilted_plane", "--copy", "mine.toml"]) == 0
+    assert main(["run", "mine.toml", "--duration", "0.2", "-o", "r"]) == 0
+    assert (tmp_path / "r" / "trace.npz").exists()
+
+
 def test_scenarios_name_errors_are_one_line(capsys):
     assert main(["scenarios", "pads_friction_patch"]) == 2
     err = capsys.readouterr().err
