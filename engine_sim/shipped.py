@@ -86,7 +86,13 @@ def shipped_scenarios() -> dict:
 def shipped_files() -> list:
     """Every shipped file as it is named to a user, relative to :data:`SCENARIO_DIR` with ``/``: the scenes
     (``pads_friction_patches.toml``), the sweeps (``sweeps/...``), the example data (``data/...``) and the profiles
-    (``profiles/...``); scripts and caches left out."""
+    (``profiles/...``); scripts and caches left out.
+
+    Returns
+    -------
+    list of str
+        The names, sorted (what ``frictionnoise scenarios --all`` lists and :func:`shipped_path` takes).
+    """
     return sorted(p.relative_to(SCENARIO_DIR).as_posix() for p in SCENARIO_DIR.rglob("*")
                   if p.is_file() and p.suffix not in (".py", ".pyc"))
 

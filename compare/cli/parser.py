@@ -3,7 +3,8 @@ from __future__ import annotations
 
 import argparse
 
-from .commands import cmd_analyze, cmd_compare, cmd_render, cmd_report, cmd_run, cmd_scenarios, cmd_sweep
+from .commands import cmd_analyze, cmd_compare, cmd_render, cmd_report, cmd_run, cmd_sweep
+from .shipped import cmd_scenarios
 
 __all__ = ["Parser", "build_parser"]
 
