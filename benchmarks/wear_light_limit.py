@@ -42,10 +42,11 @@ import numpy as np
 import engine_sim
 from compare.analysis.balances import balances
 from engine_sim import scenario_from_dict
+from engine_sim.shipped import SCENARIO_DIR
 from engine_sim.wear import climb_force, lightest_grain_mass, regime_shares, wedge_regime
 from frictionnoise import G
 
-BASE = Path(__file__).resolve().parent.parent / "scenarios" / "sweeps" / "pads_with_wear_study.toml"
+BASE = SCENARIO_DIR / "sweeps" / "pads_with_wear_study.toml"
 N_STUDY = 30  # pads of the study's scene: the one pad here carries 1/N_STUDY of its block
 WARMUP = 0.2  # s, simulated before recording (the pad reaches its speed within ms)
 

@@ -24,9 +24,10 @@ import numpy as np
 import engine_sim
 from compare.analysis.balances import balances
 from engine_sim import load_scenario
+from engine_sim.shipped import SCENARIO_DIR
 from engine_sim.wear import grain_step
 
-BASE = Path(__file__).resolve().parent.parent / "scenarios" / "sweeps" / "pads_with_wear_study.toml"
+BASE = SCENARIO_DIR / "sweeps" / "pads_with_wear_study.toml"
 
 
 def measure(count: int, duration: float, seed: int, progress=None) -> dict:

@@ -26,6 +26,7 @@ import numpy as np
 from compare.report import plots
 from compare.sweep import expand, load_results, load_sweep
 from compare.report.wear_study import answer, cells, gamma_figure, mass_sensitivity, mass_split, widen
+from engine_sim.shipped import shipped_file
 
 _COLS = ("track", "size", "count", "n", "gamma", "gamma_err", "delta_gamma", "delta_gamma_err", "gamma_err_total",
          "delta_gamma_err_total", "Cx_ratio_bands", "fit_CF_grains", "fit_CF_friction", "trapped_frac", "moving_frac",
@@ -119,12 +120,12 @@ def main(argv=None):
     ap.add_argument("--mass-sweep", default="scenarios/sweeps/wear_study_mass.toml")
     ap.add_argument("--mass-wall", type=float, default=None, help="that sweep's wall time (s)")
     a = ap.parse_args(argv)
-    spec, full = load_sweep(a.sweep), load_sweep(a.full)
+    spec, full = load_sweep(shipped_file(a.sweep)), load_sweep(shipped_file(a.full))
     results = load_results(a.folder, spec)  # the grid's own tasks (a reused folder keeps an old grid's files)
     rows = cells(results)
     sens = split = None
     if a.mass_folder:
-        other = load_results(a.mass_folder, load_sweep(a.mass_sweep))
+        other = load_results(a.mass_folder, load_sweep(shipped_file(a.mass_sweep)))
         split = mass_split(results, other)
         m0 = _grain_mass(results)
         m1 = _grain_mass(other)

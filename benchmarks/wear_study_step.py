@@ -19,7 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
-SWEEP = "scenarios/sweeps/wear_study.toml"
+from engine_sim.shipped import shipped_file
+
+SWEEP = shipped_file("scenarios/sweeps/wear_study.toml")
 CELL = {"wear.count": 100, "study.size": "broad", "study.track": "cavities"}
 
 

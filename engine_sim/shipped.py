@@ -1,21 +1,22 @@
 """The shipped scenarios and the one resolution of a scenario's name: where the scenario files are (package data of
-``scenarios``, installed with every install), which one a name or a path given by a user means, and the error a
-scenario raises (:class:`ScenarioError`, one line naming the file, the field and what is wrong).
+``engine_sim``, the folder ``engine_sim/scenarios/``, installed with every install), which one a name or a path given
+by a user means, the shipped file a name means (:func:`shipped_path`, for ``frictionnoise scenarios NAME``), and the
+error a scenario raises (:class:`ScenarioError`, one line naming the file, the field and what is wrong).
 """
 from __future__ import annotations
 
 import difflib
 import os
 import re
-from importlib import resources
 from pathlib import Path
 
 __all__ = ["SCENARIO_DIR", "ScenarioError", "shipped_file", "nearest_names", "resolve_scenario", "shipped_scenarios",
-           "scenario_summary"]
+           "shipped_files", "shipped_path", "scenario_summary"]
 
-# the shipped scenarios are package data of the ``scenarios`` package (installed with every install, not found
-# relative to a source tree); a regular (non-zipped) install gives a real folder
-SCENARIO_DIR = Path(str(resources.files("scenarios")))
+# the shipped scenarios are package data of engine_sim, the package that reads them: a data folder beside this module
+# (no __init__.py: not a module, nothing named ``scenarios`` at the top level of an install); a regular (non-zipped)
+# install gives a real folder. Users and the docs write these files as ``scenarios/<file>`` (see shipped_file).
+SCENARIO_DIR = Path(__file__).resolve().parent / "scenarios"
 
 
 class ScenarioError(ValueError):
@@ -24,7 +25,7 @@ class ScenarioError(ValueError):
 
 def shipped_file(arg, folder: str = "") -> str:
     """A file argument that need not exist where it is read: an existing path as given; else a path that starts
-    with ``scenarios/`` (as the README writes the shipped examples) taken inside the installed ``scenarios`` package;
+    with ``scenarios/`` (as the README writes the shipped examples) taken inside the installed :data:`SCENARIO_DIR`;
     else, with ``folder`` (``"sweeps"``), a bare name of a file shipped there (``velocity_model1``); else the
     argument as given (the reader then names the problem)."""
     if os.path.lexists(arg):
@@ -72,7 +73,7 @@ def resolve_scenario(name_or_path, others=(), others_kind: str = "") -> Path:
 
 
 def shipped_scenarios() -> dict:
-    """The scenarios shipped in the ``scenarios`` package (installed with every install).
+    """The scenes shipped in :data:`SCENARIO_DIR` (package data of engine_sim, installed with every install).
 
     Returns
     -------
@@ -80,6 +81,51 @@ def shipped_scenarios() -> dict:
         Name -> path of its TOML file.
     """
     return {p.stem: p for p in sorted(SCENARIO_DIR.glob("*.toml"))}
+
+
+def shipped_files() -> list:
+    """Every shipped file as it is named to a user, relative to :data:`SCENARIO_DIR` with ``/``: the scenes
+    (``pads_friction_patches.toml``), the sweeps (``sweeps/...``), the example data (``data/...``) and the profiles
+    (``profiles/...``); scripts and caches left out.
+
+    Returns
+    -------
+    list of str
+        The names, sorted (what ``frictionnoise scenarios --all`` lists and :func:`shipped_path` takes).
+    """
+    return sorted(p.relative_to(SCENARIO_DIR).as_posix() for p in SCENARIO_DIR.rglob("*")
+                  if p.is_file() and p.suffix not in (".py", ".pyc"))
+
+
+def shipped_path(name) -> Path:
+    """The shipped file a name means, never a file of the current folder: a scene's name (``tilted_plane``), a file
+    relative to the shipped folder with or without ``.toml`` (``sweeps/velocity_model1``,
+    ``data/model1_synthetic_um.csv``), or either written as the docs do, ``scenarios/...``.
+
+    Parameters
+    ----------
+    name : str or path-like
+        The shipped file's name, as :func:`shipped_files` lists it (``.toml`` may be left out).
+
+    Returns
+    -------
+    pathlib.Path
+        The file inside the installed package data (read it, or copy it to start a file of your own).
+
+    Raises
+    ------
+    ScenarioError
+        No shipped file of that name: one line with the nearest names and how to list them.
+    """
+    parts = Path(name).parts
+    rel = "/".join(parts[1:] if parts and parts[0] == "scenarios" else parts)
+    files = shipped_files()
+    for candidate in (rel, f"{rel}.toml"):
+        if candidate in files:
+            return SCENARIO_DIR.joinpath(*candidate.split("/"))
+    short = [f[:-5] if f.endswith(".toml") else f for f in files]
+    raise ScenarioError(f"{name}: not a shipped scenario, sweep or data file{nearest_names(rel, short)} "
+                        f"(`frictionnoise scenarios --all` lists them)")
 
 
 def scenario_summary(description: str, width: int = 110) -> str:

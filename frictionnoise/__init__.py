@@ -12,7 +12,8 @@ rad/s; spectra in the two-sided angular convention of eq. (2) of Xu, Zhou & Pers
   :class:`MultiscaleParams`, :class:`WearParticleParams`, :class:`AsperityForceParams`, :class:`AgeingParams`
   for ageing contacts, :class:`VibratingBlockParams` for a shaken substrate; ``.reference()`` is the paper's case), :func:`simulate` and :func:`theory_spectrum` for any of them, :func:`model` and
   :data:`MODELS` for the modules;
-- **scenes** (the pymunk engine): :func:`shipped_scenarios`, :func:`load_scenario`, :func:`run_scene`,
+- **scenes** (the pymunk engine): :func:`shipped_scenarios`, :func:`shipped_path` (a shipped scene, sweep or data
+  file by name), :func:`load_scenario`, :func:`run_scene`,
   :func:`render_scene`, :func:`compare_scene`, :func:`save_trace` and :func:`load_trace`; :func:`save_netcdf` and
   :func:`load_netcdf` write and read a trace or a spectrum as netCDF for other tools (the ``netcdf`` extra);
 - **measured data**: :func:`read_measured`, :func:`analyze_displacement` for x(t) and :func:`analyze_force` for a
@@ -45,7 +46,7 @@ _LAZY = {
     "simulate": "frictionnoise.models", "theory_spectrum": "frictionnoise.models", "model": "frictionnoise.models",
     # scenes
     "Scenario": "engine_sim", "EngineTrace": "engine_sim", "load_scenario": "engine_sim",
-    "shipped_scenarios": "engine_sim", "run_scene": "frictionnoise.scenes", "render_scene": "frictionnoise.scenes",
+    "shipped_scenarios": "engine_sim", "shipped_path": "engine_sim.shipped", "run_scene": "frictionnoise.scenes", "render_scene": "frictionnoise.scenes",
     "compare_scene": "frictionnoise.scenes", "save_trace": "frictionnoise.scenes",
     "load_trace": "frictionnoise.scenes",
     # exchange with tools that read xarray (the netcdf extra)

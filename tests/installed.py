@@ -39,7 +39,7 @@ def install_non_editable(tmp_path: Path):
     assert r.returncode == 0, r.stderr[-2000:]
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
-    r = subprocess.run([py, "-c", "import engine_sim, scenarios; print(engine_sim.__file__); print(scenarios.__file__)"],
+    r = subprocess.run([py, "-c", "import engine_sim, compare; print(engine_sim.__file__); print(compare.__file__)"],
                        cwd=elsewhere, capture_output=True, text=True)
     assert r.returncode == 0, r.stderr[-2000:]
     where = r.stdout.split()

@@ -2,7 +2,7 @@
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-PACKAGES = ("frictionnoise", "engine_sim", "reduced_models", "compare", "scenarios")
+PACKAGES = ("frictionnoise", "engine_sim", "reduced_models", "compare")
 
 
 def project_modules() -> dict:
@@ -11,7 +11,7 @@ def project_modules() -> dict:
     for pkg in PACKAGES:
         for path in sorted((ROOT / pkg).rglob("*.py")):
             if not (path.parent / "__init__.py").exists():
-                continue  # a script beside package data (scenarios/data/make_reciprocating.py), not a module
+                continue  # a script beside package data (engine_sim/scenarios/data/make_reciprocating.py), not a module
             if path.name == "__main__.py":
                 continue  # `python -m package`: importing it runs the program
             parts = path.relative_to(ROOT).with_suffix("").parts

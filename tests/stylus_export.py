@@ -3,14 +3,16 @@ preamble, a "Scan Data" header, latin-1 text (the micro sign, the angstrom sign)
 trailing columns on every data row. The surface is made here (seeded), not measured: a self-affine line (Hurst
 0.8, roll-off 0.25 mm, cut-off 1 um) of 1.5 um rms, a 2 nm noise floor, a 0.2 % tilt and an offset.
 
-``python -m tests.stylus_export`` rewrites the shipped copy, scenarios/profiles/synthetic_stylus_export.csv."""
+``python -m tests.stylus_export`` rewrites the shipped copy,
+engine_sim/scenarios/profiles/synthetic_stylus_export.csv."""
 from __future__ import annotations
 
 from pathlib import Path
 
 import numpy as np
 
-SHIPPED = Path(__file__).resolve().parent.parent / "scenarios" / "profiles" / "synthetic_stylus_export.csv"
+SHIPPED = Path(__file__).resolve().parent.parent / "engine_sim" / "scenarios" / "profiles" / \
+    "synthetic_stylus_export.csv"
 SPACING_UM = 0.156
 POINTS = 12821  # 2 mm
 

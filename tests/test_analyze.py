@@ -6,6 +6,7 @@ import pytest
 
 from compare.cli import main
 from compare.io.measured import DataFileError, read_displacement_csv, read_measured, units_line
+from engine_sim.shipped import SCENARIO_DIR
 from reduced_models.spring_block import SpringBlockParams, simulate
 
 
@@ -223,7 +224,7 @@ def test_stroke_averaged_whittle_interval_covers_over_seeds():
     import importlib.util
     from compare.io.measured import MeasuredData
     from compare.report.measured_report import analyze_force
-    spec = importlib.util.spec_from_file_location("make_reciprocating", "scenarios/data/make_reciprocating.py")
+    spec = importlib.util.spec_from_file_location("make_reciprocating", SCENARIO_DIR / "data" / "make_reciprocating.py")
     mr = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mr)
     est, err = [], []

@@ -59,9 +59,7 @@ def test_analyze_displacement_needs_no_mass_and_reads_the_speed():
 
 
 def test_measured_file_through_the_api():
-    from importlib.resources import files
-
-    path = files("scenarios") / "data" / "model1_synthetic_um.csv"
+    path = fn.shipped_path("data/model1_synthetic_um.csv")
     data = fn.read_measured(path, x_unit="um")
     a = fn.analyze_displacement(data, band=(5.0, 50.0))
     # the synthetic record is model I's reference case (scenarios/data/README.md): gamma 4 within the interval

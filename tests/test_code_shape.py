@@ -36,7 +36,7 @@ def _absolute(node: ast.ImportFrom, path: Path) -> str:
 
 
 def _project(module: str) -> bool:
-    return module.split(".")[0] in ("compare", "frictionnoise", "engine_sim", "reduced_models", "scenarios")
+    return module.split(".")[0] in ("compare", "frictionnoise", "engine_sim", "reduced_models")
 
 
 def _docstring_lines(tree) -> set:

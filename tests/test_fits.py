@@ -147,7 +147,7 @@ def test_flag_reaches_legends_and_the_sweep_table():
     from compare.analysis.fits import flag_mark
     from compare.report.sweep_report import build_sweep_report
     from compare.sweep import load_sweep
-    from scenarios import __path__ as _scen
+    from engine_sim.shipped import SCENARIO_DIR
 
     n = 2**16
     t = np.arange(n) * DT
@@ -160,7 +160,7 @@ def test_flag_reaches_legends_and_the_sweep_table():
     labels = [t.get_text() for ax in fig.axes for leg in filter(None, [ax.get_legend()]) for t in leg.get_texts()]
     labels += [h.get_label() for ax in fig.axes for h in ax.get_lines()]
     assert any("not a power law" in lb for lb in labels), labels
-    spec_file = next(p for p in __import__("pathlib").Path(_scen[0]).rglob("velocity_model1.toml"))
+    spec_file = SCENARIO_DIR / "sweeps" / "velocity_model1.toml"
     sweep = load_sweep(spec_file)
     res = [{"params": {k: v[0] for k, v in sweep.grid.items() if k != "seed"}, "seed": 0, "fit": narrow.to_dict(),
             "mean_velocity": 1e-3, "wall_s": 0.1}]

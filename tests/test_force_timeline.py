@@ -14,6 +14,7 @@ from compare.analysis.strokes import find_strokes, stroke_spectrum
 from compare.analysis.timeline import find_segments
 from compare.cli.main import main
 from compare.io.measured import MeasuredData
+from engine_sim.shipped import SCENARIO_DIR
 
 BAND = (2 * np.pi * 4, 2 * np.pi * 50)  # rad/s: above the lowest bin of the 0.512 s common window (12.3 rad/s)
 
@@ -68,7 +69,7 @@ def test_rate_change_and_gap_pieces_and_the_exponent_over_seeds():
 
 
 def _reciprocating(seed):
-    spec = importlib.util.spec_from_file_location("make_reciprocating", "scenarios/data/make_reciprocating.py")
+    spec = importlib.util.spec_from_file_location("make_reciprocating", SCENARIO_DIR / "data" / "make_reciprocating.py")
     mr = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mr)
     return mr.make(seed)

@@ -219,7 +219,7 @@ def test_stylus_export_at_native_spacing_runs_3_s_in_under_30_s(tmp_path):
     import time
 
     toml = tmp_path / "stylus.toml"
-    text = (Path(engine_sim.__file__).parent.parent / "scenarios" / "line_scan_example.toml").read_text()
+    text = (Path(engine_sim.__file__).parent / "scenarios" / "line_scan_example.toml").read_text()
     for key, val in (("file", '"synthetic_stylus_export.csv"'), ("x_unit", '""'), ("height_unit", '""'),
                      ("dx", "0.0")):
         text = re.sub(rf"(?m)^{key} = .*$", f"{key} = {val}", text)

@@ -12,7 +12,7 @@ from compare.cli import main
 from compare.sweep import load_results, load_sweep, run_sweep
 from tests import toy_model
 
-SWEEPS = Path(__file__).resolve().parents[1] / "scenarios" / "sweeps"
+SWEEPS = Path(__file__).resolve().parents[1] / "engine_sim" / "scenarios" / "sweeps"
 
 
 @pytest.fixture

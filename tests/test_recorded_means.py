@@ -104,7 +104,7 @@ def test_means_take_a_vibrations_impulses_in_closed_form(target, direction):
     # means add in closed form over each output step; on flat tracks F_t must still equal the block average of the
     # every-step contact forces to rounding (measured 2e-13 N against a 0.14-0.31 N rms).
     from dataclasses import replace
-    path = Path(__file__).resolve().parents[1] / "scenarios" / "sweeps" / "vibrated_patches.toml"
+    path = Path(__file__).resolve().parents[1] / "engine_sim" / "scenarios" / "sweeps" / "vibrated_patches.toml"
     sc = load_scenario(path).with_run(duration=0.05, warmup=0.02)
     sc = replace(sc, vibration=replace(sc.vibration, amplitude=1e-5, frequency=200.0, target=target,
                                        direction=direction))

@@ -51,12 +51,15 @@ def test_summary_keeps_abbreviations_whole():
     assert scenario_summary("A slider (paper Fig. 7) on pads. More text.") == "A slider (paper Fig. 7) on pads."
 
 
-def test_shipped_names_are_the_scenarios_packages_scene_files():
-    # the scenarios package (package data of every install) holds exactly the scenes `frictionnoise scenarios` lists
+def test_shipped_names_are_the_scene_files_of_engine_sims_package_data():
+    # the scenes are package data of engine_sim (engine_sim/scenarios/, installed with every install, not a module):
+    # `frictionnoise scenarios` lists exactly its scene files, and nothing named `scenarios` is importable
+    import importlib.util
     from pathlib import Path
 
-    import scenarios
+    import engine_sim
 
-    folder = Path(scenarios.__file__).parent
+    folder = Path(engine_sim.__file__).parent / "scenarios"
     assert sorted(p.stem for p in folder.glob("*.toml")) == sorted(shipped_scenarios())
     assert all(Path(p).parent == folder for p in shipped_scenarios().values())
+    assert not (folder / "__init__.py").exists() and importlib.util.find_spec("scenarios") is None

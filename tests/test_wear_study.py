@@ -9,7 +9,7 @@ import pytest
 from compare.sweep import SweepError, expand, load_sweep
 from compare.analysis.wear_study import cells, expand_factors, mean_interval as _mean_interval
 
-SWEEPS = Path(__file__).resolve().parents[1] / "scenarios" / "sweeps"
+SWEEPS = Path(__file__).resolve().parents[1] / "engine_sim" / "scenarios" / "sweeps"
 
 
 def test_factors_stand_for_the_issues_distributions_and_name_bad_values():
@@ -214,7 +214,7 @@ def test_committed_full_study_is_the_shipped_grid():
     track), each with the grid's seeds: the committed answer belongs to the sweep the README tells users to run."""
     import csv
 
-    rows = list(csv.DictReader((SWEEPS.parents[1] / "benchmarks" / "results" / "wear_study.csv").open()))
+    rows = list(csv.DictReader((Path(__file__).resolve().parents[1] / "benchmarks" / "results" / "wear_study.csv").open()))
     spec = load_sweep(SWEEPS / "wear_study.toml")
     grid = {(p["study.track"], p["study.size"] if p["wear.count"] else "-", str(p["wear.count"]))
             for p, _ in expand(spec)}

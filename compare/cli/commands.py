@@ -9,26 +9,7 @@ from .options import (UserError, check_seconds_options, check_seed, load_scenari
                       shipped_file, usable_cores)
 from .progress import print_verdicts, progress_bar
 
-__all__ = ["cmd_analyze", "cmd_compare", "cmd_render", "cmd_report", "cmd_run", "cmd_scenarios", "cmd_sweep"]
-
-
-def cmd_scenarios(args) -> int:
-    """Each shipped scenario's name and the first whole sentence of its description, wrapped to the terminal's
-    width (``COLUMNS``, else the terminal's, else 100) under a hanging indent; words are never cut."""
-    import shutil
-    import textwrap
-
-    from engine_sim import load_scenario, shipped_scenarios
-    from engine_sim.shipped import scenario_summary
-
-    shipped = shipped_scenarios()
-    width = max(map(len, shipped), default=0)
-    columns = max(shutil.get_terminal_size((100, 24)).columns, width + 40)
-    for name, path in shipped.items():
-        sentence = scenario_summary(load_scenario(path).description, width=10**6)  # the whole first sentence
-        print(textwrap.fill(sentence, width=columns - 1, initial_indent=f"{name:{width}s}  ",
-                            subsequent_indent=" " * (width + 2), break_long_words=False, break_on_hyphens=False))
-    return 0
+__all__ = ["cmd_analyze", "cmd_compare", "cmd_render", "cmd_report", "cmd_run", "cmd_sweep"]
 
 
 def cmd_sweep(args) -> int:

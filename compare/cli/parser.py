@@ -3,7 +3,8 @@ from __future__ import annotations
 
 import argparse
 
-from .commands import cmd_analyze, cmd_compare, cmd_render, cmd_report, cmd_run, cmd_scenarios, cmd_sweep
+from .commands import cmd_analyze, cmd_compare, cmd_render, cmd_report, cmd_run, cmd_sweep
+from .shipped import cmd_scenarios
 
 __all__ = ["Parser", "build_parser"]
 
@@ -109,7 +110,16 @@ def build_parser() -> argparse.ArgumentParser:
                     help="give up on --scheduler after S seconds (default: %(default)s)")
     sw.set_defaults(func=cmd_sweep)
 
-    lst = add("scenarios", "list the shipped scenarios (run one by name: frictionnoise run NAME)")
+    lst = add("scenarios", "list the shipped scenarios (run one by name: frictionnoise run NAME); with a NAME, print "
+                           "that shipped file, or copy it with --copy DEST (a starting point of your own)")
+    lst.add_argument("name", nargs="?", default=None,
+                     help="a shipped scene (tilted_plane), sweep (sweeps/velocity_model1) or data file "
+                          "(data/model1_synthetic_um.csv); a leading scenarios/ is allowed, as the docs write them")
+    lst.add_argument("--copy", metavar="DEST", default=None,
+                     help="write the shipped file NAME to DEST (a folder, or a new file's path) instead of printing it; "
+                          "never overwrites")
+    lst.add_argument("--all", action="store_true",
+                     help="list every shipped file: the scenes, then the sweeps, example data and profiles")
     lst.set_defaults(func=cmd_scenarios)
 
     an = add("analyze", "analyse measured x(t) or friction force F(t) from a text export: spectra, exponent, rms and a "

@@ -19,12 +19,14 @@ grid by linear interpolation, with a one-line warning giving the steps' spread; 
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from engine_sim.quantities import UnitError, parse_unit
+from engine_sim.shipped import shipped_file
 
 from .sheets import Sheet, SheetError, read_sheet, to_float
 
@@ -280,7 +282,7 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
     """
     if resample is not None and not (resample > 0 and math.isfinite(resample)):
         raise DataFileError(f"the resampling step must be a positive number of seconds (got {resample!r})")
-    path = Path(path)
+    path = Path(path) if os.path.lexists(path) else Path(shipped_file(path))  # scenarios/... as the docs write it
     src = str(path)
     if contact_area is not None and not (contact_area > 0 and math.isfinite(contact_area)):
         raise DataFileError(f"the contact area must be a positive number of m^2 (got {contact_area!r})")

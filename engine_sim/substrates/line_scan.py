@@ -4,20 +4,20 @@ what a pad can feel of it (:func:`read_profile`: closed by the pad's disc and re
 that leaves the pad's path within the contact's resolution), and mirrored or tiled to any sliding distance.
 
 This module is the whole of the kind (spec, checks, build, streamed track): with its import line in
-``substrates/__init__.py`` and a scenario file (``scenarios/line_scan_example.toml``) it is the extension point
-the README's architecture section describes.
+``substrates/__init__.py`` and a scenario file (``engine_sim/scenarios/line_scan_example.toml``) it is the
+extension point the README's architecture section describes.
 """
 from __future__ import annotations
 
 import functools
 from dataclasses import dataclass, replace
-from importlib import resources
 from pathlib import Path
 
 import numpy as np
 
 from .. import units as U
 from ..profile_file import ProfileError, read_line_scan
+from ..shipped import SCENARIO_DIR
 from ..substrate import StreamedTrack
 from . import SUBSTRATES, Substrate, SubstrateSpec
 from .self_affine import sliding_limit
@@ -42,7 +42,8 @@ _KEPT_RADII = 6.0
 class LineScanSpec(SubstrateSpec):
     """file: the profile (an instrument's text export with its preamble and units, an NPY array of shape (n, 2),
     or any line scan SurfaceTopography reads; see :mod:`engine_sim.profile_file`); a relative name is looked up
-    beside the scenario file, then in the current folder, then in the shipped ``scenarios/profiles/``.
+    beside the scenario file, then in the current folder, then in the shipped ``scenarios/profiles/`` (also when
+    written ``scenarios/profiles/<file>``).
     x_unit, height_unit: the columns' units ("m", "mm", "um", "nm", "A"), or "" for the units the file states
     (a unit the file states and a different one declared here is an error). dx: the track's grid spacing (m);
     0: the coarsest spacing the pads cannot tell from the file's (see :func:`pad_profile`). path_tolerance (m):
@@ -308,12 +309,14 @@ def _find(name: str, where: str) -> Path:
     p = Path(name)
     if p.is_absolute():
         return p
-    places = ([Path(where).parent] if where else []) + [Path.cwd(), Path(str(resources.files("scenarios"))) / "profiles"]
+    places = ([Path(where).parent] if where else []) + [Path.cwd(), SCENARIO_DIR / "profiles"]
+    if p.parts[:1] == ("scenarios",):  # a shipped file as the docs write it, scenarios/profiles/...
+        places.append(SCENARIO_DIR.parent)
     for base in places:
         if (base / p).exists():
             return (base / p).resolve()
     raise ValueError(f"substrate.file = {name!r}: not found beside the scenario, in the current folder or among the "
-                     "shipped profiles (scenarios/profiles/)")
+                     "shipped profiles (scenarios/profiles/, `frictionnoise scenarios --all` lists them)")
 
 
 @SUBSTRATES.register

@@ -1,4 +1,4 @@
-"""Write scenarios/data/reciprocating_force.txt: a synthetic reciprocating tribometer export with a known exponent.
+"""Write reciprocating_force.txt beside this script: a synthetic reciprocating tribometer export with a known exponent.
 
 Model (everything exact by construction, numpy only):
 
@@ -12,7 +12,8 @@ Model (everything exact by construction, numpy only):
 - normal force Fn(t) = 10 N + 0.01 N white noise; position a triangle wave between 0 and 30 mm; direction +1/-1.
 
 Layout as instrument software writes it: a metadata preamble, a `;`-separated header, a units row, decimal
-commas. Run: ``python scenarios/data/make_reciprocating.py`` (seed 2025; the file is rewritten bit for bit).
+commas. Run: ``python engine_sim/scenarios/data/make_reciprocating.py`` (seed 2025; the file is rewritten bit for
+bit).
 """
 from __future__ import annotations
 
