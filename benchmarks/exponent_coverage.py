@@ -127,8 +127,9 @@ def model1_like(records: int, floor_nm: float = 20.0) -> dict:
     """Records like scenarios/data/model1_synthetic_um.csv: 20000 samples at 100 Hz, exactly omega^-4 with the
     level the record model reads from that file over its omega^-4 range (2-60 rad/s), plus a white floor of
     ``floor_nm`` nm rms; fitted as analyze fits them (stationarity test on)."""
-    d = np.loadtxt(Path(__file__).resolve().parents[1] / "scenarios" / "data" / "model1_synthetic_um.csv",
-                   delimiter=",", skiprows=1)
+    from engine_sim.shipped import SCENARIO_DIR
+
+    d = np.loadtxt(SCENARIO_DIR / "data" / "model1_synthetic_um.csv", delimiter=",", skiprows=1)
     dt = float(d[1, 0] - d[0, 0])
     A = fit_record(d[:, 1] * 1e-6, dt, band=(2.0, 60.0), stationarity=False).prefactor
     hits = flagged = 0
