@@ -133,3 +133,9 @@ def test_resample_on_request(tmp_path, capsys):
     s = json.loads((out / "summary.json").read_text())
     assert s["resampled"] and s["dt_s"] == pytest.approx(1e-3) and "segment_fits" not in s
     # force records whose stamps break: tests/test_force_timeline.py
+
+
+def test_one_missing_sample_is_singular():
+    t = np.concatenate([np.arange(100) * 1e-3, 0.101 + np.arange(100) * 1e-3])  # one 2 ms step: 1 sample missing
+    (gap,) = find_segments(t).events
+    assert gap.kind == "gap" and "about 1 sample missing" in gap.detail

@@ -157,7 +157,8 @@ def find_segments(t, lines=None, *, jitter: float = JITTER, min_rows: int = MIN_
         elif np.isfinite(after) and np.isfinite(ref) and abs(after / ref - 1.0) <= jitter and step > ref:
             missing = int(round(step / ref)) - 1
             ev = TimeEvent("gap", stop, line(stop), float(t[i]), float(step),
-                           f"a step of {step:.4g} s where {ref:.4g} s was the rule: about {missing} samples missing")
+                           f"a step of {step:.4g} s where {ref:.4g} s was the rule: about {missing} "
+                           f"sample{'' if missing == 1 else 's'} missing")
         elif np.isfinite(after) and np.isfinite(ref) and abs(after / ref - 1.0) <= jitter:
             ev = TimeEvent("short step", stop, line(stop), float(t[i]), float(step),
                            f"one step of {step:.4g} s where {ref:.4g} s was the rule")
