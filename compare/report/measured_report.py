@@ -30,7 +30,7 @@ def build_force_report(an: ForceAnalysis):
         f"{len(d.t)} samples " + ("in uniform segments (below)" if an.pieces is not None else
                                   f"every {d.t[1] - d.t[0]:.4g} s") + f"; {esc(units_line(d))}"
         + (f". {esc(d.warning)}" if d.warning else "."),
-        f"Strokes found from the {esc(st.method)}: {st.found} found, {len(st.segments)} used, "
+        f"Strokes ({esc(st.method)}): {st.found} found, {len(st.segments)} used, "
         f"{len(st.dropped)} dropped" + (" (" + "; ".join(f"stroke {i}: {esc(r)}" for i, r in st.dropped) + ")"
                                         if st.dropped else "")
         + f"; {st.cut_s:.4g} s cut at each end of a stroke (reversal transients); every stroke {st.used_s:.4g} s long "
