@@ -12,7 +12,7 @@ with its row, its time and its size; the stretches between are analysed on their
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -28,7 +28,8 @@ class TimeEvent:
     """Where the time line breaks. kind: "gap", "rate change", "repeated", "backward" or "short step"; row: index
     of the sample after the break (0-based, into the record's rows); line: its line in the file (if known);
     time (s): the stamp before the break; size (s): the step taken (gap, repeated, backward, short step: the jump;
-    rate change: the new step); detail: one phrase for a report."""
+    rate change: the new step); detail: one phrase for a report; time_after (s): the stamp of the sample after
+    the break, the one on ``line``."""
 
     kind: str
     row: int
@@ -36,10 +37,13 @@ class TimeEvent:
     time: float
     size: float
     detail: str
+    time_after: float = float("nan")
 
     def describe(self) -> str:
+        """``line L at t = <stamp on line L>, after t = <stamp before>: kind (detail)``: the time printed with the
+        line is that line's own."""
         where = f"line {self.line}" if self.line is not None else f"row {self.row + 1}"
-        return f"{where}, t = {self.time:.6g} s: {self.kind} ({self.detail})"
+        return f"{where} at t = {self.time_after:.6g} s, after t = {self.time:.6g} s: {self.kind} ({self.detail})"
 
 
 @dataclass(frozen=True)
@@ -76,7 +80,8 @@ class Timeline:
     def summary(self) -> dict:
         return {"segments": [{"start_row": s.start, "stop_row": s.stop, "n": s.n, "dt_s": s.dt, "spread": s.spread,
                               "used": i not in self.short} for i, s in enumerate(self.segments)],
-                "events": [{"kind": e.kind, "row": e.row, "line": e.line, "time_s": e.time, "size_s": e.size,
+                "events": [{"kind": e.kind, "row": e.row, "line": e.line, "time_s": e.time,
+                            "time_after_s": e.time_after, "size_s": e.size,
                             "detail": e.detail} for e in self.events]}
 
 
@@ -166,7 +171,7 @@ def find_segments(t, lines=None, *, jitter: float = JITTER, min_rows: int = MIN_
             new = after if np.isfinite(after) else step
             ev = TimeEvent("rate change", stop, line(stop), float(t[i]), float(new),
                            f"step {ref:.4g} s -> {new:.4g} s ({1 / ref:.4g} -> {1 / new:.4g} Hz)")
-        events.append(ev)
+        events.append(replace(ev, time_after=float(t[stop])))
         s = stop
     short = tuple(k for k, seg in enumerate(segments) if seg.n < min_rows)
     return Timeline(tuple(segments), tuple(events), short)

@@ -190,7 +190,8 @@ def _timeline(t: np.ndarray, lines, blocks: list):
         tl = find_segments(t[a:b], lines=None if lines is None else lines[a:b])
         if a > 0:
             events.append(TimeEvent("block", a, None if lines is None else int(lines[a]), float(t[a - 1]),
-                                    float(t[a] - t[a - 1]), f"{titles[j] or 'a new block'} begins: read on its own"))
+                                    float(t[a] - t[a - 1]), f"{titles[j] or 'a new block'} begins: read on its own",
+                                    float(t[a])))
         segs += [Segment(s.start + a, s.stop + a, s.dt, s.spread) for s in tl.segments]
         events += [replace(e, row=e.row + a) for e in tl.events]
     return Timeline(tuple(segs), tuple(events), tuple(k for k, s in enumerate(segs) if s.n < MIN_ROWS))
