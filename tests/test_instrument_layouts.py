@@ -62,6 +62,28 @@ def test_umt_two_steps_analysed_mean_force_and_mu_by_hand(tmp_path, capsys):
     assert "block (Step No. 2 begins" in io.out + io.err
 
 
+def test_mu_column_labels_c_mu_by_its_column(tmp_path, capsys):
+    """With --mu-col COF (and a normal force given too) C_mu is the spectrum of the column COF: HTML, terminal and
+    summary.json say so and never call it F(t)/N(t); without --mu-col it is F/N, named by its columns."""
+    from compare.cli import main
+
+    raw, _, _ = umt_export(n1=3000, n2=2500)
+    f = tmp_path / "umt.csv"
+    f.write_bytes(raw)
+    base = ["analyze", str(f), "--time-col", "T", "--force-col", "Ff", "--normal-col", "Fz"]
+    assert main(base + ["--mu-col", "COF", "-o", str(tmp_path / "a")]) == 0
+    s = json.loads((tmp_path / "a" / "summary.json").read_text())
+    html = (tmp_path / "a" / "index.html").read_text()
+    out = capsys.readouterr().out
+    assert s["mu_source"] == "the column 'COF'"
+    assert "C_mu of the column &#x27;COF&#x27;: exponent" in html and "F(t)/N(t)" not in html
+    assert "C_mu of the column 'COF': exponent" in out
+    assert main(base + ["-o", str(tmp_path / "b")]) == 0
+    s = json.loads((tmp_path / "b" / "summary.json").read_text())
+    assert s["mu_source"] == "mu(t) = F(t)/N(t) (columns 'Ff' / 'Fz')"
+    assert "C_mu of mu(t) = F(t)/N(t) (columns 'Ff' / 'Fz'): exponent" in capsys.readouterr().out
+
+
 def test_look_ascii_export_read_with_its_units(tmp_path):
     raw, vals = look_ascii()
     f = tmp_path / "p4321.txt"

@@ -19,7 +19,7 @@ from .segments import SegmentSpectra, piece_spectra, segment_fits, with_line_fla
 from .spectra import Spectrum, rescaled, rms_from_spectrum
 from .strokes import Strokes, find_strokes, stroke_pieces, stroke_spectrum
 
-__all__ = ["ForceAnalysis", "analyze_force"]
+__all__ = ["ForceAnalysis", "analyze_force", "mu_source"]
 
 
 @dataclass(frozen=True)
@@ -51,7 +51,8 @@ class ForceAnalysis:
         -------
         dict
             Source, units, strokes, the force exponent with its 95 % interval and band (rad/s), F_rms (N), and
-            the C_mu, equivalent-C_x and distance-domain entries when present; for a record whose time stamps
+            the C_mu entries (``mu_source``: the column mu was read from, or F/N), equivalent-C_x and
+            distance-domain entries when present; for a record whose time stamps
             break, its ``timeline`` (segments and breaks) and ``pieces`` (stroke, rows, times (s), step (s), own
             fit, in the combined spectrum or not) and the common window ``piece_window_s`` (s).
         """
@@ -75,6 +76,7 @@ class ForceAnalysis:
             s["pieces"] = self.piece_fits
             s["piece_window_s"] = self.pieces.window_s
         if self.fit_mu is not None:
+            s["mu_source"] = mu_source(d)
             s["fit_mu"] = self.fit_mu.to_dict()
             s["mu_rms"] = rms_from_spectrum(self.C_mu)
             s["mean_abs_mu"] = float(np.mean(np.abs(_mu(d))))
@@ -98,6 +100,17 @@ def _piece_rows(t, ss: SegmentSpectra, numbers, band, method) -> list:
     for row, num in zip(rows, numbers):
         row.update(stroke=int(num), t_start_s=float(t[row["start_row"]]), t_stop_s=float(t[row["stop_row"] - 1]))
     return rows
+
+
+def mu_source(data) -> str:
+    """What the friction coefficient mu(t) of a record is: the file's own column (named) or F(t)/N(t) (the
+    columns named), as :func:`_mu` takes it; the label of C_mu in every output."""
+    units = getattr(data, "units", None) or {}
+    if getattr(data, "mu", None) is not None:
+        col = units.get("mu", {}).get("column")
+        return f"the column {col!r}" if col else "the file's friction-coefficient column"
+    F, N = units.get("force", {}).get("column"), units.get("normal", {}).get("column")
+    return f"mu(t) = F(t)/N(t) (columns {F!r} / {N!r})" if F and N else "mu(t) = F(t)/N(t)"
 
 
 def _mu(data):
@@ -153,7 +166,8 @@ def analyze_force(data, *, band=None, mass: float | None = None, speed: float | 
 
     ``mass`` (kg) adds the equivalent C_x = C_F / (M^2 omega^4) of a free block (eq. 3); ``speed`` (m/s)
     adds the distance-domain spectrum C_F(q) = v C_F(omega = q v) (q in rad/m) and the stroke length; a
-    normal-force column adds C_mu of mu(t) = F(t) / N(t). A record whose time stamps break (``data.segmented``)
+    normal-force column adds C_mu of mu(t) = F(t) / N(t), a friction-coefficient column (``data.mu``) C_mu of that
+    column (it wins over F/N; :func:`mu_source` names which). A record whose time stamps break (``data.segmented``)
     is analysed over its uniform pieces (see the module docstring), with the same outputs.
 
     Parameters

@@ -195,6 +195,9 @@ def _force_lines(summary: dict, index, most: int = 10) -> list:
                      + ("in the combined spectrum" if p["in_combined"] else "not in the combined spectrum"))
     if len(pieces) > most:
         lines.append(f"  ... and {len(pieces) - most} more pieces (all in summary.json)")
+    if "fit_mu" in summary:
+        lines.append(f"C_mu of {summary['mu_source']}: exponent {_fit_text(summary['fit_mu'])}; mean |mu| = "
+                     f"{summary['mean_abs_mu']:.4g}")
     return lines + [f"wrote {index}: force exponent {_fit_text(summary['fit_F'])}"]
 
 
