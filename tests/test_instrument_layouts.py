@@ -60,6 +60,19 @@ def test_umt_two_steps_analysed_mean_force_and_mu_by_hand(tmp_path, capsys):
     assert s["mean_abs_mu"] == pytest.approx(hand_mu, rel=1e-4)
     io = capsys.readouterr()
     assert "block (Step No. 2 begins" in io.out + io.err
+    # the step boundary is a block of the export, said as a note, not a warning about the clock
+    assert "note: " in io.err and "an export of 2 blocks (then Step No. 2 at line" in io.err
+    assert "warning" not in io.err and "non-uniform" not in io.err, io.err
+    # each block's means by hand (1 kg then 2 kg of load: the pooled means mix them), on the terminal and in JSON
+    n1 = int(np.sum(vals["T"] < vals["T"][0] + 59.995))  # step 1: 60 s at 100 Hz
+    assert n1 == 6000
+    for k, rows in enumerate((slice(0, n1), slice(n1, None))):
+        b = s["blocks"][k]
+        assert b["mean_abs_F_N"] == pytest.approx(np.mean(np.abs(vals["Ff"][rows])) * GF, rel=1e-4)
+        assert b["mean_abs_mu"] == pytest.approx(np.mean(np.abs(vals["COF"][rows])), rel=1e-4)
+        assert f"block {k + 1}" in io.out and f"mean |F| = {b['mean_abs_F_N']:.4g} N" in io.out
+    assert s["blocks"][1]["title"] == "Step No. 2" and s["note"].startswith(str(f))
+    assert f"mean |F| = {s['mean_abs_F_N']:.4g} N, mean |mu| = {s['mean_abs_mu']:.4g} pooled over 2 blocks" in io.out
 
 
 def test_mu_column_labels_c_mu_by_its_column(tmp_path, capsys):

@@ -85,11 +85,12 @@ def _print_breaks(timeline, most: int = 10):
     if timeline is None or not timeline.events:
         return
     for e in timeline.events[:most]:
-        print(f"time stamps: {e.describe()}")
+        print(f"{'export' if e.kind == 'block' else 'time stamps'}: {e.describe()}")
     if len(timeline.events) > most:
         print(f"time stamps: ... and {len(timeline.events) - most} more breaks (all in summary.json)")
     used = timeline.usable()
-    print(f"time stamps: {len(timeline.segments)} uniform segments, {len(used)} long enough to analyse (steps "
+    what = "segments" if all(e.kind == "block" for e in timeline.events) else "time stamps"
+    print(f"{what}: {len(timeline.segments)} uniform segments, {len(used)} long enough to analyse (steps "
           f"{', '.join(f'{s.dt:.4g}' for s in used)} s)")
 
 
@@ -156,6 +157,8 @@ def _read_record(path, args):
                              resample=args.resample, mu_col=args.mu_col, contact_area=args.contact_area)
     except DataFileError as e:
         raise UserError(str(e)) from None
+    if data.note:
+        print(f"frictionnoise: note: {data.note}", file=sys.stderr)  # the note names the file
     if data.warning:
         print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)  # the warning names the file
     _print_breaks(data.timeline)
@@ -195,10 +198,30 @@ def _force_lines(summary: dict, index, most: int = 10) -> list:
                      + ("in the combined spectrum" if p["in_combined"] else "not in the combined spectrum"))
     if len(pieces) > most:
         lines.append(f"  ... and {len(pieces) - most} more pieces (all in summary.json)")
+    lines += _block_lines(summary, most)
     if "fit_mu" in summary:
         lines.append(f"C_mu of {summary['mu_source']}: exponent {_fit_text(summary['fit_mu'])}; mean |mu| = "
                      f"{summary['mean_abs_mu']:.4g}")
     return lines + [f"wrote {index}: force exponent {_fit_text(summary['fit_F'])}"]
+
+
+def _block_lines(summary: dict, most: int = 10) -> list:
+    """The pooled mean |F| (and |mu|) of a multi-block export, then each block's own (blocks run at different
+    loads): one line each, at most ``most`` blocks."""
+    blocks = summary.get("blocks") or []
+    if not blocks:
+        return []
+    mu = "mean_abs_mu" in summary
+    lines = [f"mean |F| = {summary['mean_abs_F_N']:.4g} N" + (f", mean |mu| = {summary['mean_abs_mu']:.4g}" if mu
+                                                               else "") + f" pooled over {len(blocks)} blocks; by block:"]
+    for b in blocks[:most]:
+        lines.append(f"  block {b['block']}{' (' + b['title'] + ')' if b['title'] else ''}, from {b['place']}, t = "
+                     f"{b['t_start_s']:.6g}-{b['t_stop_s']:.6g} s: mean |F| = {b['mean_abs_F_N']:.4g} N"
+                     + (f", mean |mu| = {b['mean_abs_mu']:.4g}" if "mean_abs_mu" in b else "")
+                     + (f", mean |N| = {b['mean_abs_N_N']:.4g} N" if "mean_abs_N_N" in b else ""))
+    if len(blocks) > most:
+        lines.append(f"  ... and {len(blocks) - most} more blocks (all in summary.json)")
+    return lines
 
 
 def _displacement_lines(summary: dict, index) -> list:

@@ -29,6 +29,7 @@ def build_force_report(an: ForceAnalysis):
     paras = [
         f"{len(d.t)} samples " + ("in uniform segments (below)" if an.pieces is not None else
                                   f"every {d.t[1] - d.t[0]:.4g} s") + f"; {esc(units_line(d))}"
+        + (f". {esc(d.note)}" if getattr(d, "note", None) else "")
         + (f". {esc(d.warning)}" if d.warning else "."),
         f"Strokes ({esc(st.method)}): {st.found} found, {len(st.segments)} used, "
         f"{len(st.dropped)} dropped" + (" (" + "; ".join(f"stroke {i}: {esc(r)}" for i, r in st.dropped) + ")"
@@ -44,6 +45,13 @@ def build_force_report(an: ForceAnalysis):
     if an.fit_mu is not None:
         paras.append(f"C_mu of {esc(mu_source(d))}: exponent {fit_text(an.fit_mu, 3)}; "
                      f"mu_rms = {summary['mu_rms']:.4g}, mean |mu| = {summary['mean_abs_mu']:.4g}.")
+    if summary.get("blocks"):
+        paras.append(f"By block (the pooled means above mix blocks run at different loads): " + "; ".join(
+            f"block {b['block']}{esc(' (' + b['title'] + ')') if b['title'] else ''}, t = {b['t_start_s']:.6g}-"
+            f"{b['t_stop_s']:.6g} s: mean |F| = {b['mean_abs_F_N']:.4g} N"
+            + (f", mean |mu| = {b['mean_abs_mu']:.4g}" if "mean_abs_mu" in b else "")
+            + (f", mean |N| = {b['mean_abs_N_N']:.4g} N" if "mean_abs_N_N" in b else "") for b in summary["blocks"])
+            + ".")
     if an.fit_x_equiv is not None:
         paras.append(f"Equivalent C_x of a free block of M = {an.mass:g} kg (C_F / (M^2 omega^4), eq. (3); inferred, "
                      f"not a measured displacement): gamma = {fit_text(an.fit_x_equiv, 3)}.")
