@@ -271,3 +271,24 @@ def test_fuzzed_stroke_folders_exit_0_or_2_in_one_line(tmp_path, data, capsys):
     if code == 2:
         line = [ln for ln in err.splitlines() if ln.startswith("frictionnoise: error:")]
         assert len(line) == 1 and line[0].startswith(f"frictionnoise: error: {folder}"), err
+
+
+def test_umt_page_command_with_x_col_cuts_strokes_at_the_position_reversals(tmp_path, capsys):
+    """docs/reference/layouts/umt.md promises that `--x-col X` cuts a UMT record's strokes at the reversals of
+    its position: its command, run on the generator's export, says so. The export's position is a 0.1 Hz sine over
+    60 s and 50 s (with a 3 s pause between the steps): reversals every 5 s, so 11-12 strokes per step."""
+    from pathlib import Path
+
+    from compare.cli import main
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "reference" / "layouts" / "umt.md").read_text()
+    cmd = next(line for line in page.splitlines() if line.startswith("frictionnoise analyze") and "--x-col X" in line)
+    raw, _, _ = umt_export()
+    f = tmp_path / "run.csv"
+    f.write_bytes(raw)
+    args = cmd.split()[1:]
+    args[args.index("run.csv")] = str(f)
+    assert main(args + ["-o", str(tmp_path / "o")]) == 0
+    s = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert s["strokes"]["method"] == "sign of the position's derivative" and 20 <= s["strokes"]["found"] <= 24
+    assert "strokes (sign of the position's derivative)" in capsys.readouterr().out
