@@ -292,3 +292,25 @@ def test_umt_page_command_with_x_col_cuts_strokes_at_the_position_reversals(tmp_
     s = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert s["strokes"]["method"] == "sign of the position's derivative" and 20 <= s["strokes"]["found"] <= 24
     assert "strokes (sign of the position's derivative)" in capsys.readouterr().out
+
+
+def test_blocks_on_a_resampled_grid_and_a_block_of_nan_rows(tmp_path):
+    """Blocks put on one grid (--resample 0.01 s, the export's own step) span their own stamps, not the 3 s pause
+    between the steps; a step whose friction column is all NaN leaves one block: no block list, no note."""
+    raw, vals, _ = umt_export(n1=3000, n2=2500)
+    f = tmp_path / "umt.csv"
+    f.write_bytes(raw)
+    d = read_measured(f, time_col="T", force_col="Ff", require_x=False, resample=0.01)
+    assert [(b["start"], b["stop"]) for b in d.blocks] == [(0, 3000), (3299, 5799)]  # 29.99 s + 3 s pause + 25 s
+    assert "blocks of the export" in d.note and "put on the one grid" in d.note
+    lines = raw.decode("latin-1").split("\r\n")
+    i = lines.index("Step No. 2")
+    data = [k for k in range(i, len(lines)) if lines[k] and lines[k][0] in "-0123456789"]
+    for k in data:
+        cells = lines[k].split(",")
+        cells[9] = "nan"
+        lines[k] = ",".join(cells)
+    g = tmp_path / "nan_step.csv"
+    g.write_bytes("\r\n".join(lines).encode("latin-1"))
+    d = read_measured(g, time_col="T", force_col="Ff", require_x=False)
+    assert d.blocks == () and d.note is None and "2500 rows with NaN dropped" in d.warning

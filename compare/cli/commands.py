@@ -212,8 +212,8 @@ def _block_lines(summary: dict, most: int = 10) -> list:
     if not blocks:
         return []
     mu = "mean_abs_mu" in summary
-    lines = [f"mean |F| = {summary['mean_abs_F_N']:.4g} N" + (f", mean |mu| = {summary['mean_abs_mu']:.4g}" if mu
-                                                               else "") + f" pooled over {len(blocks)} blocks; by block:"]
+    pooled = f"mean |F| = {summary['mean_abs_F_N']:.4g} N" + (f", mean |mu| = {summary['mean_abs_mu']:.4g}" if mu else "")
+    lines = [f"{pooled} pooled over {len(blocks)} blocks; by block:"]
     for b in blocks[:most]:
         lines.append(f"  block {b['block']}{' (' + b['title'] + ')' if b['title'] else ''}, from {b['place']}, t = "
                      f"{b['t_start_s']:.6g}-{b['t_stop_s']:.6g} s: mean |F| = {b['mean_abs_F_N']:.4g} N"

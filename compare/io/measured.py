@@ -203,11 +203,11 @@ def _timeline(t: np.ndarray, lines, blocks: list):
 
 def _uniform(src: str, t: np.ndarray, arr: dict, lines, resample: float | None, blocks: list = ()):
     """(t, arr, warning, resampled, timeline). A block boundary of the export is a break of the time line but
-    no fault of its clock: the warning counts only the clock's breaks (the blocks are the record's ``note``). Breaks in the time stamps (compare.analysis.timeline: rate changes,
-    gaps, repeated or backward stamps) leave the record as written, in uniform segments, unless ``resample`` (s)
-    asks for one grid (compare.analysis.segments.resample_record, its filter stated in the warning); a jittered
-    grid without breaks is resampled onto a uniform one (linear interpolation; a direction label takes the
-    nearest earlier sample)."""
+    no fault of its clock: the warning counts only the clock's breaks (the blocks are the record's ``note``).
+    Breaks in the time stamps (compare.analysis.timeline: rate changes, gaps, repeated or backward stamps) leave
+    the record as written, in uniform segments, unless ``resample`` (s) asks for one grid
+    (compare.analysis.segments.resample_record, its filter stated in the warning); a jittered grid without breaks
+    is resampled onto a uniform one (linear interpolation; a direction label takes the nearest earlier sample)."""
     from ..analysis.segments import resample_record
     from ..analysis.timeline import MIN_ROWS
 
@@ -341,17 +341,23 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
 
 def _blocks(tab: Sheet, kept: list, t_rows: np.ndarray, t: np.ndarray, blocks: list, resampled: bool):
     """(blocks, note) of a multi-block export: each block's title, the place of its first row and its rows of the
-    record ``t`` (the rows as written, or the stretch of the uniform grid between the blocks' first stamps when
-    resampled), and one line saying the record is made of them; ((), None) for one block."""
-    if not blocks:
-        return (), None
-    first = [0] + [r for r, _ in blocks]
-    if resampled:
-        first = [int(np.searchsorted(t, t_rows[r], side="left")) for r in first]
-    stops = first[1:] + [len(t)]
+    record ``t`` (the rows as written, or the stretch of the uniform grid from a block's first stamp to its last
+    when resampled), and one line saying the record is made of them; ((), None) for one block. A block left without
+    rows (every row NaN) is not listed."""
+    rows = [0] + [r for r, _ in blocks]
+    ends = rows[1:] + [len(t_rows)]
+    if resampled:  # the grid's samples from a block's first stamp to its last (a pause between blocks in neither)
+        half = 0.5 * float(t[1] - t[0])  # a grid point within half a step of a stamp is that stamp's
+        first = [int(np.searchsorted(t, t_rows[r] - half, side="left")) for r in rows]
+        last = [int(np.searchsorted(t, t_rows[e - 1] + half, side="left")) if e > r else f
+                for r, e, f in zip(rows, ends, first)]
+    else:
+        first, last = rows, ends
     titles = [""] + [title for _, title in blocks]
-    parts = tuple({"block": k + 1, "title": titles[k], "place": tab.place(tab.keys[kept[r]]), "start": a,
-                   "stop": b} for k, (r, a, b) in enumerate(zip([0] + [r for r, _ in blocks], first, stops)))
+    parts = tuple({"block": k + 1, "title": titles[k], "place": tab.place(tab.keys[kept[r]]), "start": a, "stop": b}
+                  for k, (r, a, b) in enumerate(zip(rows, first, last)) if b > a)
+    if len(parts) < 2:
+        return (), None
     opened = "; ".join(p["place"] if p["title"] and p["title"] in p["place"] else  # a folder's file names its block
                        f"{p['title'] or 'block ' + str(p['block'])} at {p['place']}" for p in parts[1:4])
     note = (f"{tab.src}: an export of {len(parts)} blocks (then {opened}{'; ...' if len(parts) > 4 else ''}): "
