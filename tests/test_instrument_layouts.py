@@ -73,6 +73,9 @@ def test_umt_two_steps_analysed_mean_force_and_mu_by_hand(tmp_path, capsys):
         assert f"block {k + 1}" in io.out and f"mean |F| = {b['mean_abs_F_N']:.4g} N" in io.out
     assert s["blocks"][1]["title"] == "Step No. 2" and s["note"].startswith(str(f))
     assert f"mean |F| = {s['mean_abs_F_N']:.4g} N, mean |mu| = {s['mean_abs_mu']:.4g} pooled over 2 blocks" in io.out
+    html = (out / "index.html").read_text()
+    assert "The export is made of 2 blocks" in html and "The time stamps break" not in html
+    assert "By block (the pooled means above mix blocks run at different loads)" in html
 
 
 def test_mu_column_labels_c_mu_by_its_column(tmp_path, capsys):
