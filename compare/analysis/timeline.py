@@ -6,9 +6,8 @@ splits the record where the step leaves its segment's own step by more than the 
 step, then the old step again: samples missing), a **rate change** (a new step that lasts), a **repeated** stamp
 (step 0), a **backward** one (step < 0) or one **short step** (then the old step again). One step within half a
 step of the rate, the rate kept after it, is the clock's jitter (a logger's step wandering by 20 %), not a break:
-no sample is missing. Each event is reported
-with its row, its time and its size; the stretches between are analysed on their own and together
-(:mod:`compare.analysis.segments`).
+no sample is missing. Each event is reported with its row, its line's time and the stamp before it, and its size;
+the stretches between are analysed on their own and together (:mod:`compare.analysis.segments`).
 """
 from __future__ import annotations
 
@@ -25,7 +24,8 @@ _LOOK = 8  # steps looked at to set a segment's step and to tell a gap from a ra
 
 @dataclass(frozen=True)
 class TimeEvent:
-    """Where the time line breaks. kind: "gap", "rate change", "repeated", "backward" or "short step"; row: index
+    """Where the time line breaks. kind: "gap", "rate change", "repeated", "backward", "short step" (or "block": a
+    new block of a multi-block export, set by its reader); row: index
     of the sample after the break (0-based, into the record's rows); line: its line in the file (if known);
     time (s): the stamp before the break; size (s): the step taken (gap, repeated, backward, short step: the jump;
     rate change: the new step); detail: one phrase for a report; time_after (s): the stamp of the sample after
