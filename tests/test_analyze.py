@@ -207,6 +207,9 @@ def test_continuous_force_series(tmp_path, capsys):
     assert main(["analyze", str(f), "--force-col", "Ff", "-o", str(out)]) == 0
     s = json.loads((out / "summary.json").read_text())
     assert s["strokes"]["found"] == 1 and s["strokes"]["used"] == 1 and s["strokes"]["cut_each_end_s"] == 0
+    # the label is one phrase: "strokes (one stroke: no reversal in ...)", no parenthesis inside a parenthesis
+    assert s["strokes"]["method"] == "one stroke: no reversal in the sign of the friction force"
+    assert "strokes (one stroke: no reversal in the sign of the friction force): 1 found" in capsys.readouterr().out
     assert abs(s["fit_F"]["gamma"] - 1.0) <= s["fit_F"]["gamma_err"], s["fit_F"]
     assert s["mean_abs_F_N"] == pytest.approx(5.0, rel=1e-3)
     assert "C_mu not computed" in " ".join(s["notes"])

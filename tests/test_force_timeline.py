@@ -130,8 +130,9 @@ def test_cli_lists_the_pieces_and_refuses_a_record_without_a_uniform_stretch(tmp
     assert main(["analyze", str(f), "--force-col", "Ff", "--band", str(BAND[0]), str(BAND[1]), "-o", str(out)]) == 0
     io = capsys.readouterr()
     text = io.out + io.err
-    # the header is line 1: row 15002 (1-based), the first at 0.5 ms, is on line 15003 (t = 15 s is the stamp before)
-    assert "line 15003, t = 15 s: rate change" in text and ": gap (" in text
+    # the header is line 1: row 15002 (1-based), the first at 0.5 ms, is on line 15003, printed with its own
+    # stamp (15 s + 0.5 ms) and the stamp before (15 s)
+    assert "line 15003 at t = 15.0005 s, after t = 15 s: rate change" in text and ": gap (" in text
     assert "uniform pieces (strokes cut at the breaks): 3, 3 in the combined spectrum" in text
     assert "piece 3: stroke 1, rows 33002-49537, t = 24.5-32.7675 s, step 0.0005 s" in text
     s = json.loads((out / "summary.json").read_text())

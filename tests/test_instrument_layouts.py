@@ -60,6 +60,44 @@ def test_umt_two_steps_analysed_mean_force_and_mu_by_hand(tmp_path, capsys):
     assert s["mean_abs_mu"] == pytest.approx(hand_mu, rel=1e-4)
     io = capsys.readouterr()
     assert "block (Step No. 2 begins" in io.out + io.err
+    # the step boundary is a block of the export, said as a note, not a warning about the clock
+    assert "note: " in io.err and "an export of 2 blocks (then Step No. 2 at line" in io.err
+    assert "warning" not in io.err and "non-uniform" not in io.err, io.err
+    # each block's means by hand (1 kg then 2 kg of load: the pooled means mix them), on the terminal and in JSON
+    n1 = int(np.sum(vals["T"] < vals["T"][0] + 59.995))  # step 1: 60 s at 100 Hz
+    assert n1 == 6000
+    for k, rows in enumerate((slice(0, n1), slice(n1, None))):
+        b = s["blocks"][k]
+        assert b["mean_abs_F_N"] == pytest.approx(np.mean(np.abs(vals["Ff"][rows])) * GF, rel=1e-4)
+        assert b["mean_abs_mu"] == pytest.approx(np.mean(np.abs(vals["COF"][rows])), rel=1e-4)
+        assert f"block {k + 1}" in io.out and f"mean |F| = {b['mean_abs_F_N']:.4g} N" in io.out
+    assert s["blocks"][1]["title"] == "Step No. 2" and s["note"].startswith(str(f))
+    assert f"mean |F| = {s['mean_abs_F_N']:.4g} N, mean |mu| = {s['mean_abs_mu']:.4g} pooled over 2 blocks" in io.out
+    html = (out / "index.html").read_text()
+    assert "The export is made of 2 blocks" in html and "The time stamps break" not in html
+    assert "By block (the pooled means above mix blocks run at different loads)" in html
+
+
+def test_mu_column_labels_c_mu_by_its_column(tmp_path, capsys):
+    """With --mu-col COF (and a normal force given too) C_mu is the spectrum of the column COF: HTML, terminal and
+    summary.json say so and never call it F(t)/N(t); without --mu-col it is F/N, named by its columns."""
+    from compare.cli import main
+
+    raw, _, _ = umt_export(n1=3000, n2=2500)
+    f = tmp_path / "umt.csv"
+    f.write_bytes(raw)
+    base = ["analyze", str(f), "--time-col", "T", "--force-col", "Ff", "--normal-col", "Fz"]
+    assert main(base + ["--mu-col", "COF", "-o", str(tmp_path / "a")]) == 0
+    s = json.loads((tmp_path / "a" / "summary.json").read_text())
+    html = (tmp_path / "a" / "index.html").read_text()
+    out = capsys.readouterr().out
+    assert s["mu_source"] == "the column 'COF'"
+    assert "C_mu of the column &#x27;COF&#x27;: exponent" in html and "F(t)/N(t)" not in html
+    assert "C_mu of the column 'COF': exponent" in out
+    assert main(base + ["-o", str(tmp_path / "b")]) == 0
+    s = json.loads((tmp_path / "b" / "summary.json").read_text())
+    assert s["mu_source"] == "mu(t) = F(t)/N(t) (columns 'Ff' / 'Fz')"
+    assert "C_mu of mu(t) = F(t)/N(t) (columns 'Ff' / 'Fz'): exponent" in capsys.readouterr().out
 
 
 def test_look_ascii_export_read_with_its_units(tmp_path):
@@ -236,3 +274,46 @@ def test_fuzzed_stroke_folders_exit_0_or_2_in_one_line(tmp_path, data, capsys):
     if code == 2:
         line = [ln for ln in err.splitlines() if ln.startswith("frictionnoise: error:")]
         assert len(line) == 1 and line[0].startswith(f"frictionnoise: error: {folder}"), err
+
+
+def test_umt_page_command_with_x_col_cuts_strokes_at_the_position_reversals(tmp_path, capsys):
+    """docs/reference/layouts/umt.md promises that `--x-col X` cuts a UMT record's strokes at the reversals of
+    its position: its command, run on the generator's export, says so. The export's position is a 0.1 Hz sine over
+    60 s and 50 s (with a 3 s pause between the steps): reversals every 5 s, so 11-12 strokes per step."""
+    from pathlib import Path
+
+    from compare.cli import main
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "reference" / "layouts" / "umt.md").read_text()
+    cmd = next(line for line in page.splitlines() if line.startswith("frictionnoise analyze") and "--x-col X" in line)
+    raw, _, _ = umt_export()
+    f = tmp_path / "run.csv"
+    f.write_bytes(raw)
+    args = cmd.split()[1:]
+    args[args.index("run.csv")] = str(f)
+    assert main(args + ["-o", str(tmp_path / "o")]) == 0
+    s = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert s["strokes"]["method"] == "sign of the position's derivative" and 20 <= s["strokes"]["found"] <= 24
+    assert "strokes (sign of the position's derivative)" in capsys.readouterr().out
+
+
+def test_blocks_on_a_resampled_grid_and_a_block_of_nan_rows(tmp_path):
+    """Blocks put on one grid (--resample 0.01 s, the export's own step) span their own stamps, not the 3 s pause
+    between the steps; a step whose friction column is all NaN leaves one block: no block list, no note."""
+    raw, vals, _ = umt_export(n1=3000, n2=2500)
+    f = tmp_path / "umt.csv"
+    f.write_bytes(raw)
+    d = read_measured(f, time_col="T", force_col="Ff", require_x=False, resample=0.01)
+    assert [(b["start"], b["stop"]) for b in d.blocks] == [(0, 3000), (3299, 5799)]  # 29.99 s + 3 s pause + 25 s
+    assert "blocks of the export" in d.note and "put on the one grid" in d.note
+    lines = raw.decode("latin-1").split("\r\n")
+    i = lines.index("Step No. 2")
+    data = [k for k in range(i, len(lines)) if lines[k] and lines[k][0] in "-0123456789"]
+    for k in data:
+        cells = lines[k].split(",")
+        cells[9] = "nan"
+        lines[k] = ",".join(cells)
+    g = tmp_path / "nan_step.csv"
+    g.write_bytes("\r\n".join(lines).encode("latin-1"))
+    d = read_measured(g, time_col="T", force_col="Ff", require_x=False)
+    assert d.blocks == () and d.note is None and "2500 rows with NaN dropped" in d.warning

@@ -35,7 +35,32 @@ def test_breaks_are_found_where_they_are():
     assert [(s.start, s.stop) for s in tl.segments] == [(0, 2000), (2000, 4000), (4000, 6000), (6000, 6101),
                                                          (6101, 6201)]
     assert [round(1 / s.dt) for s in tl.segments] == [1000, 2000, 2000, 2000, 2000]
-    assert "line 4003, t = 3 s: gap" in gap.describe()
+    # the time printed with a line is that line's stamp; the stamp before the break follows it
+    assert "line 4003 at t = 3.3 s, after t = 3 s: gap" in gap.describe()
+    assert "line 2003 at t = 2.0005 s, after t = 1.999 s: rate change" in rc.describe()
+    assert "line 6104 at t = " in back.describe() and back.time_after == pytest.approx(t[6101])
+    assert all(e.time_after == t[e.row] for e in tl.events)
+
+
+def test_a_block_and_a_nan_gap_are_printed_with_the_time_of_their_line(tmp_path, capsys):
+    """The UMT export's step 2 (line 6032, its first row at t = 62.99 s, the last of step 1 at 59.99 s) and three
+    NaN rows dropped from a uniform 1 kHz record: each break is printed with its own line's time."""
+    from tests.instrument_files import umt_export
+
+    raw, vals, where = umt_export()
+    f = tmp_path / "umt.csv"
+    f.write_bytes(raw)
+    assert main(["analyze", str(f), "--time-col", "T", "--force-col", "Ff", "-o", str(tmp_path / "o1")]) == 0
+    out = capsys.readouterr().out
+    assert f"line {where['step2_line']} at t = 62.99 s, after t = 59.99 s: block (Step No. 2" in out, out
+    lines = ["time (s),F (N)"] + [f"{1e-3 * i:.3f},{'nan' if 1000 <= i < 1003 else f'{np.sin(i / 7):.5f}'}"
+                                  for i in range(4000)]
+    g = tmp_path / "nan.csv"
+    g.write_text("\n".join(lines) + "\n")
+    d = read_measured(g, force_col="F", require_x=False)
+    (gap,) = d.timeline.events
+    assert gap.kind == "gap" and gap.line == 1005  # the header is line 1; rows 1000-1002 on lines 1002-1004
+    assert "line 1005 at t = 1.003 s, after t = 0.999 s: gap" in gap.describe()
 
 
 def test_jitter_is_one_segment():
@@ -115,7 +140,7 @@ def test_analyze_reports_segments_and_the_exponent(tmp_path, capsys):
     out = tmp_path / "out"
     assert main(["analyze", str(f), "--mass", "1.0", "--band", f"{BAND[0]}", f"{BAND[1]}", "-o", str(out)]) == 0
     io = capsys.readouterr()
-    assert "line 30003, t = 30 s: rate change" in io.out + io.err and "gap" in io.out + io.err
+    assert "line 30003 at t = 30.0005 s, after t = 30 s: rate change" in io.out + io.err and "gap" in io.out + io.err
     s = json.loads((out / "summary.json").read_text())
     assert len(s["timeline"]["events"]) == 2 and len(s["timeline"]["segments"]) == 3
     assert abs(s["gamma"] - 4.0) <= s["gamma_err"] * 1.5  # one seed: 1.5 x the 95 % half-width
@@ -133,3 +158,9 @@ def test_resample_on_request(tmp_path, capsys):
     s = json.loads((out / "summary.json").read_text())
     assert s["resampled"] and s["dt_s"] == pytest.approx(1e-3) and "segment_fits" not in s
     # force records whose stamps break: tests/test_force_timeline.py
+
+
+def test_one_missing_sample_is_singular():
+    t = np.concatenate([np.arange(100) * 1e-3, 0.101 + np.arange(100) * 1e-3])  # one 2 ms step: 1 sample missing
+    (gap,) = find_segments(t).events
+    assert gap.kind == "gap" and "about 1 sample missing" in gap.detail

@@ -19,7 +19,7 @@ from .segments import SegmentSpectra, piece_spectra, segment_fits, with_line_fla
 from .spectra import Spectrum, rescaled, rms_from_spectrum
 from .strokes import Strokes, find_strokes, stroke_pieces, stroke_spectrum
 
-__all__ = ["ForceAnalysis", "analyze_force"]
+__all__ = ["ForceAnalysis", "analyze_force", "mu_source", "block_means"]
 
 
 @dataclass(frozen=True)
@@ -51,7 +51,9 @@ class ForceAnalysis:
         -------
         dict
             Source, units, strokes, the force exponent with its 95 % interval and band (rad/s), F_rms (N), and
-            the C_mu, equivalent-C_x and distance-domain entries when present; for a record whose time stamps
+            the C_mu entries (``mu_source``: the column mu was read from, or F/N), equivalent-C_x and
+            distance-domain entries when present; ``blocks`` (a multi-block export: :func:`block_means`, beside
+            the pooled means) and the reader's ``note``; for a record whose time stamps
             break, its ``timeline`` (segments and breaks) and ``pieces`` (stroke, rows, times (s), step (s), own
             fit, in the combined spectrum or not) and the common window ``piece_window_s`` (s).
         """
@@ -60,7 +62,7 @@ class ForceAnalysis:
             "source": d.source, "units": d.units, "layout": d.layout,
             "n_samples": len(d.t),
             "dt_s": float(self.C_F.provenance["dt"] if self.pieces is not None else d.t[1] - d.t[0]),
-            "resampled": d.resampled, "warning": d.warning,
+            "resampled": d.resampled, "warning": d.warning, "note": getattr(d, "note", None),
             "strokes": {"method": st.method, "found": st.found, "used": len(st.segments),
                         "dropped": [{"stroke": i, "reason": r} for i, r in st.dropped],
                         "cut_each_end_s": st.cut_s, "median_duration_s": st.duration_s, "used_length_s": st.used_s},
@@ -75,9 +77,12 @@ class ForceAnalysis:
             s["pieces"] = self.piece_fits
             s["piece_window_s"] = self.pieces.window_s
         if self.fit_mu is not None:
+            s["mu_source"] = mu_source(d)
             s["fit_mu"] = self.fit_mu.to_dict()
             s["mu_rms"] = rms_from_spectrum(self.C_mu)
             s["mean_abs_mu"] = float(np.mean(np.abs(_mu(d))))
+        if getattr(d, "blocks", ()):
+            s["blocks"] = block_means(d)
         if self.fit_x_equiv is not None:
             s["mass_kg"] = self.mass
             s["equivalent_free_block_Cx"] = {"label": "equivalent C_x of a free block, C_F / (M^2 omega^4), eq. (3); "
@@ -98,6 +103,36 @@ def _piece_rows(t, ss: SegmentSpectra, numbers, band, method) -> list:
     for row, num in zip(rows, numbers):
         row.update(stroke=int(num), t_start_s=float(t[row["start_row"]]), t_stop_s=float(t[row["stop_row"] - 1]))
     return rows
+
+
+def block_means(data) -> list:
+    """The mean |F| (N), mean |mu| and mean |N| (N) of each block of a multi-block export (``data.blocks``: the
+    steps of a UMT export run at different loads, where the pooled means mix them), with its title, place and first
+    and last time (s)."""
+    F, mu = np.abs(np.asarray(data.F, float)), _mu(data)
+    t = np.asarray(data.t, float)
+    out = []
+    for b in data.blocks:
+        a, z = b["start"], b["stop"]
+        row = {"block": b["block"], "title": b["title"], "place": b["place"], "start_row": a, "stop_row": z,
+               "t_start_s": float(t[a]), "t_stop_s": float(t[z - 1]), "mean_abs_F_N": float(np.mean(F[a:z]))}
+        if mu is not None:
+            row["mean_abs_mu"] = float(np.mean(np.abs(mu[a:z])))
+        if data.N is not None:
+            row["mean_abs_N_N"] = float(np.mean(np.abs(np.asarray(data.N, float)[a:z])))
+        out.append(row)
+    return out
+
+
+def mu_source(data) -> str:
+    """What the friction coefficient mu(t) of a record is: the file's own column (named) or F(t)/N(t) (the
+    columns named), as :func:`_mu` takes it; the label of C_mu in every output."""
+    units = getattr(data, "units", None) or {}
+    if getattr(data, "mu", None) is not None:
+        col = units.get("mu", {}).get("column")
+        return f"the column {col!r}" if col else "the file's friction-coefficient column"
+    F, N = units.get("force", {}).get("column"), units.get("normal", {}).get("column")
+    return f"mu(t) = F(t)/N(t) (columns {F!r} / {N!r})" if F and N else "mu(t) = F(t)/N(t)"
 
 
 def _mu(data):
@@ -153,7 +188,8 @@ def analyze_force(data, *, band=None, mass: float | None = None, speed: float | 
 
     ``mass`` (kg) adds the equivalent C_x = C_F / (M^2 omega^4) of a free block (eq. 3); ``speed`` (m/s)
     adds the distance-domain spectrum C_F(q) = v C_F(omega = q v) (q in rad/m) and the stroke length; a
-    normal-force column adds C_mu of mu(t) = F(t) / N(t). A record whose time stamps break (``data.segmented``)
+    normal-force column adds C_mu of mu(t) = F(t) / N(t), a friction-coefficient column (``data.mu``) C_mu of that
+    column (it wins over F/N; :func:`mu_source` names which). A record whose time stamps break (``data.segmented``)
     is analysed over its uniform pieces (see the module docstring), with the same outputs.
 
     Parameters

@@ -129,9 +129,9 @@ def _boundaries(data) -> tuple:
         state = _hysteresis(np.asarray(data.F), -h, h)
         method, bounds = "sign of the friction force", _runs(state)
     else:
-        method, bounds = "continuous", np.array([0, n])
+        method, bounds = "continuous", np.array([0, n])  # nothing to split by
     if len(bounds) <= 2:
-        method = f"continuous (one stroke; split by {method})" if method != "continuous" else method
+        method = f"one stroke: no reversal in the {method}" if method != "continuous" else "one stroke"
         bounds = np.array([0, n])
     return method, bounds
 

@@ -6,13 +6,12 @@ splits the record where the step leaves its segment's own step by more than the 
 step, then the old step again: samples missing), a **rate change** (a new step that lasts), a **repeated** stamp
 (step 0), a **backward** one (step < 0) or one **short step** (then the old step again). One step within half a
 step of the rate, the rate kept after it, is the clock's jitter (a logger's step wandering by 20 %), not a break:
-no sample is missing. Each event is reported
-with its row, its time and its size; the stretches between are analysed on their own and together
-(:mod:`compare.analysis.segments`).
+no sample is missing. Each event is reported with its row, its line's time and the stamp before it, and its size;
+the stretches between are analysed on their own and together (:mod:`compare.analysis.segments`).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -25,10 +24,12 @@ _LOOK = 8  # steps looked at to set a segment's step and to tell a gap from a ra
 
 @dataclass(frozen=True)
 class TimeEvent:
-    """Where the time line breaks. kind: "gap", "rate change", "repeated", "backward" or "short step"; row: index
+    """Where the time line breaks. kind: "gap", "rate change", "repeated", "backward", "short step" (or "block": a
+    new block of a multi-block export, set by its reader); row: index
     of the sample after the break (0-based, into the record's rows); line: its line in the file (if known);
     time (s): the stamp before the break; size (s): the step taken (gap, repeated, backward, short step: the jump;
-    rate change: the new step); detail: one phrase for a report."""
+    rate change: the new step); detail: one phrase for a report; time_after (s): the stamp of the sample after
+    the break, the one on ``line``."""
 
     kind: str
     row: int
@@ -36,10 +37,13 @@ class TimeEvent:
     time: float
     size: float
     detail: str
+    time_after: float = float("nan")
 
     def describe(self) -> str:
+        """``line L at t = <stamp on line L>, after t = <stamp before>: kind (detail)``: the time printed with the
+        line is that line's own."""
         where = f"line {self.line}" if self.line is not None else f"row {self.row + 1}"
-        return f"{where}, t = {self.time:.6g} s: {self.kind} ({self.detail})"
+        return f"{where} at t = {self.time_after:.6g} s, after t = {self.time:.6g} s: {self.kind} ({self.detail})"
 
 
 @dataclass(frozen=True)
@@ -76,7 +80,8 @@ class Timeline:
     def summary(self) -> dict:
         return {"segments": [{"start_row": s.start, "stop_row": s.stop, "n": s.n, "dt_s": s.dt, "spread": s.spread,
                               "used": i not in self.short} for i, s in enumerate(self.segments)],
-                "events": [{"kind": e.kind, "row": e.row, "line": e.line, "time_s": e.time, "size_s": e.size,
+                "events": [{"kind": e.kind, "row": e.row, "line": e.line, "time_s": e.time,
+                            "time_after_s": e.time_after, "size_s": e.size,
                             "detail": e.detail} for e in self.events]}
 
 
@@ -157,7 +162,8 @@ def find_segments(t, lines=None, *, jitter: float = JITTER, min_rows: int = MIN_
         elif np.isfinite(after) and np.isfinite(ref) and abs(after / ref - 1.0) <= jitter and step > ref:
             missing = int(round(step / ref)) - 1
             ev = TimeEvent("gap", stop, line(stop), float(t[i]), float(step),
-                           f"a step of {step:.4g} s where {ref:.4g} s was the rule: about {missing} samples missing")
+                           f"a step of {step:.4g} s where {ref:.4g} s was the rule: about {missing} "
+                           f"sample{'' if missing == 1 else 's'} missing")
         elif np.isfinite(after) and np.isfinite(ref) and abs(after / ref - 1.0) <= jitter:
             ev = TimeEvent("short step", stop, line(stop), float(t[i]), float(step),
                            f"one step of {step:.4g} s where {ref:.4g} s was the rule")
@@ -165,7 +171,7 @@ def find_segments(t, lines=None, *, jitter: float = JITTER, min_rows: int = MIN_
             new = after if np.isfinite(after) else step
             ev = TimeEvent("rate change", stop, line(stop), float(t[i]), float(new),
                            f"step {ref:.4g} s -> {new:.4g} s ({1 / ref:.4g} -> {1 / new:.4g} Hz)")
-        events.append(ev)
+        events.append(replace(ev, time_after=float(t[stop])))
         s = stop
     short = tuple(k for k, seg in enumerate(segments) if seg.n < min_rows)
     return Timeline(tuple(segments), tuple(events), short)

@@ -8,6 +8,7 @@ import sys
 from .options import (UserError, check_seconds_options, check_seed, load_scenario_arg, output_dir, scenario_path,
                       shipped_file, usable_cores)
 from .progress import print_verdicts, progress_bar
+from .record_summary import displacement_lines, force_lines, print_breaks
 
 __all__ = ["cmd_analyze", "cmd_compare", "cmd_render", "cmd_report", "cmd_run", "cmd_sweep"]
 
@@ -61,19 +62,6 @@ def cmd_sweep(args) -> int:
     return 0 if counts["failed"] == 0 else 1
 
 
-def _print_breaks(timeline, most: int = 10):
-    """The breaks of a record's time stamps, one line each (at most ``most``), and its uniform segments."""
-    if timeline is None or not timeline.events:
-        return
-    for e in timeline.events[:most]:
-        print(f"time stamps: {e.describe()}")
-    if len(timeline.events) > most:
-        print(f"time stamps: ... and {len(timeline.events) - most} more breaks (all in summary.json)")
-    used = timeline.usable()
-    print(f"time stamps: {len(timeline.segments)} uniform segments, {len(used)} long enough to analyse (steps "
-          f"{', '.join(f'{s.dt:.4g}' for s in used)} s)")
-
-
 def cmd_analyze(args) -> int:
     from pathlib import Path
 
@@ -116,7 +104,7 @@ def cmd_analyze(args) -> int:
         raise UserError(f"{args.data}: {e}") from None
     write_report(out, sections, summary, title=f"frictionnoise analyze: {Path(args.data).name}")
     print("\n".join(([] if force else ranking_lines(summary)) + [f"{args.data}: {units_line(data)}"]))
-    for line in (_force_lines if force else _displacement_lines)(summary, out / "index.html"):
+    for line in (force_lines if force else displacement_lines)(summary, out / "index.html"):
         print(line)
     return 0
 
@@ -138,9 +126,11 @@ def _read_record(path, args):
                              resample=args.resample, mu_col=args.mu_col, contact_area=args.contact_area)
     except DataFileError as e:
         raise UserError(str(e)) from None
+    if data.note:
+        print(f"frictionnoise: note: {data.note}", file=sys.stderr)  # the note names the file
     if data.warning:
         print(f"frictionnoise: warning: {data.warning}", file=sys.stderr)  # the warning names the file
-    _print_breaks(data.timeline)
+    print_breaks(data.timeline)
     return data
 
 
@@ -154,45 +144,6 @@ def _check_analyze_numbers(args) -> None:
         raise UserError(f"--cut must be >= 0 s (got {args.cut})")
     if args.band is not None and not all(math.isfinite(b) for b in args.band):
         raise UserError(f"--band must be two finite frequencies in rad/s (got {args.band[0]} {args.band[1]})")
-
-
-def _fit_text(f: dict) -> str:
-    """A fit as the terminal shows it: exponent, 95 % interval, method, band, the floor (record model), flags."""
-    ci = f"95 % [{f['gamma_interval'][0]:.3f}, {f['gamma_interval'][1]:.3f}]" if "gamma_interval" in f else "95 %"
-    floor = "" if "floor" not in f else f"; white floor {f['floor_rms']:.3g} m rms, over the power law above {f['crossover'] or float('inf'):.3g} rad/s"
-    flags = "" if f["power_law"] else f" [not a power law: {'; '.join(f['flags'])}]"
-    notes = "".join(f"\n  {note}" for note in f.get("notes", ()) if "least squares" in note)  # why not the default
-    return (f"{f['gamma']:.3f} +- {f['gamma_err']:.3f} ({ci}, {f['method']}) over {f['band'][0]:.3g}-{f['band'][1]:.3g} "
-            f"rad/s{floor}{flags}{notes}")
-
-
-def _force_lines(summary: dict, index, most: int = 10) -> list:
-    st = summary["strokes"]
-    lines = [f"strokes ({st['method']}): {st['found']} found, {st['used']} used, {len(st['dropped'])} dropped; "
-             f"{st['cut_each_end_s']:.4g} s cut at each end"]
-    pieces = summary.get("pieces") or []
-    if pieces:
-        lines.append(f"uniform pieces (strokes cut at the breaks): {len(pieces)}, "
-                     f"{sum(p['in_combined'] for p in pieces)} in the combined spectrum (common window "
-                     f"{summary['piece_window_s']:.4g} s)")
-    for i, p in enumerate(pieces[:most]):
-        lines.append(f"  piece {i + 1}: stroke {p['stroke']}, rows {p['start_row'] + 1}-{p['stop_row']}, t = "
-                     f"{p['t_start_s']:.6g}-{p['t_stop_s']:.6g} s, step {p['dt_s']:.4g} s, "
-                     + ("in the combined spectrum" if p["in_combined"] else "not in the combined spectrum"))
-    if len(pieces) > most:
-        lines.append(f"  ... and {len(pieces) - most} more pieces (all in summary.json)")
-    return lines + [f"wrote {index}: force exponent {_fit_text(summary['fit_F'])}"]
-
-
-def _displacement_lines(summary: dict, index) -> list:
-    lines = [f"wrote {index}: C_x ~ omega^-gamma, gamma = {_fit_text(summary['fit'])}; mean velocity "
-             f"{summary['mean_velocity']:.4g} m/s; zeta_rms = {summary['zeta_rms_m']:.4g} m over "
-             f"{summary['zeta_rms_band'][0]:.3g}-{summary['zeta_rms_band'][1]:.4g} rad/s (eq. 4), mu_rms = "
-             f"{summary['mu_rms']:.4g} (C_mu = omega^4 C_x / g^2)"]
-    if "fit_F" in summary:
-        lines.append(f"  C_F = M^2 omega^4 C_x (M = {summary['mass_kg']:g} kg, eq. 3): force exponent "
-                     f"{_fit_text(summary['fit_F'])}; F_rms = {summary['F_rms_N']:.4g} N")
-    return lines + [f"  {n}" for n in ([] if "fit_F" in summary else summary["notes"]) + summary["fit"].get("notes", [])]
 
 
 def cmd_render(args) -> int:

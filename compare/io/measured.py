@@ -47,6 +47,8 @@ class MeasuredData:
     ``t`` (s, starting at 0), and whichever of ``x`` (m), ``F`` (friction force, N), ``N`` (normal force, N),
     ``direction`` (the raw direction column) the file held and the caller asked for. ``units`` maps each
     quantity read to ``{"column", "unit", "from"}`` where ``from`` is "header", "units row" or "argument".
+    ``blocks``: the blocks of a multi-block export (a UMT's steps, a folder's files), each with its title, the
+    place of its first row and its rows ``start:stop`` of ``t``; ``note`` says so in one line.
     """
 
     t: np.ndarray
@@ -62,6 +64,8 @@ class MeasuredData:
     units: dict = field(default_factory=dict)
     layout: dict = field(default_factory=dict)
     timeline: object = None  # compare.analysis.timeline.Timeline of the time stamps as written
+    note: str | None = None  # what the file is made of, not a fault: the blocks of a multi-block export
+    blocks: tuple = ()  # the export's blocks (two or more): {"block", "title", "place", "start", "stop"}, rows of t
 
     @property
     def segmented(self) -> bool:
@@ -192,18 +196,20 @@ def _timeline(t: np.ndarray, lines, blocks: list):
         tl = find_segments(t[a:b], lines=None if lines is None else lines[a:b])
         if a > 0:
             events.append(TimeEvent("block", a, None if lines is None else int(lines[a]), float(t[a - 1]),
-                                    float(t[a] - t[a - 1]), f"{titles[j] or 'a new block'} begins: read on its own"))
+                                    float(t[a] - t[a - 1]), f"{titles[j] or 'a new block'} begins: read on its own",
+                                    float(t[a])))
         segs += [Segment(s.start + a, s.stop + a, s.dt, s.spread) for s in tl.segments]
         events += [replace(e, row=e.row + a) for e in tl.events]
     return Timeline(tuple(segs), tuple(events), tuple(k for k, s in enumerate(segs) if s.n < MIN_ROWS))
 
 
 def _uniform(src: str, t: np.ndarray, arr: dict, lines, resample: float | None, blocks: list = ()):
-    """(t, arr, warning, resampled, timeline). Breaks in the time stamps (compare.analysis.timeline: rate changes,
-    gaps, repeated or backward stamps) leave the record as written, in uniform segments, unless ``resample`` (s)
-    asks for one grid (compare.analysis.segments.resample_record, its filter stated in the warning); a jittered
-    grid without breaks is resampled onto a uniform one (linear interpolation; a direction label takes the
-    nearest earlier sample)."""
+    """(t, arr, warning, resampled, timeline). A block boundary of the export is a break of the time line but
+    no fault of its clock: the warning counts only the clock's breaks (the blocks are the record's ``note``).
+    Breaks in the time stamps (compare.analysis.timeline: rate changes, gaps, repeated or backward stamps) leave
+    the record as written, in uniform segments, unless ``resample`` (s) asks for one grid
+    (compare.analysis.segments.resample_record, its filter stated in the warning); a jittered grid without breaks
+    is resampled onto a uniform one (linear interpolation; a direction label takes the nearest earlier sample)."""
     from ..analysis.segments import resample_record
     from ..analysis.timeline import MIN_ROWS
 
@@ -220,10 +226,15 @@ def _uniform(src: str, t: np.ndarray, arr: dict, lines, resample: float | None, 
                                 f"time stamps (first: {tl.events[0].describe()}); give --resample DT")
         kinds = {}
         for e in tl.events:
-            kinds[e.kind] = kinds.get(e.kind, 0) + 1
+            if e.kind != "block":
+                kinds[e.kind] = kinds.get(e.kind, 0) + 1
+        if not kinds:
+            return t, arr, None, False, tl
         said = ", ".join(f"{n} {k}{'s' if n > 1 else ''}" for k, n in kinds.items())
-        return t, arr, (f"{src}: non-uniform time stamps ({said}): analysed as {len(tl.usable())} uniform segments, "
-                        "each on its own and together (--resample DT puts them on one grid)"), False, tl
+        n = len(tl.usable())
+        return t, arr, (f"{src}: non-uniform time stamps ({said}): analysed as {n} uniform segment"
+                        f"{'s' if n > 1 else ''}, each on its own and together (--resample DT puts them on one "
+                        "grid)"), False, tl
     steps = np.diff(t)
     med = float(np.median(steps))
     spread = float(np.max(np.abs(steps - med)) / med)
@@ -315,6 +326,7 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
     t_file = arr.pop("t")
     t0 = float(t_file[0])  # one time origin everywhere: the first sample kept, the breaks' times included
     t, arr, warning, resampled, timeline = _uniform(src, t_file - t0, arr, lines, resample, blocks)
+    parts, note = _blocks(tab, kept, t_file - t0, t, blocks, resampled)
     layout = dict(tab.info, layout=tab.layout, time_origin_s=t0, nan_rows_dropped=len(dropped),
                   nan_places=[tab.place(tab.keys[r]) for r in dropped[:20]],
                   resampling=warning[len(src) + 2:] if resampled and warning else None)
@@ -326,7 +338,35 @@ def read_measured(path, *, time_col: str | None = None, x_col: str | None = None
     return MeasuredData(t=t - t[0], x=arr.get("x"), source=src, resampled=resampled, warning=warning,
                         n_rows=len(kept), F=arr.get("F"), N=arr.get("N"), direction=arr.get("direction"),
                         mu=arr.get("mu"),
-                        units=tab.units, layout=layout, timeline=timeline)
+                        units=tab.units, layout=layout, timeline=timeline, note=note, blocks=parts)
+
+
+def _blocks(tab: Sheet, kept: list, t_rows: np.ndarray, t: np.ndarray, blocks: list, resampled: bool):
+    """(blocks, note) of a multi-block export: each block's title, the place of its first row and its rows of the
+    record ``t`` (the rows as written, or the stretch of the uniform grid from a block's first stamp to its last
+    when resampled), and one line saying the record is made of them; ((), None) for one block. A block left without
+    rows (every row NaN) is not listed."""
+    rows = [0] + [r for r, _ in blocks]
+    ends = rows[1:] + [len(t_rows)]
+    if resampled:  # the grid's samples from a block's first stamp to its last (a pause between blocks in neither)
+        half = 0.5 * float(t[1] - t[0])  # a grid point within half a step of a stamp is that stamp's
+        first = [int(np.searchsorted(t, t_rows[r] - half, side="left")) for r in rows]
+        last = [int(np.searchsorted(t, t_rows[e - 1] + half, side="left")) if e > r else f
+                for r, e, f in zip(rows, ends, first)]
+    else:
+        first, last = rows, ends
+    titles = [""] + [title for _, title in blocks]
+    parts = tuple({"block": k + 1, "title": titles[k], "place": tab.place(tab.keys[kept[r]]), "start": a, "stop": b}
+                  for k, (r, a, b) in enumerate(zip(rows, first, last)) if b > a)
+    if len(parts) < 2:
+        return (), None
+    opened = "; ".join(p["place"] if p["title"] and p["title"] in p["place"] else  # a folder's file names its block
+                       f"{p['title'] or 'block ' + str(p['block'])} at {p['place']}" for p in parts[1:4])
+    note = (f"{tab.src}: an export of {len(parts)} blocks (then {opened}{'; ...' if len(parts) > 4 else ''}): "
+            "blocks of the export, not breaks of its clock; each block "
+            + ("put on the one grid with the rest (--resample)" if resampled else
+               "analysed as its own segment, on its own and together with the others"))
+    return parts, note
 
 
 def read_displacement_csv(path, time_col: str | None = None, x_col: str | None = None,

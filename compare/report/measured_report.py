@@ -7,7 +7,7 @@ from pathlib import Path
 
 from ..analysis.displacement import C_F_NEEDS_MASS, DisplacementAnalysis
 from ..analysis.fits import flag_mark
-from ..analysis.force import ForceAnalysis, analyze_force
+from ..analysis.force import ForceAnalysis, analyze_force, mu_source
 from ..analysis.strokes import Strokes, find_strokes
 from .html import esc, paragraphs, span, table
 from .verdict import fit_text
@@ -29,8 +29,9 @@ def build_force_report(an: ForceAnalysis):
     paras = [
         f"{len(d.t)} samples " + ("in uniform segments (below)" if an.pieces is not None else
                                   f"every {d.t[1] - d.t[0]:.4g} s") + f"; {esc(units_line(d))}"
+        + (f". {esc(d.note)}" if getattr(d, "note", None) else "")
         + (f". {esc(d.warning)}" if d.warning else "."),
-        f"Strokes found from the {esc(st.method)}: {st.found} found, {len(st.segments)} used, "
+        f"Strokes ({esc(st.method)}): {st.found} found, {len(st.segments)} used, "
         f"{len(st.dropped)} dropped" + (" (" + "; ".join(f"stroke {i}: {esc(r)}" for i, r in st.dropped) + ")"
                                         if st.dropped else "")
         + f"; {st.cut_s:.4g} s cut at each end of a stroke (reversal transients); every stroke {st.used_s:.4g} s long "
@@ -42,8 +43,15 @@ def build_force_report(an: ForceAnalysis):
         + f"; F_rms = {summary['F_rms_N']:.4g} N over the resolved band (eq. 4), mean |F| = {summary['mean_abs_F_N']:.4g} N.",
     ]
     if an.fit_mu is not None:
-        paras.append(f"C_mu of mu(t) = F(t)/N(t): exponent {fit_text(an.fit_mu, 3)}; "
+        paras.append(f"C_mu of {esc(mu_source(d))}: exponent {fit_text(an.fit_mu, 3)}; "
                      f"mu_rms = {summary['mu_rms']:.4g}, mean |mu| = {summary['mean_abs_mu']:.4g}.")
+    if summary.get("blocks"):
+        paras.append(f"By block (the pooled means above mix blocks run at different loads): " + "; ".join(
+            f"block {b['block']}{esc(' (' + b['title'] + ')') if b['title'] else ''}, t = {b['t_start_s']:.6g}-"
+            f"{b['t_stop_s']:.6g} s: mean |F| = {b['mean_abs_F_N']:.4g} N"
+            + (f", mean |mu| = {b['mean_abs_mu']:.4g}" if "mean_abs_mu" in b else "")
+            + (f", mean |N| = {b['mean_abs_N_N']:.4g} N" if "mean_abs_N_N" in b else "") for b in summary["blocks"])
+            + ".")
     if an.fit_x_equiv is not None:
         paras.append(f"Equivalent C_x of a free block of M = {an.mass:g} kg (C_F / (M^2 omega^4), eq. (3); inferred, "
                      f"not a measured displacement): gamma = {fit_text(an.fit_x_equiv, 3)}.")
@@ -75,9 +83,9 @@ def build_force_report(an: ForceAnalysis):
                               f"C_F in the distance domain: the same spectrum against q = omega / v, v = {an.speed:g} m/s."))
     if an.C_mu is not None:
         figures.append(Figure("measured_force_Cmu", plots.figure_png_bytes(plots.spectrum_figure(
-            [(an.C_mu, "C_mu of F/N")], ylabel=r"$C_\mu$ (s)", title="Friction coefficient spectrum")),
-            f"C_mu of mu(t) = F(t)/N(t): exponent {an.fit_mu.gamma:.2f} ± {an.fit_mu.gamma_err:.2f}{flag_mark(an.fit_mu)}."
-            if an.fit_mu is not None else "C_mu of mu(t) = F(t)/N(t)."))
+            [(an.C_mu, f"C_mu of {mu_source(d)}")], ylabel=r"$C_\mu$ (s)", title="Friction coefficient spectrum")),
+            f"C_mu of {mu_source(d)}: exponent {an.fit_mu.gamma:.2f} ± {an.fit_mu.gamma_err:.2f}{flag_mark(an.fit_mu)}."
+            if an.fit_mu is not None else f"C_mu of {mu_source(d)}."))
     if an.C_x_equiv is not None:
         figures.append(Figure("measured_force_Cx_equivalent", plots.figure_png_bytes(plots.spectrum_figure(
             [(an.C_x_equiv, "equivalent free-block C_x (eq. 3)")], title="Equivalent C_x of a free block (inferred)")),

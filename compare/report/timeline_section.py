@@ -15,8 +15,17 @@ def _own(f: dict) -> str:
 
 
 def _breaks(timeline) -> str:
-    return f"The time stamps break {len(timeline.events)} time(s): " + "; ".join(esc(e.describe())
-                                                                                  for e in timeline.events) + "."
+    """The blocks of the export (no fault of the clock), then the breaks of its time stamps, each described."""
+    blocks = [e for e in timeline.events if e.kind == "block"]
+    clock = [e for e in timeline.events if e.kind != "block"]
+    said = []
+    if blocks:
+        said.append(f"The export is made of {len(blocks) + 1} blocks, each read on its own (not a fault of the "
+                    "clock): " + "; ".join(esc(e.describe()) for e in blocks) + ".")
+    if clock:
+        said.append(f"The time stamps break {len(clock)} time{'s' if len(clock) > 1 else ''}: "
+                    + "; ".join(esc(e.describe()) for e in clock) + ".")
+    return " ".join(said)
 
 
 def timeline_html(timeline, fits, notes=()) -> str:
