@@ -80,16 +80,11 @@ def test_a_working_command_cell_builds_with_the_environments_frictionnoise(tmp_p
 
 
 def test_the_documentation_configures_its_kernels():
-    # docs/conf.py itself must install the start-up file: executing it sets IPYTHONDIR to a folder holding it
-    before = os.environ.get("IPYTHONDIR"), os.environ.get("PATH")
-    try:
-        namespace = {"__file__": str(DOCS / "conf.py")}
-        exec(compile((DOCS / "conf.py").read_text(encoding="utf-8"), str(DOCS / "conf.py"), "exec"), namespace)
-        startup = Path(os.environ["IPYTHONDIR"]) / "profile_default" / "startup"
-        assert any("_exit_code" in f.read_text() for f in startup.glob("*.py"))
-    finally:
-        for key, value in zip(("IPYTHONDIR", "PATH"), before):
-            if value is None:
-                os.environ.pop(key, None)
-            else:
-                os.environ[key] = value
+    # docs/conf.py itself must install the start-up file: executing it sets IPYTHONDIR to a folder holding it. Run in
+    # a child process: conf.py also sets PYTHONPATH and sys.path for the build, which would leak into later tests
+    code = ("import os, runpy; runpy.run_path(os.environ['CONF']); print(os.environ['IPYTHONDIR'])")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
+                          env={**os.environ, "CONF": str(DOCS / "conf.py")})
+    assert done.returncode == 0, done.stderr[-2000:]
+    startup = Path(done.stdout.split()[-1]) / "profile_default" / "startup"
+    assert any("_exit_code" in f.read_text() for f in startup.glob("*.py"))
