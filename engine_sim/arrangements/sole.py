@@ -37,7 +37,7 @@ class Sole(Arrangement):
         return self.spec.N * self.own.foot_length
 
     def build(self, scene):
-        sc, p, o = scene.sc, self.spec, self.own
+        p, o = self.spec, self.own
         space = scene.space
         m_p, R = o.mass, o.radius
         foot = o.foot_length
@@ -58,7 +58,7 @@ class Sole(Arrangement):
             scene.law.build(scene, pad, o.c)
             if i == 0:  # one track shared by the sole's feet
                 scene.tracks.append(scene.substrate.build(space, 0.0, pymunk.ShapeFilter(), track_rng(scene, 0),
-                                                          sc.friction.mu0, x_start))
+                                                          scene.mu_track, x_start))  # mu0: no grains on a sole
             self._add_pad(scene, pad, yp, xp, flt, R)
         if p.k1 > 0 or p.c1 > 0:
             for i in range(p.N - 1):

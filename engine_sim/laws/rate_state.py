@@ -161,7 +161,7 @@ class RateState(Linear):
         """Per sliding body (``scene.sliders`` order): theta (s), started at theta0 or in steady state."""
         if getattr(self, "theta", None) is None or len(self.theta) != len(scene.sliders):
             s = self.spec
-            th0 = s.theta0 if s.theta0 is not None else s.D_c / scene.sc.steady_velocity
+            th0 = s.theta0 if s.theta0 is not None else s.D_c / self.sc.steady_velocity  # s (SI)
             self.theta = np.full(len(scene.sliders), th0)
 
     def _per_body(self, scene):
