@@ -57,8 +57,7 @@ def _bind(part, ctx) -> None:
     """Convert what ``part`` (and the parts it builds with) declares it reads in scene units, once, and hand it
     its context."""
     for q in [part, *part.subparts()]:
-        q.own = U.SceneValues(**{name: None if v is None else U.to_scene(v, dim)
-                                 for name, (v, dim) in q.scene_inputs().items()})
+        q.own = U.scene_values(q.scene_inputs())
         q.ctx = ctx
 
 
@@ -125,8 +124,7 @@ class Scene:
             self.sliders, (self.law.drag_terms(load, c) for load, c in zip(self.slider_load, self.slider_c)))])
         self.ahead, self.behind = self.substrate.margins(self)
         rng = np.random.default_rng(self.seeds[p.N])  # the grains' sizes, then their places
-        grains = {name: U.to_scene(v, dim) for name, (v, dim) in self.wear.draw_sizes(rng).items()}
-        self.wear.build(self, rng, f_particle, U.SceneValues(**grains))
+        self.wear.build(self, rng, f_particle, U.scene_values(self.wear.draw_sizes(rng)))
         # an imposed vibration, built last: it shifts every body's velocity into the substrate's frame
         self.vibration = parts["vibration"]  # None without a [vibration] section (engine_sim/vibration.py)
         if self.vibration is not None:

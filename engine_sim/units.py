@@ -81,8 +81,7 @@ class SceneValues:
         return "SceneValues(" + ", ".join(f"{k}={v!r}" for k, v in self._values.items()) + ")"
 
 
-def scene_values(spec, dims: dict) -> SceneValues:
-    """The fields of ``spec`` (a frozen SI dataclass) named in ``dims`` (field -> dimension) in scene units; a None
-    field stays None."""
-    return SceneValues(**{name: None if getattr(spec, name) is None else to_scene(getattr(spec, name), dim)
-                          for name, dim in dims.items()})
+def scene_values(inputs: dict) -> SceneValues:
+    """``inputs`` (name -> (SI value, dimension), as a part's ``scene_inputs()`` gives them) in scene units; a None
+    value stays None."""
+    return SceneValues(**{name: None if v is None else to_scene(v, dim) for name, (v, dim) in inputs.items()})
