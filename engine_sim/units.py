@@ -52,33 +52,26 @@ def to_si(value, dim: str):
 
 class SceneValues:
     """An immutable set of named values in scene units (a part's spec as the scene uses it, or what a part is
-    handed of its neighbours). Read as attributes; ``fields()`` lists the names."""
-
-    __slots__ = ("_values",)
+    handed of its neighbours). Read as attributes (plain instance attributes: a read costs what any attribute
+    read costs); ``fields()`` lists the names."""
 
     def __init__(self, **values):
-        object.__setattr__(self, "_values", dict(values))
+        self.__dict__.update(values)
 
-    def __getattr__(self, name):
-        try:
-            return self._values[name]
-        except KeyError:
-            raise AttributeError(f"no scene value {name!r} (has {', '.join(self._values)})") from None
+    def __getattr__(self, name):  # only for a name that is not there
+        raise AttributeError(f"no scene value {name!r} (has {', '.join(self.__dict__)})")
 
     def __setattr__(self, name, value):
         raise AttributeError("scene values are immutable")
 
-    def __getstate__(self):
-        return self._values
-
-    def __setstate__(self, state):
-        object.__setattr__(self, "_values", state)
+    def __delattr__(self, name):
+        raise AttributeError("scene values are immutable")
 
     def fields(self) -> tuple:
-        return tuple(self._values)
+        return tuple(self.__dict__)
 
     def __repr__(self):
-        return "SceneValues(" + ", ".join(f"{k}={v!r}" for k, v in self._values.items()) + ")"
+        return "SceneValues(" + ", ".join(f"{k}={v!r}" for k, v in self.__dict__.items()) + ")"
 
 
 def scene_values(inputs: dict) -> SceneValues:
