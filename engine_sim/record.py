@@ -253,7 +253,7 @@ class Recorder:
         if vib is not None:
             out, c = self.out, len(COLS)
             out[k, c], out[k, c + 1] = vib.record(sc, out[k, R.MOM_X], out[k, R.MOM_Y])
-        self.t[k] = sc.steps * sc.dt / U.TIME
+        self.t[k] = U.to_si(sc.steps * sc.dt, "time")
         self.k += 1
 
     def _interval(self, prm):
@@ -279,18 +279,20 @@ class Recorder:
         n = self.k
         t = self.t[:n]
         o = {c: self.out[:n, i] for i, c in enumerate(COLS)}
-        dt_s = np.diff(t) * U.TIME
-        cum = lambda p: np.concatenate([[0.0], np.cumsum(0.5 * (p[1:n] + p[: n - 1]) * dt_s)]) / U.ENERGY
+        dt_s = U.to_scene(np.diff(t), "time")  # the output steps in scene time (ms), for the scene's powers
+        cum = lambda p: U.to_si(np.concatenate([[0.0], np.cumsum(0.5 * (p[1:n] + p[: n - 1]) * dt_s)]), "energy")
+        si = U.to_si
         metadata = {**metadata, **self.scene.wear.trace_metadata(int(o["stale"].sum())), "forces": self.forces,
                     "force_channels": force_channels(self.scene, self.forces)}
         return EngineTrace(
-            t=t - t[0], x=(o["x"] - o["x"][0]) / U.LENGTH, v=o["v"] / U.VELOCITY, F_t=o["F_t"].copy(),
+            t=t - t[0], x=si(o["x"] - o["x"][0], "length"), v=si(o["v"], "velocity"), F_t=o["F_t"].copy(),
             F_n=o["F_n"].copy(), F_drag=o["F_drag"].copy(), F_drive=o["F_drive"].copy(),
             pad_force=self.pad_force[:n], n_contact=self.n_contact[:n], n_pairs=o["pairs"].astype(np.int32),
-            penetration=o["penetration"] / U.LENGTH, work_drive=cum(o["power_in"]),
-            dissipated=cum(o["power_out"]), mech_energy=(o["mech"] - o["mech"][0]) / U.ENERGY,
-            work_recycle=(self.recycle[:n] - self.recycle[0]) / U.ENERGY,
-            p_state=self.p_state[:n], p_force=self.p_force[:n] / U.FORCE,
-            particle_penetration=o["p_pen"] / U.LENGTH, micro_force=self.micro_force[:n] / U.FORCE, metadata=metadata,
-            vibration=self.out[:n, len(COLS)] / U.LENGTH, work_vibration=cum(self.out[:n, len(COLS) + 1]),
+            penetration=si(o["penetration"], "length"), work_drive=cum(o["power_in"]),
+            dissipated=cum(o["power_out"]), mech_energy=si(o["mech"] - o["mech"][0], "energy"),
+            work_recycle=si(self.recycle[:n] - self.recycle[0], "energy"),
+            p_state=self.p_state[:n], p_force=si(self.p_force[:n], "force"),
+            particle_penetration=si(o["p_pen"], "length"), micro_force=si(self.micro_force[:n], "force"),
+            metadata=metadata, vibration=si(self.out[:n, len(COLS)], "length"),
+            work_vibration=cum(self.out[:n, len(COLS) + 1]),
         )

@@ -57,7 +57,7 @@ class SceneRenderer:
         if inset:
             self.panels.append(self._panel(axes[1], {**view, **inset}, None))
             lo, hi = inset["ylim"]
-            self.frame_box = Rectangle((0, lo), 2 * inset["window"] * U.LENGTH, hi - lo, fill=False, ec="k", lw=1.0,
+            self.frame_box = Rectangle((0, lo), 2 * U.to_scene(inset["window"], "length"), hi - lo, fill=False, ec="k", lw=1.0,
                                        ls="--", zorder=7)
             self.ax.add_patch(self.frame_box)
             axes[1].set_title(inset["title"], loc="left", fontsize=9)
@@ -87,7 +87,7 @@ class SceneRenderer:
         top = view["block_top"]
         block = Rectangle((0, top), 8.0, view["ylim"][1] - top, color="tab:blue", alpha=0.35, zorder=4)
         ax.add_patch(block)
-        return {"ax": ax, "view": view, "window": (view["window"] if window is None else window) * U.LENGTH,
+        return {"ax": ax, "view": view, "window": U.to_scene(view["window"] if window is None else window, "length"),
                 "tracks": tracks, "block": block, "artists": {}}
 
     def _key(self):
@@ -159,7 +159,7 @@ class SceneRenderer:
             self.frame_box.set_x(bx - self.panels[1]["window"])
         if self._legend is None:
             self._key()
-        v = s.block.velocity.x / U.VELOCITY * U.LENGTH  # mm/s
+        v = U.to_scene(U.to_si(s.block.velocity.x, "velocity"), "length")  # scene lengths (mm) per s
         caption = self.panels[0].get("caption")
         self.text.set_text(f"t = {s.time:.3f} s   x = {bx:.3f} mm   v = {v:.3f} mm/s" + (f"   {caption}" if caption else ""))
         self.fig.canvas.draw()

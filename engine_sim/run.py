@@ -9,7 +9,7 @@ import time
 from contextlib import contextmanager
 from pathlib import Path
 
-from frictionnoise.base import check_seconds, package_version
+from frictionnoise.base import check_seconds, check_seed, package_version
 
 from .checkpoint import Checkpoint, CheckpointError, round_trip
 from .epoch import default_epoch
@@ -246,7 +246,7 @@ def run(scenario, duration: float | None = None, seed: int | None = None, progre
     n_out = int(round(sc.run.duration / dt_out)) + 1
     _check_trace_size(sc, n_out)
     total = (n_warm + n_out) * dt_out
-    seed_used = sc.run.seed if seed is None else int(seed)
+    seed_used = sc.run.seed if seed is None else check_seed("seed", seed)
     ckpt = Checkpoint(checkpoint, _run_key(sc, n_out, seed_used, epoch), checkpoint_every)
     ckpt.remove_partial_writes()
     t0 = time.perf_counter()

@@ -53,37 +53,54 @@ def describe(sc: Scenario) -> dict:
     }
 
 
+def _bind(part, ctx) -> None:
+    """Convert what ``part`` (and the parts it builds with) declares it reads in scene units, once, and hand it
+    its context."""
+    for q in [part, *part.subparts()]:
+        q.own = U.scene_values(q.scene_inputs())
+        q.ctx = ctx
+
+
 class Scene:
     """A built pymunk space for a scenario. Use :meth:`advance` to step; all state is in scene units.
 
-    Scene-unit values are converted once here and read by the parts, the recorder and the renderer: ``dt``,
-    ``n_sub``, ``M``, ``v_law`` (the law's steady speed), ``v_trap``, ``q_pad`` and ``mu_track`` (the shape
-    frictions), ``width`` (the sole's contact width), ``slider_terms`` (per sliding body: mass, c, b N_pad, v_c)."""
+    The scene's builder: every SI value the scene side reads is converted here, once (:mod:`engine_sim.units`).
+    Each part gets its own values (``part.own``, what its ``scene_inputs`` names) and a context of what it needs of
+    its neighbours (``part.ctx``: ``pad_radius``, ``segment_radius``, ``dt_si`` (the pymunk step in s) and
+    ``velocity_si`` (m/s per scene velocity unit)), both immutable and in scene units. The scene's own values are
+    read by the parts, the recorder and the renderer: ``dt``, ``n_sub``, ``M``, ``v_law`` (the law's steady speed),
+    ``v_trap``, ``q_pad`` and ``mu_track`` (the shape frictions), ``width`` (the sole's contact width),
+    ``slider_terms`` (per sliding body: mass, c, b N_pad, v_c)."""
 
     def __init__(self, sc: Scenario, seed: int | None = None):
         self.sc = sc
         self.seed = sc.run.seed if seed is None else int(seed)
         p, fr = sc.pads, sc.friction
         k_g = grain_step(sc)["substeps"]  # grains: run.dt cut so omega_g dt <= 0.6 (engine_sim.wear.grain_step)
-        self.dt = sc.run.dt * U.TIME / k_g
+        self.dt = U.to_scene(sc.run.dt, "time") / k_g
         self.n_sub = int(round(sc.run.dt_out / sc.run.dt)) * k_g
         space = pymunk.Space()
-        space.gravity = (0.0, -G * U.ACCEL)
+        space.gravity = (0.0, -U.to_scene(G, "acceleration"))
         space.iterations = sc.run.iterations
         self.slop = 1e-4  # mm; pymunk's default 0.1 mm is larger than the physics here
         space.collision_slop = self.slop
         self.space = space
         self.y_block = 10.0
-        v0 = sc.steady_velocity * U.VELOCITY
-        self.M, self.v_law = sc.block.M * U.MASS, v0
-        self.R_pad = p.radius * U.LENGTH
+        v0 = U.to_scene(sc.steady_velocity, "velocity")
+        self.M, self.v_law = U.to_scene(sc.block.M, "mass"), v0
+        self.R_pad = U.to_scene(p.radius, "length")
         self.v_trap = sc.wear.trapped_speed * v0  # a grain touching its pad is trapped below this mean speed
         # the parts
         parts = sc.fresh_parts()  # the scene's own: parts keep state while it steps
         self.substrate, self.arrangement = parts["substrate"], parts["arrangement"]
         self.law, self.drive = parts["law"], parts["drive"]
+        ctx = U.SceneValues(pad_radius=self.R_pad, segment_radius=U.to_scene(sc.substrate.segment_radius, "length"),
+                            dt_si=U.to_si(self.dt, "time"), velocity_si=U.to_si(1.0, "velocity"))
+        for part in parts.values():
+            if part is not None:
+                _bind(part, ctx)
         self.run_ahead = 200 * v0 * self.dt * self.n_sub  # the tracks' margin ahead beyond the part's own
-        block = pymunk.Body(sc.block.M * U.MASS, float("inf"))
+        block = pymunk.Body(self.M, float("inf"))
         block.position = (0.0, self.y_block)
         block.velocity = (v0, 0.0)
         space.add(block)
@@ -102,10 +119,12 @@ class Scene:
         self.block_springs, self.slider_springs = [], []
         self.arrangement.build(self)
         self.drive.build(self)
-        self.slider_terms = np.array([(b.mass, c * U.DAMPING, bN * U.FORCE, vc * U.VELOCITY) for b, (c, bN, vc) in zip(
+        # the law's terms of each slider's load and c (scene units, as the parts hand them)
+        self.slider_terms = np.array([(b.mass, c, bN, U.to_scene(vc, "velocity")) for b, (c, bN, vc) in zip(
             self.sliders, (self.law.drag_terms(load, c) for load, c in zip(self.slider_load, self.slider_c)))])
         self.ahead, self.behind = self.substrate.margins(self)
-        self.wear.build(self, self.seeds[p.N], f_particle)
+        rng = np.random.default_rng(self.seeds[p.N])  # the grains' sizes, then their places
+        self.wear.build(self, rng, f_particle, U.scene_values(self.wear.draw_sizes(rng)))
         # an imposed vibration, built last: it shifts every body's velocity into the substrate's frame
         self.vibration = parts["vibration"]  # None without a [vibration] section (engine_sim/vibration.py)
         if self.vibration is not None:
@@ -122,7 +141,7 @@ class Scene:
     @property
     def time(self) -> float:
         """Simulated time (s)."""
-        return self.steps * self.dt / U.TIME
+        return U.to_si(self.steps * self.dt, "time")
 
     def maintain(self):
         """Generate substrate ahead of each pad and drop it behind (call at least every few output steps)."""

@@ -40,8 +40,9 @@ class SideRenderer:
         # the scale bars below the substrate's base to the block's top; the figure as tall as their aspect asks,
         # plus three title lines and the key
         H = lay.top - lay.floor
-        self._um = _round_length(0.5 / lay.E * 1e3)  # the vertical scale bar: true um drawn about 0.5 display mm
-        self._bar_y = lay.floor - 0.05 * H - lay.E * self._um * 1e-3
+        # the vertical scale bar: true um drawn about 0.5 display mm
+        self._um = _round_length(U.to_si(0.5 / lay.E, "length") * 1e6)
+        self._bar_y = lay.floor - 0.05 * H - lay.E * U.to_scene(self._um * 1e-6, "length")
         self.xlim = (-lay.width / 2 - 0.1 * lay.slot, lay.width / 2 + 0.3 * lay.slot + lay.drive_len)
         self.ylim = (self._bar_y - 0.06 * H, lay.top + 0.04 * H)
         aspect = (self.ylim[1] - self.ylim[0]) / (self.xlim[1] - self.xlim[0])
@@ -74,7 +75,7 @@ class SideRenderer:
         ax.set_ylim(*self.ylim)
         ax.set_aspect("equal")
         ax.set_axis_off()
-        v = s.block.velocity.x / U.VELOCITY * U.LENGTH
+        v = U.to_scene(U.to_si(s.block.velocity.x, "velocity"), "length")  # scene lengths (mm) per s
         vib = getattr(s, "vibration", None)
         caption = ""
         if vib is not None and vib.active:
@@ -96,7 +97,7 @@ class SideRenderer:
         exaggeration, at the lower left, below the substrate's base."""
         lay, ax = self.layout, self.ax
         x, y, um = -lay.width / 2, self._bar_y, self._um
-        h = lay.E * um * 1e-3
+        h = lay.E * U.to_scene(um * 1e-6, "length")
         mm = _round_length(0.1 * lay.width)
         ax.plot([x, x + mm], [y, y], color="k", lw=2, solid_capstyle="butt")
         ax.text(x + mm / 2, y - 0.01 * (lay.top - lay.floor), f"{mm:g} mm", ha="center", va="top", fontsize=8)

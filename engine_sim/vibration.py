@@ -39,7 +39,7 @@ import pymunk
 
 from frictionnoise.base import G
 
-from . import units as U
+from .parts import Part
 
 __all__ = ["VibrationSpec", "Vibration", "MIN_STEPS_PER_PERIOD", "VIB_COLS", "ANCHOR_MASS"]
 
@@ -64,7 +64,7 @@ class VibrationSpec:
     frequency: float = 50.0
 
 
-class Vibration:
+class Vibration(Part):
     """The vibration part: validation, build, stepping (it wraps the friction law's stepping), recording and
     drawing. Inactive (no object built, no cost) when the amplitude is 0."""
 
@@ -73,9 +73,15 @@ class Vibration:
     non_negative: ClassVar[frozenset] = frozenset({"amplitude"})
     choices: ClassVar[dict] = {"target": ("substrate", "block"), "direction": ("parallel", "normal")}
 
+    scene_units: ClassVar[dict] = {"amplitude": "length"}
+
     def __init__(self, spec, scenario):
-        self.spec, self.sc = spec, scenario
+        super().__init__(spec, scenario)
         self.active = spec.amplitude > 0
+
+    def scene_inputs(self) -> dict:
+        """The amplitude and the angular frequency ``omega`` = 2 pi frequency."""
+        return {**super().scene_inputs(), "omega": (2 * math.pi * self.spec.frequency, "rate")}
 
     # ------------------------------------------------------------------ scenario side (SI)
     @classmethod
@@ -114,7 +120,7 @@ class Vibration:
         w = 2 * math.pi * s.frequency
         rs = sc.substrate.segment_radius
         dt = sc.run.dt
-        ln = LN / U.LENGTH
+        ln = LN
         p = sc.pads
         F_s = max(sc.normal_load_per_pad - p.mass * G, 0.0) if sc.arrangement_part.preloaded else 0.0
         travel = ln - F_s / p.k_normal
@@ -145,8 +151,8 @@ class Vibration:
         s = self.spec
         dt = scene.dt
         self.dt = dt
-        self.A = s.amplitude * U.LENGTH  # mm
-        self.w = 2 * math.pi * s.frequency / U.TIME  # rad/ms
+        self.A = self.own.amplitude  # mm
+        self.w = self.own.omega  # rad/ms
         self.wd2 = (2 * math.sin(self.w * dt / 2) / dt) ** 2  # discrete omega^2 (1/ms^2)
         self.axis = 0 if s.direction == "parallel" else 1
         self.g0 = tuple(scene.space.gravity)
@@ -194,8 +200,8 @@ class Vibration:
         return (0.0, 0.0, j, 0.0, 0.0, 0.0) if self.axis == 0 else (0.0, 0.0, 0.0, j, 0.0, 0.0)
 
     def displacement(self, steps: int) -> float:
-        """s(t) at the scene's step count (m)."""
-        return self._s(steps) / U.LENGTH if self.active else 0.0
+        """s(t) at the scene's step count (mm)."""
+        return self._s(steps) if self.active else 0.0
 
     def advance(self, scene, n: int) -> None:
         """n steps, each after setting the step's inertial acceleration (substrate target) or shaker force (block
@@ -278,15 +284,16 @@ class Vibration:
             "vib_hand": ("segments", [((cx, cy), (cx + r * math.sin(ph), cy + ry * math.cos(ph)))],
                          {"colors": "tab:purple", "linewidths": 2.0, "label": f"{what} vibration phase"}),
             "vib_caption": ("caption", f"{what} {s.direction} {_length(s.amplitude)} at {s.frequency:.4g} Hz: "
-                                       f"s = {_length(self._s(scene.steps) / U.LENGTH, s.amplitude, '+')}", {}),
+                                       f"s = {_length(s.amplitude * math.sin(ph), s.amplitude, '+')}", {}),
         }
 
 
 def _length(x: float, scale: float | None = None, sign: str = "") -> str:
     """``x`` (m) in the unit of ``scale`` (m; default ``x``): um below 1 mm, mm below 1 m, else m."""
     a = abs(x if scale is None else scale)
-    value, unit = (x * 1e6, "um") if a < 1e-3 else (x * 1e3, "mm") if a < 1.0 else (x, "m")
-    return f"{value:{sign}.4g} {unit}"
+    if a < 1e-3:
+        return f"{x * 1e6:{sign}.4g} um"
+    return f"{x * 1e3:{sign}.4g} mm" if a < 1.0 else f"{x:{sign}.4g} m"
 
 
 def _ride_the_field(space, anchor):

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 import pymunk
 
-from . import units as U
+from .parts import Part
 from .grain_regimes import climb_force, regime_shares, wedge_regime  # the closed forms, importable from here too
 
 __all__ = ["WearSpec", "NoWear", "wear_part", "check_wear", "draw_radii", "grain_step", "pad_friction_split", "wedge_regime", "regime_shares",
@@ -168,7 +168,7 @@ def wear_part(spec, scenario):
     return Wear(spec, scenario) if spec.count else NoWear(spec, scenario)
 
 
-class NoWear:
+class NoWear(Part):
     """The grains part of a scene without wear particles: it builds nothing, records nothing and draws nothing. The
     scene, the recorder, the renderer and the run ask it exactly what they ask :class:`Wear`."""
 
@@ -178,8 +178,12 @@ class NoWear:
     reduced_model = None  # no particles: the substrate's model fits the scene
     quick_duration = None
 
-    def __init__(self, spec, scenario):
-        self.spec, self.sc = spec, scenario
+    scene_units = {"ahead": "length", "behind": "length"}
+
+    def draw_sizes(self, rng) -> dict:
+        """The grains' random sizes drawn from ``rng`` (a scene's own): name -> (SI array, dimension), converted by
+        the scene's builder and handed to :meth:`build`."""
+        return {}
 
     def validate(self, where: str = "") -> None:
         """Raise ValueError (naming the field) if the scene cannot hold the particles."""
@@ -189,8 +193,9 @@ class NoWear:
         :func:`pad_friction_split`); without particles the pads carry the track's friction alone."""
         return 1.0, 0.0
 
-    def build(self, scene, seed, particle_friction: float) -> None:
-        """Add the particles to ``scene.space`` (scene units), drawing from ``seed`` (a SeedSequence)."""
+    def build(self, scene, rng, particle_friction: float, grains) -> None:
+        """Add the particles to ``scene.space`` (scene units), placing them with ``rng`` (the generator
+        :meth:`draw_sizes` drew from); ``grains``: what :meth:`draw_sizes` drew, in scene units."""
 
     def maintain(self) -> None:
         """Recycle particles that left their place (every few output steps)."""
@@ -279,23 +284,25 @@ class Wear(NoWear):
     def friction_split(self, mu0: float) -> tuple[float, float]:
         return pad_friction_split(mu0, self.spec.mu_pad, self.spec.mu_track)
 
-    def build(self, scene, seed, particle_friction: float) -> None:
+    def draw_sizes(self, rng):
+        """Radii ``r`` (m) and masses ``mass`` (kg, a disc of depth _DEPTH, at least min_mass) of the grains."""
         spec = self.spec
-        self.scene, self.rng = scene, np.random.default_rng(seed)
-        rng = self.rng
+        self.radii_m = draw_radii(spec, spec.count, rng)
+        return {"r": (self.radii_m, "length"),
+                "mass": (np.maximum(spec.density * math.pi * self.radii_m**2 * _DEPTH, spec.min_mass), "mass")}
+
+    def build(self, scene, rng, particle_friction: float, grains) -> None:
+        spec = self.spec
+        self.scene, self.rng = scene, rng
         space = scene.space
-        sc = scene.sc
         N = len(scene.pads)
-        radii_m = draw_radii(spec, spec.count, rng)
-        self.r = radii_m * U.LENGTH
-        self.mass = np.maximum(spec.density * math.pi * radii_m**2 * _DEPTH, spec.min_mass) * U.MASS
+        self.r, self.mass = grains.r, grains.mass
         locked = spec.rotation == "locked"
         self.moment = np.full(spec.count, np.inf) if locked else 0.5 * self.mass * self.r**2
         self.track = np.arange(spec.count) % N
         self.surface = np.array([scene.track_surface[i] for i in self.track])  # track top (y, mm)
-        self.ahead = spec.ahead * U.LENGTH
-        self.behind = spec.behind * U.LENGTH
-        self.R_pad = sc.pads.radius * U.LENGTH
+        self.ahead, self.behind = self.own.ahead, self.own.behind
+        self.R_pad = self.ctx.pad_radius
         self.floor_depth = scene.substrate.floor_depth()
         self.bodies, self.shapes = [], []
         self.recycled = 0
@@ -386,7 +393,7 @@ class Wear(NoWear):
 
     def run_metadata(self) -> dict:
         return {"wear": {"count": self.count, "recycled": self.recycled, "left_interface": self.lost,
-                         "radii_m": (self.r / U.LENGTH).tolist(), "track": self.track.tolist(),
+                         "radii_m": self.radii_m.tolist(), "track": self.track.tolist(),
                          "asleep_at_end": int(sum(b.is_sleeping for b in self.bodies))}}
 
     def view(self, scene, view: dict) -> dict:

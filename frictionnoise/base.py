@@ -20,7 +20,7 @@ from importlib import metadata as _metadata
 from pathlib import Path
 
 __all__ = ["G", "package_version", "atomic_write", "InputError", "input_file", "sniff", "read_toml", "check_number",
-           "check_fields", "check_seconds"]
+           "check_fields", "check_seconds", "check_seed"]
 
 G = 9.81  # m/s^2: the paper's g (standard gravity rounded as in Xu, Zhou & Persson 2025)
 
@@ -190,3 +190,12 @@ def check_seconds(name: str, val) -> float:
     if isinstance(val, bool) or not isinstance(val, numbers.Real) or not 0 < val < math.inf:
         raise ValueError(f"{name} must be a positive number of seconds (got {val!r})")
     return float(val)
+
+
+def check_seed(name: str, val) -> int:
+    """``val`` as a random seed named ``name`` (a run's seed; an option's flag on the command line): a whole number
+    from 0 to 2^63 - 1 (numpy's SeedSequence and the trace's int64 metadata hold it), returned as int. Raises
+    ValueError, one line: "{name} must be a whole number from 0 to 2^63 - 1 (got {val!r})"."""
+    if isinstance(val, bool) or not isinstance(val, numbers.Integral) or not 0 <= val < 2**63:
+        raise ValueError(f"{name} must be a whole number from 0 to 2^63 - 1 (got {val!r})")
+    return int(val)

@@ -38,7 +38,7 @@ def test_constant_velocity_load_limit_is_the_tangential_spring_length():
     k0 less the tilted normal spring's push F_s / LN (F_s = N_pad - m g), reaches LT exactly."""
     sc = load_scenario("constant_velocity")
     M = _mass_limit(sc)
-    p, lt, ln = sc.pads, LT * 1e-3, LN * 1e-3
+    p, lt, ln = sc.pads, LT, LN  # m
     mu_hi, c, v = sc.friction.mu0 * (1 + sc.substrate.alpha / 2), sc.friction.c, sc.drive.v
     n_pad = M * G / p.N + p.mass * G
     v_l = (sc.friction.mu0 * n_pad + c * v) / math.sqrt(p.k0 * M / p.N)
@@ -105,7 +105,7 @@ def test_relief_limit_on_a_rough_track_is_the_gaussian_quantile():
     """Self-affine heights are Gaussian: the pad hangs where the track lies deeper than N_pad / k_normal below the
     datum, on HANG_FRACTION of the path at z h_rms, h_rms the kernel's norm on unit white noise."""
     sc = load_scenario("pads_rough_profile")
-    h_rms = float(np.sqrt(np.sum(sc.substrate_part.kernel ** 2))) * 1e-3
+    h_rms = float(np.sqrt(np.sum(sc.substrate_part.kernel_si ** 2)))  # m
     expect = sc.normal_load_per_pad / (NormalDist().inv_cdf(1 - HANG_FRACTION) * h_rms)
     (lim,) = [x for x in limits(sc) if x.field == "pads.k_normal"]
     assert lim.limit == pytest.approx(expect, rel=1e-12)
@@ -151,7 +151,7 @@ def test_a_normal_vibration_faster_than_the_segment_radius_per_step_is_refused()
 def test_a_normal_vibration_beyond_the_pads_spring_travel_is_refused():
     """At 0.01 Hz the speed allows 8 m; the normal spring's travel, LN less its pre-compression, does not."""
     sc = load_scenario("pads_friction_patches")
-    travel = LN * 1e-3 - (sc.normal_load_per_pad - sc.pads.mass * G) / sc.pads.k_normal
+    travel = LN - (sc.normal_load_per_pad - sc.pads.mass * G) / sc.pads.k_normal
     with pytest.raises(ScenarioError, match=f"exceeds the limit {travel:.4g} m: a normal excursion"):
         scenario_from_dict(_vibrated(amplitude=1.01 * travel, frequency=0.01))
     scenario_from_dict(_vibrated(amplitude=0.99 * travel, frequency=0.01))

@@ -108,7 +108,7 @@ def test_sweep_file_errors(tmp_path):
     ('[grid]\nv = ["fast"]\n', "grid.v must be a finite number (got 'fast')"),
     ('[grid]\nv = [inf]\n', "grid.v must be a finite number (got inf)"),
     ('[grid]\nN = [2.5]\n', "grid.N must be a whole number (got 2.5)"),
-    ('[grid]\nv = [1e-3]\nseed = [-1]\n', "grid.seed must be a list of whole numbers >= 0"),
+    ('[grid]\nv = [1e-3]\nseed = [-1]\n', "grid.seed must be a list of whole numbers from 0 to 2^63 - 1"),
     ('[grid]\nv = [1e-3]\n[analysis]\nomega = 3\n', "unknown key 'omega' in [analysis]"),
     ('[grid]\nv = [1e-3]\n[analysis]\nomega_ref = [140.0, 70.0]\n', "analysis.omega_ref must be two numbers"),
     ('name = 3\n[grid]\nv = [1e-3]\n', "name must be a string"),

@@ -49,8 +49,14 @@ def check_seconds_options(args, *names):
 
 
 def check_seed(seed):
-    if seed is not None and not 0 <= seed < 2**63:
-        raise UserError(f"--seed must be a whole number from 0 to 2^63 - 1 (got {seed})")
+    """``--seed``, if given, by the one rule :func:`frictionnoise.base.check_seed`, the one line naming the flag."""
+    from frictionnoise.base import check_seed as rule
+
+    if seed is not None:
+        try:
+            rule("--seed", seed)
+        except ValueError as e:
+            raise UserError(str(e)) from None
 
 
 def scenario_path(arg, models=()) -> str:

@@ -26,6 +26,8 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from frictionnoise.base import check_seed
+
 __all__ = ["SweepSpec", "SweepError", "load_sweep", "expand", "task_id", "build_point", "RUN_KEYS", "SCENARIO",
            "targets", "model_of"]
 
@@ -179,8 +181,13 @@ def load_sweep(path) -> SweepSpec:
                     raise SweepError(f"{path}: unknown key {key!r} in [{sec}]; scenario parameters are written "
                                      "section.key (e.g. drive.v), besides duration and seed")
     seeds = grid.get("seed", [0])
-    if not all(isinstance(x, int) and not isinstance(x, bool) and 0 <= x < 2**63 for x in seeds):
-        raise SweepError(f"{path}: grid.seed must be a list of whole numbers >= 0 (got {seeds!r})")
+    try:  # each seed by the one rule frictionnoise.base.check_seed
+        if not isinstance(seeds, list):
+            raise ValueError(seeds)
+        for x in seeds:
+            check_seed("grid.seed", x)
+    except ValueError:
+        raise SweepError(f"{path}: grid.seed must be a list of whole numbers from 0 to 2^63 - 1 (got {seeds!r})") from None
     bad = sorted(set(analysis) - {"omega_ref", "omega_max", "wear"})  # wear = true: the wear study's statistics
     if bad:
         raise SweepError(f"{path}: unknown key {bad[0]!r} in [analysis]; valid names: omega_max, omega_ref, wear")

@@ -23,8 +23,7 @@ import pymunk
 
 from frictionnoise.base import G
 
-from .. import units as U
-from ..parts import Registry
+from ..parts import Part, Registry
 
 __all__ = ["PadSpec", "Arrangement", "ARRANGEMENTS", "arrangement_kind", "SPRING_OMEGA_DT", "SPRING_DAMPING_X"]
 
@@ -35,10 +34,10 @@ SPRING_OMEGA_DT = 0.3
 # Spring damping is exact-exponential but its effect is slowed by x/(e^x - 1), x = c dt / m: keep x < 0.1.
 SPRING_DAMPING_X = 0.1
 
-# Spring lengths (mm). The normal spring is long so that a pad's tangential lag (f / k0, about 0.05 mm) tilts it
+# Spring lengths (m). The normal spring is long so that a pad's tangential lag (f / k0, about 0.05 mm) tilts it
 # negligibly: at 5 mm the tilt lengthened it enough to drop the load by 0.13 % and added a geometric tangential
 # stiffness F_n / Ln of 1.5 % of k0; at 100 mm both are 20x smaller.
-LT, LN = 5.0, 100.0
+LT, LN = 5e-3, 0.1
 
 
 @dataclass(frozen=True)
@@ -81,8 +80,7 @@ class SideMixin:
         from ..side_view import SideLayout, nice_exaggeration
 
         p = self.spec
-        R = p.radius * U.LENGTH
-        relief = scene.substrate.relief(p.radius) * U.LENGTH
+        R, relief = self.own.radius, self.own.relief
         E = min(nice_exaggeration(relief, 0.5), scene.wear.side_exaggeration)
         n_show = min(p.N, self.SIDE_PADS, scene.wear.side_pads)
         hc = min(R, 0.3 / E)  # true height of the pad's arc drawn (mm)
@@ -103,7 +101,7 @@ class SideMixin:
         from ..side_view import body_outline, cap_outline, zigzag
 
         bx = scene.block.position.x
-        R = self.spec.radius * U.LENGTH
+        R = self.own.radius
         hc = min(R, 0.3 / lay.E)
         lo, hi = scene.substrate.mu_range(self.sc.friction.mu0)
         coloured = hi > lo
@@ -159,7 +157,7 @@ class SideMixin:
         return f"{shown}, each over its own track"
 
 
-class Arrangement(SideMixin):
+class Arrangement(SideMixin, Part):
     """One pad arrangement (the base holds what tracks and sole share)."""
 
     name: ClassVar[str] = ""
@@ -171,8 +169,22 @@ class Arrangement(SideMixin):
     hosts_wear: ClassVar[bool] = False  # pads on flat tracks of their own, where wear particles can sit
     also_fits: ClassVar[tuple] = ()  # keys of reduced_models.MODELS compared beside the fitting model, same trace
 
-    def __init__(self, spec, scenario):
-        self.spec, self.sc = spec, scenario
+    scene_units: ClassVar[dict] = {"mass": "mass", "radius": "length", "k0": "stiffness", "c0": "damping",
+                                   "k_normal": "stiffness", "k1": "stiffness", "c1": "damping",
+                                   "track_spacing": "length", "c_normal": "damping", "foot_length": "length"}
+
+    def scene_inputs(self) -> dict:
+        """The spec's lengths, masses, stiffnesses and dampings, the springs' lengths LT and LN, the load on a pad
+        column (``load``) and on the pad's normal spring (``preload``), the friction law's c (``c``) and the
+        substrate's relief under a pad (``relief``, for the side view)."""
+        sc = self.sc
+        return {**super().scene_inputs(), "LT": (LT, "length"), "LN": (LN, "length"),
+                "load": (sc.normal_load_per_pad, "force"), "preload": (self._pad_preload(), "force"),
+                "c": (sc.friction.c, "damping"), "relief": (sc.substrate_part.relief(self.spec.radius), "length")}
+
+    def _pad_preload(self) -> float:
+        """The force of the pad's normal spring (N): the block's share of the load."""
+        return self.sc.normal_load_per_pad - self.spec.mass * G
 
     # ------------------------------------------------------------------ scenario side (SI)
     @classmethod
@@ -221,7 +233,7 @@ class Arrangement(SideMixin):
         return 0.0
 
     def width(self) -> float:
-        """The contact width in scene units (mm), converted once."""
+        """The contact width in scene units (mm)."""
         return 0.0
 
     def describe(self) -> dict:
@@ -254,7 +266,7 @@ class Arrangement(SideMixin):
         sc, p = self.sc, self.spec
         L, M = sc.normal_load_per_pad, sc.block.M
         col_w = self.column_mass * G
-        lt, ln = LT / U.LENGTH, LN / U.LENGTH  # m
+        lt, ln = LT, LN  # m
         out = []
 
         def by_mass(L_max, why, fix=""):
@@ -329,11 +341,11 @@ class Arrangement(SideMixin):
     def _mount(self, scene, pad, xp, yp, pre):
         """The pad's tangential spring (k0, c0) and its normal spring (k_normal, pre-compressed by ``pre`` mm) to
         the block, anchored at the pad's height LT behind and LN above it."""
-        p = self.spec
+        o = self.own
+        LT, LN = o.LT, o.LN
         ry = yp - scene.y_block
-        tangential = pymunk.DampedSpring(scene.block, pad, (xp - LT, ry), (0, 0), LT, p.k0 * U.STIFFNESS, p.c0 * U.DAMPING)
-        normal = pymunk.DampedSpring(scene.block, pad, (xp, ry + LN), (0, 0), LN + pre, p.k_normal * U.STIFFNESS,
-                                     p.c_normal * U.DAMPING)
+        tangential = pymunk.DampedSpring(scene.block, pad, (xp - LT, ry), (0, 0), LT, o.k0, o.c0)
+        normal = pymunk.DampedSpring(scene.block, pad, (xp, ry + LN), (0, 0), LN + pre, o.k_normal, o.c_normal)
         scene.space.add(tangential, normal)
         scene.block_springs += [tangential, normal]
         return tangential
@@ -341,8 +353,8 @@ class Arrangement(SideMixin):
     def _add_pad(self, scene, pad, yp, xp, flt, R):
         scene.pads.append(pad)
         scene.sliders.append(pad)
-        scene.slider_load.append(scene.sc.normal_load_per_pad)
-        scene.slider_c.append(scene.sc.friction.c)
+        scene.slider_load.append(self.own.load)
+        scene.slider_c.append(self.own.c)
         scene.pad_y.append(yp)
         scene.pad_x.append(xp)
         scene.track_filter.append(flt)

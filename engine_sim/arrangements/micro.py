@@ -24,9 +24,10 @@ import pymunk
 from frictionnoise.base import G
 from frictionnoise.base import check_number
 
-from .. import units as U
 from ..substrates.patches import Patches, PatchesSpec
-from . import ARRANGEMENTS, LN, LT, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSpec
+from functools import cached_property
+
+from . import ARRANGEMENTS, LT, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSpec
 from .tracks import Tracks
 
 _MICRO_BIT = 31
@@ -150,12 +151,12 @@ class Micro(Tracks):
         out = super().limits()
         sc, p = self.sc, self.spec
         f = self._micro_friction(sc.normal_load_per_pad)
-        L_max = load_limit(self._micro_friction, p.micro_k * LT / U.LENGTH)
+        L_max = load_limit(self._micro_friction, p.micro_k * LT)
         out.append(Limit("block.M", sc.block.M, mass_limit(sc, L_max), "kg",
                          f"a micro-pad's largest friction {f:.4g} N stretches its tangential spring (micro_k = "
                          f"{p.micro_k:.4g} N/m) by {f / p.micro_k * 1e3:.3g} mm; beyond its length "
-                         f"{LT / U.LENGTH * 1e3:.3g} mm the micro-pad passes the spring's anchor",
-                         fix=f"raise pads.micro_k above {f / (LT / U.LENGTH):.4g} N/m"))
+                         f"{LT * 1e3:.3g} mm the micro-pad passes the spring's anchor",
+                         fix=f"raise pads.micro_k above {f / LT:.4g} N/m"))
         return out
 
     def sliders(self, sc):
@@ -170,31 +171,51 @@ class Micro(Tracks):
                           "patch_contrast": p.micro_alpha}}
 
     # ------------------------------------------------------------------ build (scene units)
-    def _micro_substrate(self):
+    @cached_property
+    def micro_substrate(self):
+        """The micro-tracks' substrate part (patches of a2, alpha2), bound by the scene's builder with this part."""
         s = self.sc.substrate
         return Patches(PatchesSpec(a=self.spec.micro_a, alpha=self.spec.micro_alpha, segment_radius=s.segment_radius),
                        self.sc)
+
+    def subparts(self) -> list:
+        return [self.micro_substrate]
+
+    def scene_inputs(self) -> dict:
+        """The pads' values and the micro-pads': their mass, radius, spacing and springs, their contact's load N2,
+        their normal spring's pre-load, and the micro-tracks' margins (the patches' own, 8 a2 ahead and 4 a2 behind,
+        without the room for wear particles, none here)."""
+        p = self.spec
+        return {**super().scene_inputs(), "micro_mass": (p.micro_mass, "mass"),
+                "micro_radius": (p.micro_radius, "length"), "micro_spacing": (p.micro_spacing, "length"),
+                "micro_k": (p.micro_k, "stiffness"), "micro_c_spring": (p.micro_c_spring, "damping"),
+                "micro_k_normal": (p.micro_k_normal, "stiffness"), "micro_c": (p.micro_c, "damping"),
+                "micro_load": (self.micro_load(), "force"),
+                "micro_preload": (self.micro_load() - p.micro_mass * G, "force"),
+                "pad_load": (self.pad_load(), "force"),
+                "micro_ahead": (8 * p.micro_a, "length"), "micro_behind": (4 * p.micro_a, "length")}
 
     def build(self, scene):
         """The pads and their tracks as "tracks" builds them (the pad's own load N1), then per pad its micro-pads,
         their springs, friction law and micro-tracks; the micro-pads join the sliding bodies after the pads."""
         super().build(scene)
-        sc, p = scene.sc, self.spec
+        p, o = self.spec, self.own
+        LT, LN = o.LT, o.LN
         space = scene.space
         n = p.n_micro
-        sub = self._micro_substrate()
+        sub = self.micro_substrate
         self.micro_pads, self.micro_tracks = [], []
-        m2, r2 = p.micro_mass * U.MASS, p.micro_radius * U.LENGTH
-        rs = sc.substrate.segment_radius * U.LENGTH
-        N2 = self.micro_load()
-        pre = (N2 - p.micro_mass * G) / (p.micro_k_normal * U.STIFFNESS) + scene.slop
+        m2, r2 = o.micro_mass, o.micro_radius
+        rs = self.ctx.segment_radius
+        N2 = o.micro_load
+        pre = o.micro_preload / o.micro_k_normal + scene.slop
         flt = pymunk.ShapeFilter(categories=1 << _MICRO_BIT, mask=1 << _MICRO_BIT)
         seeds = np.random.SeedSequence(scene.seed).spawn(p.N + 1 + p.N * n)[p.N + 1:]  # after the tracks' and grains'
         x_start = sub.x_start(scene)
         for i, pad in enumerate(scene.pads):
             y_track = scene.track_surface[i] - rs  # pad i's track line
             for j in range(n):
-                yt = y_track - (j + 1) * p.micro_spacing * U.LENGTH
+                yt = y_track - (j + 1) * o.micro_spacing
                 body = pymunk.Body(m2, float("inf"))
                 body.position = (pad.position.x, yt + rs + r2)
                 body.velocity = (scene.v_law, 0.0)
@@ -203,24 +224,21 @@ class Micro(Tracks):
                 shape.filter = flt
                 space.add(body, shape)
                 ry = body.position.y - pad.position.y
-                tangential = pymunk.DampedSpring(pad, body, (-LT, ry), (0, 0), LT, p.micro_k * U.STIFFNESS,
-                                                 p.micro_c_spring * U.DAMPING)
-                normal = pymunk.DampedSpring(pad, body, (0, ry + LN), (0, 0), LN + pre, p.micro_k_normal * U.STIFFNESS, 0.0)
+                tangential = pymunk.DampedSpring(pad, body, (-LT, ry), (0, 0), LT, o.micro_k, o.micro_c_spring)
+                normal = pymunk.DampedSpring(pad, body, (0, ry + LN), (0, 0), LN + pre, o.micro_k_normal, 0.0)
                 space.add(tangential, normal)
                 scene.slider_springs += [tangential, normal]
-                scene.law.build(scene, body, p.micro_c)
+                scene.law.build(scene, body, o.micro_c)
                 self.micro_tracks.append(sub.build(space, yt, flt, np.random.default_rng(seeds[i * n + j]),
                                                    scene.mu_track, x_start))
                 self.micro_pads.append(body)
         scene.sliders += self.micro_pads
         scene.slider_load += [N2] * len(self.micro_pads)
-        scene.slider_c += [p.micro_c] * len(self.micro_pads)
-        scene.slider_load[:p.N] = [self.pad_load()] * p.N
+        scene.slider_c += [o.micro_c] * len(self.micro_pads)
+        scene.slider_load[:p.N] = [o.pad_load] * p.N
         scene.tracks += self.micro_tracks
-        # the micro-tracks' margins: the patches' own (8 a2 ahead plus the scene's run-ahead, 4 a2 behind), without the
-        # room for wear particles (none here)
-        self.micro_ahead = 8 * p.micro_a * U.LENGTH + scene.run_ahead
-        self.micro_behind = 4 * p.micro_a * U.LENGTH
+        self.micro_ahead = o.micro_ahead + scene.run_ahead  # the micro-tracks' margins (scene_inputs)
+        self.micro_behind = o.micro_behind
         self._index(scene)
 
     @staticmethod
@@ -234,7 +252,7 @@ class Micro(Tracks):
         super().restore(scene)
         self._index(scene)
 
-    def _pad_preload(self, scene):
+    def _pad_preload(self):
         """The pad's normal spring carries the block's share (the micro-pads' springs press on the pad)."""
         return self.sc.normal_load_per_pad - self.column_mass * G
 
@@ -249,7 +267,7 @@ class Micro(Tracks):
     def side_layout(self, scene):
         """Slots holding a pad's window and, to its right, one window per micro-pad over its own micro-track."""
         lay = super().side_layout(scene)
-        ms = 8 * self.spec.micro_radius * U.LENGTH
+        ms = 8 * self.own.micro_radius
         win = lay.slot
         lay.slot = win + self.spec.n_micro * ms
         lay.pad_win, lay.pad_at = win, -0.5 * self.spec.n_micro * ms
@@ -264,7 +282,7 @@ class Micro(Tracks):
         shapes = super().side(scene, lay, q_pad)
         p = self.spec
         n, bx = p.n_micro, scene.block.position.x
-        r2 = p.micro_radius * U.LENGTH
+        r2 = self.own.micro_radius
         ms = 8 * r2
         hc = min(r2, 0.3 / lay.E)
         fills, lines, pucks, springs, arms = shapes["substrate"][1], shapes["surface"][1], [], [], []
@@ -313,7 +331,7 @@ class Micro(Tracks):
         its pad, micro-pads and micro-tracks, 40 a2 either side of the block."""
         v = super().view(scene)
         p = self.spec
-        top, ms = scene.track_surface[0], p.micro_spacing * U.LENGTH
+        top, ms = scene.track_surface[0], self.own.micro_spacing
         zoom = {"window": 40 * p.micro_a, "ylim": (top - (p.n_micro + 0.6) * ms, v["block_top"] + 0.8),
                 "track_width": 3, "zoomed": True, "ylabel": "y (mm): column 1",
                 "title": f"column 1 of {p.N} (dashed box), enlarged: its pad and {p.n_micro} micro-pads on their "

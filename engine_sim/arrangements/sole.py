@@ -7,7 +7,6 @@ import math
 import numpy as np
 import pymunk
 
-from .. import units as U
 from . import ARRANGEMENTS, Arrangement, PadSpec, track_rng
 
 
@@ -35,13 +34,13 @@ class Sole(Arrangement):
         return self.spec.N * self.spec.foot_length
 
     def width(self):
-        return self.spec.N * (self.spec.foot_length * U.LENGTH)
+        return self.spec.N * self.own.foot_length
 
     def build(self, scene):
-        sc, p = scene.sc, self.spec
+        p, o = self.spec, self.own
         space = scene.space
-        m_p, R = p.mass * U.MASS, p.radius * U.LENGTH
-        foot = p.foot_length * U.LENGTH
+        m_p, R = o.mass, o.radius
+        foot = o.foot_length
         x_start = scene.substrate.x_start(scene)
         for i in range(p.N):
             pad = pymunk.Body(m_p, float("inf"))
@@ -56,15 +55,14 @@ class Sole(Arrangement):
             shape.filter = flt
             space.add(pad, shape)
             self._mount(scene, pad, xp, yp, 0.0)
-            scene.law.build(scene, pad, sc.friction.c)
+            scene.law.build(scene, pad, o.c)
             if i == 0:  # one track shared by the sole's feet
                 scene.tracks.append(scene.substrate.build(space, 0.0, pymunk.ShapeFilter(), track_rng(scene, 0),
-                                                          sc.friction.mu0, x_start))
+                                                          scene.mu_track, x_start))  # mu0: no grains on a sole
             self._add_pad(scene, pad, yp, xp, flt, R)
         if p.k1 > 0 or p.c1 > 0:
             for i in range(p.N - 1):
-                c = pymunk.DampedSpring(scene.pads[i], scene.pads[i + 1], (0, 0), (0, 0), foot, p.k1 * U.STIFFNESS,
-                                        p.c1 * U.DAMPING)
+                c = pymunk.DampedSpring(scene.pads[i], scene.pads[i + 1], (0, 0), (0, 0), foot, o.k1, o.c1)
                 space.add(c)
                 scene.slider_springs.append(c)
 
@@ -76,10 +74,10 @@ class Sole(Arrangement):
         from ..side_view import SideLayout, nice_exaggeration
 
         p = self.spec
-        relief = scene.substrate.relief(p.radius) * U.LENGTH
+        relief = self.own.relief
         E = nice_exaggeration(relief, 0.5)
         w = scene.width
-        hc = min(p.radius * U.LENGTH, 0.3 / E)
+        hc = min(self.own.radius, 0.3 / E)
         lay = SideLayout(E=E, slot=w / p.N, n_show=p.N, contact=E * (relief + hc), body=0.025 * w,
                          spring=0.1 * w, block=0.05 * w, floor=-0.04 * w)
         lay.x0 = np.zeros(p.N)  # one continuous track: true positions, no slots
@@ -99,7 +97,7 @@ class Sole(Arrangement):
         yd = np.maximum(lay.y(top - tr.y), lay.floor)
         fill = np.column_stack([np.r_[xd[0], xd, xd[-1]], np.r_[lay.floor, yd, lay.floor]])
         feet, springs = [], []
-        R = self.spec.radius * U.LENGTH
+        R = self.own.radius
         hc = min(R, 0.3 / lay.E)
         for pad in scene.pads:
             for sh in pad.shapes:

@@ -4,10 +4,8 @@ from __future__ import annotations
 
 import pymunk
 
-from .. import units as U
-from frictionnoise.base import G
 
-from . import ARRANGEMENTS, LT, Arrangement, PadSpec, track_rng
+from . import ARRANGEMENTS, Arrangement, PadSpec, track_rng
 
 
 @ARRANGEMENTS.register
@@ -17,13 +15,13 @@ class Tracks(Arrangement):
     hosts_wear = True
 
     def build(self, scene):
-        sc, p = scene.sc, self.spec
+        p, o = self.spec, self.own
         space = scene.space
-        m_p, R = p.mass * U.MASS, p.radius * U.LENGTH
-        rs = sc.substrate.segment_radius * U.LENGTH
-        dy = p.track_spacing * U.LENGTH
-        kn = p.k_normal * U.STIFFNESS
-        load = self._pad_preload(scene)  # carried by the normal spring (N)
+        m_p, R = o.mass, o.radius
+        rs = self.ctx.segment_radius
+        dy = o.track_spacing
+        kn = o.k_normal
+        load = o.preload  # carried by the normal spring (N)
         # pre-compression (mm); the pads rest one collision slop into their tracks, which the rest length absorbs
         pre = load / kn + scene.slop
         x_start = scene.substrate.x_start(scene)
@@ -39,23 +37,19 @@ class Tracks(Arrangement):
             shape.filter = flt
             space.add(pad, shape)
             self._mount(scene, pad, xp, yp, pre)
-            scene.law.build(scene, pad, sc.friction.c)
+            scene.law.build(scene, pad, o.c)
             scene.tracks.append(scene.substrate.build(space, yt, flt, track_rng(scene, i), scene.mu_track, x_start))
             self._add_pad(scene, pad, yp, xp, flt, R)
         self._couple(scene)
 
-    def _pad_preload(self, scene):
-        """The force of the pad's normal spring (N): the block's share of the load."""
-        return self.sc.normal_load_per_pad - self.spec.mass * G
-
     def _couple(self, scene):
         """Lateral springs k1 between neighbours, anchored on pad i+1 at pad i's height so they act along x."""
-        p = self.spec
+        p, o = self.spec, self.own
         if p.k1 > 0 or p.c1 > 0:
             for i in range(p.N - 1):
                 a, b = scene.pads[i], scene.pads[i + 1]
                 off = scene.pad_y[i] - scene.pad_y[i + 1]
-                c = pymunk.DampedSpring(a, b, (0, 0), (-LT, off), LT, p.k1 * U.STIFFNESS, p.c1 * U.DAMPING)
+                c = pymunk.DampedSpring(a, b, (0, 0), (-o.LT, off), o.LT, o.k1, o.c1)
                 scene.space.add(c)
                 scene.slider_springs.append(c)
 

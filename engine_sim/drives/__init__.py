@@ -14,8 +14,7 @@ from typing import ClassVar
 import numpy as np
 import pymunk
 
-from .. import units as U
-from ..parts import Registry
+from ..parts import Part, Registry
 
 __all__ = ["DriveSpec", "Drive", "DRIVES", "drive_kind", "FAR"]
 
@@ -33,7 +32,7 @@ class DriveSpec:
     kind: str = "force"
 
 
-class Drive:
+class Drive(Part):
     """One drive. After :meth:`build`: ``spring`` (a DampedSpring from the pulled body to a kinematic anchor, body
     b), ``bodies`` (bodies of the drive's own that carry kinetic energy) and ``pulled`` (the index in ``bodies`` of
     the body the spring pulls, -1 for the block)."""
@@ -46,8 +45,13 @@ class Drive:
     constant_force: ClassVar[bool] = True  # the drive force is set, the speed follows from the friction law
 
     def __init__(self, spec, scenario):
-        self.spec, self.sc = spec, scenario
+        super().__init__(spec, scenario)
         self.spring, self.bodies, self.pulled = None, [], -1
+
+    def scene_inputs(self) -> dict:
+        """The drive force (``force``) and the mass moved with the block (``extra_mass``), and the spec's fields
+        ``scene_units`` names."""
+        return {**super().scene_inputs(), "force": (self.force(), "force"), "extra_mass": (self.extra_mass, "mass")}
 
     @classmethod
     def validate(cls, spec, sc) -> None:
@@ -101,7 +105,7 @@ class Drive:
         self._far_spring(scene, scene.block)
 
     def _far_spring(self, scene, pulled):
-        F = self.sc.drive_force * U.FORCE
+        F = self.own.force
         kd = F / FAR
         anchor = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
         anchor.position = (-FAR, scene.y_block)  # behind: the compressed spring pushes the body forward

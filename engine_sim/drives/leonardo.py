@@ -7,7 +7,6 @@ import pymunk
 
 from frictionnoise.base import G
 
-from .. import units as U
 from . import DRIVES, FAR, Drive, DriveSpec
 
 
@@ -30,6 +29,7 @@ class Leonardo(Drive):
     the rope a SlideJoint that holds at most rope_length."""
 
     name = "leonardo"
+    scene_units = {"rope_length": "length"}
     Spec = LeonardoSpec
     positive = frozenset({"v", "hanging_mass", "rope_length"})
 
@@ -48,9 +48,9 @@ class Leonardo(Drive):
         return s.hanging_mass if s.hanging_mass is not None else self.sc.drive_force / G
 
     def build(self, scene):
-        L_rope = self.spec.rope_length * U.LENGTH
+        L_rope = self.own.rope_length
         y = scene.y_block
-        hang = pymunk.Body(self.extra_mass * U.MASS, float("inf"))
+        hang = pymunk.Body(self.own.extra_mass, float("inf"))
         hang.position = (L_rope, y)
         hang.velocity = (scene.v_law, 0.0)
         scene.space.add(hang, pymunk.GrooveJoint(scene.space.static_body, hang, (-FAR, y), (FAR, y), (0, 0)),
@@ -65,8 +65,8 @@ class Leonardo(Drive):
         bx, y = scene.block.position.x, scene.y_block
         px, py = hi - 2.0, y
         my = py - 30.0
-        slack = self.spec.rope_length * U.LENGTH - (hang.position.x - bx)
-        label = f"hanging mass {hang.mass / U.MASS:.3g} kg, rope slack {slack / U.LENGTH * 1e6:+.2f} um"
+        slack = self.own.rope_length - (hang.position.x - bx)  # mm
+        label = f"hanging mass {self.extra_mass:.3g} kg, rope slack {slack * 1e3:+.2f} um"
         return {
             "rope": ("line", ([bx + 2.5, px, px + 1.2, px + 1.2], [y, py + 1.2, py, my + 8.0]),
                      {"color": "0.15", "lw": 1.2, "zorder": 5}),

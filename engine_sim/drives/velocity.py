@@ -8,7 +8,6 @@ import numpy as np
 
 import pymunk
 
-from .. import units as U
 from . import DRIVES, Drive, DriveSpec
 
 _REST = 5.0  # mm: the drive spring's rest length
@@ -26,6 +25,7 @@ class VelocitySpec(DriveSpec):
 @DRIVES.register
 class Velocity(Drive):
     name = "velocity"
+    scene_units = {"k_drive": "stiffness"}
     Spec = VelocitySpec
     positive = frozenset({"v", "k_drive"})
     constant_force = False
@@ -62,8 +62,8 @@ class Velocity(Drive):
 
     def build(self, scene):
         """The anchor, a kinematic body moving at v, starts ahead by the spring's steady stretch."""
-        kd = self.spec.k_drive * U.STIFFNESS
-        F_ss = self.sc.pads.N * self.sc.column_force(self.spec.v)
+        kd = self.own.k_drive
+        F_ss = self.own.force  # the law's steady force at v, N columns
         anchor = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
         anchor.position = (_REST + F_ss / kd, scene.y_block)
         anchor.velocity = (scene.v_law, 0.0)

@@ -15,7 +15,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..parts import Registry
+from ..parts import Part, Registry
 
 __all__ = ["FrictionSpec", "Law", "LAWS", "law_kind"]
 
@@ -32,7 +32,7 @@ class FrictionSpec:
     c: float = 10.0
 
 
-class Law:
+class Law(Part):
     """One friction law. ``spec`` is its section; ``sc`` the scenario it belongs to."""
 
     name: ClassVar[str] = ""
@@ -42,9 +42,6 @@ class Law:
     choices: ClassVar[dict] = {}
     reduced_model = None  # a key of reduced_models.MODELS fitting a scene with this law (None: the substrate's)
     quick_duration = None  # recorded seconds of a quick comparison with that model (s)
-
-    def __init__(self, spec, scenario):
-        self.spec, self.sc = spec, scenario
 
     @classmethod
     def validate(cls, spec, sc) -> None:
@@ -73,7 +70,7 @@ class Law:
         return law["c"]
 
     def build(self, scene, body, c: float) -> None:
-        """Add the velocity part of the law on ``body`` (scene units) to ``scene.space``."""
+        """Add the velocity part of the law on ``body`` (viscous slope ``c``, scene units) to ``scene.space``."""
 
     # the law applies impulses per step outside pymunk's constraints (impulse_totals), and they act after pymunk's
     # step (written as velocities), not inside it as forces

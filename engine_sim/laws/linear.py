@@ -5,7 +5,6 @@ import math
 
 import pymunk
 
-from .. import units as U
 from . import LAWS, FrictionSpec, Law
 
 _FAR = 1e9  # mm: the drag springs' static anchors, so their axis stays horizontal over any run
@@ -43,6 +42,6 @@ class Linear(Law):
 
     def build(self, scene, body, c):
         if c > 0:
-            c_set = corrected_drag(c * U.DAMPING, body.mass, scene.dt)
+            c_set = corrected_drag(c, body.mass, scene.dt)
             scene.space.add(pymunk.DampedSpring(body, scene.space.static_body, (0, 0), (_FAR, body.position.y),
                                                 0.0, 0.0, c_set))

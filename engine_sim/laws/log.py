@@ -8,7 +8,6 @@ import numba
 import numpy as np
 import pymunk.batch as B
 
-from .. import units as U
 from . import LAWS, FrictionSpec
 from .linear import Linear
 
@@ -36,6 +35,7 @@ class Log(Linear):
     (checked at load). The c v part is the linear law's corrected damper."""
 
     name = "log"
+    scene_units = {"v_c": "velocity"}
     Spec = LogSpec
     per_step_impulses = True
     positive = frozenset({"v_c"})
@@ -78,14 +78,14 @@ class Log(Linear):
         rd = B.Buffer()
         B.get_space_bodies(scene.space, B.BodyFields.BODY_ID, rd)
         ids = np.frombuffer(rd.int_buf(), dtype=np.int64)
-        bN = {b.id: self.spec.b * load * U.FORCE for b, load in zip(scene.sliders, scene.slider_load)}
+        bN = {b.id: self.spec.b * load for b, load in zip(scene.sliders, scene.slider_load)}
         where = {b.id: k for k, b in enumerate(scene.sliders)}
         self._bN = np.array([bN.get(int(i), 0.0) for i in ids])
         self._idx = np.array([where.get(int(i), -1) for i in ids], dtype=np.int64)
 
     def advance(self, scene, n):
         self._per_body(scene)  # in the batch's body order, read once per call (ids are addresses; order may change)
-        vc = self.spec.v_c * U.VELOCITY
+        vc = self.own.v_c
         step, dt, space, rd, wr = scene.space.step, scene.dt, scene.space, B.Buffer(), B.Buffer()
         bN = self._bN
         f = np.zeros(2 * bN.size)

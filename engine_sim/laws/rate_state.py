@@ -43,7 +43,6 @@ import numba
 import numpy as np
 import pymunk.batch as PB
 
-from .. import units as U
 from . import LAWS, FrictionSpec
 from .linear import Linear
 from .log import log_slope
@@ -87,6 +86,7 @@ class RateState(Linear):
     through pymunk.batch (module docstring)."""
 
     name = "rate_state"
+    scene_units = {"V0": "velocity"}
     Spec = RateStateSpec
     impulses_after_step = True
     per_step_impulses = True
@@ -161,7 +161,7 @@ class RateState(Linear):
         """Per sliding body (``scene.sliders`` order): theta (s), started at theta0 or in steady state."""
         if getattr(self, "theta", None) is None or len(self.theta) != len(scene.sliders):
             s = self.spec
-            th0 = s.theta0 if s.theta0 is not None else s.D_c / scene.sc.steady_velocity
+            th0 = s.theta0 if s.theta0 is not None else s.D_c / self.sc.steady_velocity  # s (SI)
             self.theta = np.full(len(scene.sliders), th0)
 
     def _per_body(self, scene):
@@ -173,7 +173,7 @@ class RateState(Linear):
         where = {b.id: k for k, b in enumerate(scene.sliders)}
         idx = np.array([where.get(int(i), -1) for i in ids], dtype=np.int64)
         A = self.spec.A
-        NA = np.array([A * scene.slider_load[k] * U.FORCE if k >= 0 else 0.0 for k in idx])
+        NA = np.array([A * scene.slider_load[k] if k >= 0 else 0.0 for k in idx])
         m = np.array([scene.sliders[k].mass if k >= 0 else 1.0 for k in idx])
         return idx, NA, m
 
@@ -184,8 +184,8 @@ class RateState(Linear):
         th = np.array([self.theta[k] if k >= 0 else 1.0 for k in idx])
         vp = np.array([scene.sliders[k].velocity.x if k >= 0 else 0.0 for k in idx])
         dt = scene.dt
-        params = np.array([s.A, s.B, s.D_c, s.V0 * U.VELOCITY, s.mu_ref, dt / U.TIME, float(STATE_LAWS[s.state_law]),
-                           1.0 / U.VELOCITY])
+        params = np.array([s.A, s.B, s.D_c, self.own.V0, s.mu_ref, self.ctx.dt_si, float(STATE_LAWS[s.state_law]),
+                           self.ctx.velocity_si])
         step, space, rd, wr = scene.space.step, scene.space, PB.Buffer(), PB.Buffer()
         acc = np.zeros(NA.size)  # the law's impulses over the steps, per body: the recorder's mean drag
         for _ in range(n):

@@ -12,8 +12,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from .. import units as U
-from ..parts import Registry
+from ..parts import Part, Registry
 
 __all__ = ["SubstrateSpec", "Substrate", "SUBSTRATES", "substrate_kind"]
 
@@ -30,7 +29,7 @@ class SubstrateSpec:
     segment_radius: float = 0.05e-3
 
 
-class Substrate:
+class Substrate(Part):
     """One substrate kind. Subclasses set ``name`` (the value of ``[substrate] kind``), ``Spec`` and override what
     differs.
 
@@ -49,9 +48,7 @@ class Substrate:
     choices: ClassVar[dict] = {}
     reduced_model: ClassVar[str] = "model_I"  # pads renewing their force every a: model I
     quick_duration: ClassVar[float] = 12.0
-
-    def __init__(self, spec, scenario):
-        self.spec, self.sc = spec, scenario
+    scene_units: ClassVar[dict] = {"a": "length", "segment_radius": "length"}
 
     @classmethod
     def prepare(cls, spec, where: str = ""):
@@ -77,27 +74,28 @@ class Substrate:
         resampling); empty for a generated substrate."""
         return {}
 
-    def top(self) -> float:
-        """The highest point of the substrate above its datum (mm): feet on a sole start above it."""
-        return 0.0
-
     def pad_depth(self, fraction: float, pad_radius: float) -> float:
         """How far below the track's datum (m) the lowest point of a pad of ``pad_radius`` (m) follows the track
         on ``fraction`` of its path (0: a flat track; engine_sim.regime compares it with the pad's deflection)."""
-        return 0.0
-
-    def floor_depth(self) -> float:
-        """How far below its surface a particle may sit on this track (mm; pits)."""
         return 0.0
 
     def mu_range(self, mu0: float):
         """(lo, hi) of the friction coefficient along the track (a colour bar is drawn when they differ)."""
         return mu0, mu0
 
+    # ------------------------------------------------------------------ scene side (scene units: own, ctx)
+    def top(self) -> float:
+        """The highest point of the substrate above its datum (mm): feet on a sole start above it."""
+        return 0.0
+
+    def floor_depth(self) -> float:
+        """How far below its surface a particle may sit on this track (mm; pits)."""
+        return 0.0
+
     def margins(self, scene) -> tuple[float, float]:
         """(ahead, behind) of a pad, in mm, over which its track must exist."""
-        r = self.sc.pads.radius
-        return 4 * r * U.LENGTH + scene.run_ahead, 2 * r * U.LENGTH
+        r = self.ctx.pad_radius
+        return 4 * r + scene.run_ahead, 2 * r
 
     def build(self, space, y: float, shape_filter, rng, mu: float, x_start: float):
         """A streamed track (scene units) at height y with friction mu, its own generator rng."""
@@ -105,7 +103,7 @@ class Substrate:
 
     def x_start(self, scene) -> float:
         """Where a track begins (mm)."""
-        return -4.0 * self.sc.pads.radius * U.LENGTH
+        return -4.0 * self.ctx.pad_radius
 
     def relief(self, pad_radius: float) -> float:
         """The height range a side view must show (m): the depth the pads follow on 99 % of their path, twice."""

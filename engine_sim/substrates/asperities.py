@@ -5,7 +5,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import units as U
 from ..substrate import BumpTrack
 from . import SUBSTRATES, Substrate, SubstrateSpec
 
@@ -48,20 +47,23 @@ class Asperities(Substrate):
         """The asperity tops reach h_max above the datum; a foot between them follows them down to it (m)."""
         return self.spec.h_max
 
+    def scene_inputs(self):
+        return {**super().scene_inputs(), "cell": (self.spec.cell, "length"),
+                "bump_radius": (self.spec.bump_radius, "length"), "h_max": (self.spec.h_max, "length")}
+
     def top(self):
-        return self.spec.h_max * U.LENGTH
+        return self.own.h_max
 
     def margins(self, scene):  # around the whole sole
-        half = scene.width / 2 + 2 * (self.sc.pads.radius * U.LENGTH)
+        half = scene.width / 2 + 2 * self.ctx.pad_radius
         return half + scene.run_ahead, half
 
     def x_start(self, scene):
         return -scene.width
 
     def build(self, space, y, shape_filter, rng, mu, x_start):
-        s = self.spec
-        return BumpTrack(space, y, s.cell * U.LENGTH, s.p, s.bump_radius * U.LENGTH, s.h_max * U.LENGTH, mu,
-                         shape_filter, rng, x_start=x_start)
+        o = self.own
+        return BumpTrack(space, y, o.cell, self.spec.p, o.bump_radius, o.h_max, mu, shape_filter, rng, x_start=x_start)
 
     def relief(self, pad_radius):
         return self.spec.h_max

@@ -15,7 +15,6 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import units as U
 from ..profile_file import ProfileError, read_line_scan
 from ..shipped import SCENARIO_DIR
 from ..substrate import StreamedTrack
@@ -29,6 +28,7 @@ _UNITS = ("", "m", "mm", "um", "µm", "nm", "A", "Å")  # "": the unit the file 
 # the contact solver's slop (Scene.slop, 1e-4 mm): pymunk leaves overlaps below it uncorrected, so heights the
 # pad's path changes by less than this are below what the scene resolves
 CONTACT_SLOP = 1e-7  # m
+_FILLED = 1e-3  # a point the pad's closing raises by more than this fraction of the tolerance counts as filled
 _EVAL_POINTS = 1 << 17  # the spacing rule is judged on at most this many points of the profile (cost bound)
 _CLOSING_WORK = 4e8  # points x disc width above which a profile is first pooled to its bins' maxima (cost bound)
 # segments a track may hold over the stretch the scene keeps around its pad (Substrate.margins: 4 pad radii ahead,
@@ -239,7 +239,7 @@ def _profile(path: str, stamp: tuple, x_unit: str, height_unit: str, dx: float, 
         native *= b
         how += f" (first pooled to the highest point of every {b} points, {_um(native)}: the pad touches only peaks)"
     closed = pad_closing(hg, native, radius, extend)
-    filled = float(np.mean(closed - hg > 1e-3 * tol))
+    filled = float(np.mean(closed - hg > _FILLED * tol))
     n_eval = min(closed.size, _EVAL_POINTS)
     path_ref = pad_path(hg[:n_eval], native, radius, extend)
     margin = int(_reach(radius, closed) / native) + 1
@@ -350,7 +350,9 @@ class LineScan(Substrate):
     def __init__(self, spec, scenario):
         super().__init__(spec, scenario)
         self.profile = read_profile(spec, scenario.pads.radius)
-        self.dx, self.h = self.profile.dx * U.LENGTH, self.profile.h * U.LENGTH
+
+    def scene_inputs(self):
+        return {**super().scene_inputs(), "dx": (self.profile.dx, "length"), "h": (self.profile.h, "length")}
 
     def pad_depth(self, fraction, pad_radius):
         """The depth below the datum exceeded on ``fraction`` of the pad's path over the track's profile (m; the
@@ -367,7 +369,7 @@ class LineScan(Substrate):
                             "track_spacing_m": p.dx, "path_error_m": p.path_error, "resampling": p.note}}
 
     def build(self, space, y, shape_filter, rng, mu, x_start):
-        return ProfileTrack(space, y, self.h, self.dx, self.spec.extend, mu, self.spec.segment_radius * U.LENGTH,
+        return ProfileTrack(space, y, self.own.h, self.own.dx, self.spec.extend, mu, self.own.segment_radius,
                             shape_filter, rng, x_start)
 
 

@@ -4,7 +4,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .. import units as U
 from ..substrate import PatchTrack
 from . import SUBSTRATES, Substrate, SubstrateSpec
 
@@ -54,21 +53,26 @@ class Patches(Substrate):
         """Pits (their depth) or a flat track; grains need no exaggeration of their own."""
         return self.spec.pit_depth if self.spec.pit_p > 0 else 0.0
 
+    def scene_inputs(self):
+        s = self.spec
+        return {**super().scene_inputs(), "floor": (s.pit_depth if s.pit_p > 0 else 0.0, "length"),
+                "ahead": (max(8 * s.a, self.sc.wear.ahead + 2 * s.a), "length"), "behind": (4 * s.a, "length"),
+                "x_start": (-10 * s.a, "length"), "pit_width_min": (s.pit_width_min, "length"),
+                "pit_width_max": (s.pit_width_max, "length"), "pit_depth": (s.pit_depth, "length")}
+
     def floor_depth(self):
-        return (self.spec.pit_depth if self.spec.pit_p > 0 else 0.0) * U.LENGTH
+        return self.own.floor
 
     def mu_range(self, mu0):
         return mu0 * (1 - self.spec.alpha / 2), mu0 * (1 + self.spec.alpha / 2)
 
     def margins(self, scene):
-        a = self.spec.a
-        return max(8 * a, self.sc.wear.ahead + 2 * a) * U.LENGTH + scene.run_ahead, 4 * a * U.LENGTH
+        return self.own.ahead + scene.run_ahead, self.own.behind
 
     def x_start(self, scene):
-        return -10 * self.spec.a * U.LENGTH
+        return self.own.x_start
 
     def build(self, space, y, shape_filter, rng, mu, x_start):
-        s = self.spec
-        return PatchTrack(space, y, s.a * U.LENGTH, mu, s.alpha, s.segment_radius * U.LENGTH, shape_filter, rng,
-                          x_start=x_start, pit_p=s.pit_p, pit_width=(s.pit_width_min * U.LENGTH, s.pit_width_max * U.LENGTH),
-                          pit_depth=s.pit_depth * U.LENGTH)
+        s, o = self.spec, self.own
+        return PatchTrack(space, y, o.a, mu, s.alpha, o.segment_radius, shape_filter, rng, x_start=x_start,
+                          pit_p=s.pit_p, pit_width=(o.pit_width_min, o.pit_width_max), pit_depth=o.pit_depth)

@@ -2,11 +2,11 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from statistics import NormalDist
 
 import numpy as np
 
-from .. import units as U
 from ..substrate import SelfAffineTrack, self_affine_kernel
 from . import SUBSTRATES, Substrate, SubstrateSpec
 
@@ -52,19 +52,32 @@ class SelfAffine(Substrate):
                              "the steepest flanks (~4 rms slopes) near the locking slope 1/mu0 pin the pads "
                              "(measured on pads_rough_profile: rms slope 0.4 pins the block, 0.3 slides unsteadily)")
 
-    def __init__(self, spec, scenario):
-        super().__init__(spec, scenario)
-        s = spec
-        self.dx = s.lambda_s * U.LENGTH / 4
-        self.kernel = self_affine_kernel(s.hurst, s.lambda_r * U.LENGTH, s.lambda_s * U.LENGTH, self.dx, s.rms_slope)
+    scene_units = {**Substrate.scene_units, "lambda_r": "length", "lambda_s": "length"}
+
+    @staticmethod
+    def _kernel(s, lambda_r, lambda_s):
+        """(the FIR kernel, its grid spacing dx = lambda_s / 4) in the units of the lengths given."""
+        dx = lambda_s / 4
+        return self_affine_kernel(s.hurst, lambda_r, lambda_s, dx, s.rms_slope), dx
+
+    @cached_property
+    def kernel_si(self):
+        """The kernel in metres (the scenario side's depths)."""
+        return self._kernel(self.spec, self.spec.lambda_r, self.spec.lambda_s)[0]
+
+    @cached_property
+    def scene_kernel(self):
+        """(kernel, dx) in scene units (mm), computed once per scene."""
+        return self._kernel(self.spec, self.own.lambda_r, self.own.lambda_s)
 
     def pad_depth(self, fraction, pad_radius):
         """The Gaussian heights' depth exceeded on ``fraction`` of the track, z h_rms (m; h_rms of the kernel on unit
         white noise). A pad's path over this profile has the profile's rms within 1 % (radius 0.3 mm over
         pads_rough_profile's, 50 m of track), so the profile's quantile stands for the path's."""
-        h_rms = float(np.sqrt(np.sum(self.kernel**2))) / U.LENGTH
+        h_rms = float(np.sqrt(np.sum(self.kernel_si**2)))
         return NormalDist().inv_cdf(1 - fraction) * h_rms
 
     def build(self, space, y, shape_filter, rng, mu, x_start):
-        return SelfAffineTrack(space, y, self.kernel, self.dx, mu, self.spec.segment_radius * U.LENGTH, shape_filter,
-                               rng, x_start=x_start, chunk_points=64)
+        kernel, dx = self.scene_kernel
+        return SelfAffineTrack(space, y, kernel, dx, mu, self.own.segment_radius, shape_filter, rng, x_start=x_start,
+                               chunk_points=64)
