@@ -140,3 +140,33 @@ def test_a_channel_in_a_trace_file_and_compared(tmp_path):
     r = subprocess.run(CLI + ["compare", str(run / "trace.npz"), "-o", str(tmp_path / "cmp")], capture_output=True,
                        text=True, cwd=tmp_path)
     assert r.returncode == 0, r.stderr
+
+
+def test_a_scenario_with_plugins_unpickles_in_a_fresh_process(tmp_path):
+    # a spawned worker (the report's pool) unpickles the scenario before anything loaded its plugins
+    import pickle
+
+    sc = load_scenario(_scene_file(tmp_path, "stribeck_pads", [LAW], STRIBECK))
+    blob = tmp_path / "sc.pkl"
+    blob.write_bytes(pickle.dumps(sc))
+    code = ("import pickle, sys; sc = pickle.loads(open(sys.argv[1], 'rb').read()); "
+            "print(type(sc.law_part).__name__, sc.friction.dmu, sc.plugins == (sys.argv[2],))")
+    r = subprocess.run([sys.executable, "-c", code, str(blob), str(LAW)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.split() == ["Stribeck", "0.3", "True"]
+
+
+def test_a_part_records_the_channels_it_declares(tmp_path):
+    from types import SimpleNamespace as NS
+
+    from engine_sim.channels import recorded_channels
+    from engine_sim.plugins import load_plugins
+
+    load_plugins([str(CHANNEL)])
+    part = NS()
+    law = NS(channels=("block_kinetic_energy",))  # a law that declares the channel
+    scene = NS(sc=NS(channels=()), law=law, drive=part, substrate=part, arrangement=part, M=100.0)
+    (ch,) = recorded_channels(scene)
+    assert ch.name == "block_kinetic_energy" and ch.table()[0] == 100.0
+    scene.sc.channels = ("block_kinetic_energy",)  # named by the scenario too: recorded once
+    assert len(recorded_channels(scene)) == 1
