@@ -74,6 +74,6 @@ def recorded_channels(scene) -> list:
         names += [n for n in getattr(part, "channels", ()) if n not in names]
     for n in names:
         if n not in CHANNELS:
-            raise ValueError(f"channels: {n!r} is not a registered channel (registered: {', '.join(CHANNELS) or 'none'};"
-                             f" name its module in the scenario's plugins)")
+            raise ValueError(f"channels: {n!r} is not a registered channel (registered: "
+                             f"{', '.join(CHANNELS) or 'none'}; name its module in the scenario's plugins)")
     return [CHANNELS[n](scene) for n in names]

@@ -260,8 +260,8 @@ class Recorder:
         slider_velocities(ids, fl, self._tab, self._v_sl)
         self._drag(self._v_sl, self._drag_rows, self._f_v)
         reduce_sample(ids, fl, ai, af, self._tab, self.grain_table, self._bs, self._pp, self._prm, sc.slider_terms,
-                      self._f_v, self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact, self.p_state,
-                      self.p_force, self._sp, self.means_state, self.spring_lengths, self._law_totals)
+                      self._f_v, self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact,
+                      self.p_state, self.p_force, self._sp, self.means_state, self.spring_lengths, self._law_totals)
         vib = getattr(sc, "vibration", None)
         if vib is not None:
             out, c = self.out, len(COLS)

@@ -335,8 +335,9 @@ def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, fv, dm, k, out, 
     table (its places are updated), ``bs``, ``pp``: the springs (:func:`springs`), ``sl``: the sliders' masses and
     law dampers' c (:func:`sliders`), ``fv``: the law's velocity part per slider at this sample
     (:func:`slider_velocities`, :meth:`engine_sim.laws.Law.recorded_drag`), ``dm``: masses of the drive's bodies. One
-    array per output keeps the argument list short enough for numba's dispatch, which runs every output step. Then the forces as means over the output step
-    (:func:`engine_sim.means.means`; ``sp``, ``ms``, ``ls``, ``lt``: its springs, state and the law's impulse totals)."""
+    array per output keeps the argument list short enough for numba's dispatch, which runs every output step. Then
+    the forces as means over the output step (:func:`engine_sim.means.means`; ``sp``, ``ms``, ``ls``, ``lt``: its
+    springs, state and the law's impulse totals)."""
     g = prm[GRAV]
     prev = grain[:, G_X:G_Y + 1].copy()  # places at the previous sample: a grain's state is judged on its mean speed
     blk, P, D, Q = read_bodies(ids, fl, tab, grain, sl.shape[0], dm.shape[0])

@@ -2,8 +2,8 @@
 
 A scenario file has a top-level ``name`` and ``description`` (and optionally ``plugins``, a user's parts to load
 first, :mod:`engine_sim.plugins`, and ``channels``, extra channels to record, :mod:`engine_sim.channels`) and the
-sections ``[block]``, ``[pads]``,
-``[friction]``, ``[substrate]``, ``[drive]``, ``[wear]`` and ``[run]``; every key is optional (defaults below, SI units).
+sections ``[block]``, ``[pads]``, ``[friction]``, ``[substrate]``, ``[drive]``, ``[wear]`` and ``[run]``; every key
+is optional (defaults below, SI units).
 Unknown sections or keys, wrong types and out-of-range values raise :class:`ScenarioError` naming the
 file, the field and the limit, including the time-step limit that the pad springs impose and the regimes of the
 scene (:mod:`engine_sim.regime`: what its springs' lengths and pymunk's solver can carry).
@@ -239,7 +239,7 @@ class Scenario:
             if obj is None:  # an optional section left out ([vibration])
                 continue
             out[sec] = {f.name: getattr(obj, f.name) for f in fields(obj)}
-        for key in ("plugins", "channels"):  # written only when given: a scene without them reads as before
+        for key in ("plugins", "channels"):  # written only when given (a trace's metadata lists them then)
             if getattr(self, key):
                 out[key] = list(getattr(self, key))
         return out
