@@ -170,3 +170,17 @@ def test_a_part_records_the_channels_it_declares(tmp_path):
     assert ch.name == "block_kinetic_energy" and ch.table()[0] == 100.0
     scene.sc.channels = ("block_kinetic_energy",)  # named by the scenario too: recorded once
     assert len(recorded_channels(scene)) == 1
+
+
+def test_a_substrate_and_a_drive_from_a_plugin(tmp_path):
+    # tests/relabelled_parts.py registers the shipped patches and velocity drive under new names: a scene of them,
+    # named in [substrate] kind and [drive] kind, records the shipped scene's trace bit for bit
+    path = _scene_file(tmp_path, "relabelled", [ROOT / "tests" / "relabelled_parts.py"])
+    text = path.read_text().replace('kind = "patches"', 'kind = "relabelled_patches"')
+    path.write_text(text.replace('kind = "velocity"', 'kind = "relabelled_velocity"'))
+    sc = load_scenario(path).with_run(duration=0.3, warmup=0.1)
+    assert (sc.substrate.kind, sc.drive.kind) == ("relabelled_patches", "relabelled_velocity")
+    tr = engine_sim.run(sc)
+    ref = engine_sim.run(load_scenario("constant_velocity").with_run(duration=0.3, warmup=0.1))
+    for f in ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "pad_force", "work_drive", "dissipated", "mech_energy"):
+        assert np.array_equal(getattr(tr, f), getattr(ref, f)), f
