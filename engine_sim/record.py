@@ -222,8 +222,9 @@ class Recorder:
         self._sp = np.array(sp, dtype=float).reshape(-1, 9)
         self._weights = {}
         self._law_totals = scene.law.impulse_totals(scene)  # the law's, updated in place as it steps
-        # the law's velocity part at each sample, by its own kernel at the sliders' velocities (Law.recorded_drag)
-        self._drag, self._drag_rows = scene.law.recorded_drag(scene)
+        # a law's own velocity part at each sample, by its kernel at the sliders' velocities (Law.recorded_drag;
+        # None: the drag_terms form alone, which the reduction computes, and zeros here)
+        self._drag = scene.law.recorded_drag(scene)
         self._v_sl = np.zeros(len(scene.sliders))
         self._f_v = np.zeros(len(scene.sliders))
         self._channels = [(ch.kernel, np.asarray(ch.table(), dtype=float), self.channel_out[ch.name])
@@ -233,7 +234,7 @@ class Recorder:
     def __getstate__(self):
         state = self.__dict__.copy()
         for k in ("_tab", "_bodies", "_arbiters", "_prm", "_anchor", "_drive_mass", "_bs", "_pp",
-                  "_sp", "_weights", "_law_totals", "_drag", "_drag_rows", "_v_sl", "_f_v", "_channels", "_n_last"):
+                  "_sp", "_weights", "_law_totals", "_drag", "_v_sl", "_f_v", "_channels", "_n_last"):
             del state[k]  # derived from the scene (pymunk ids change on unpickling; batch buffers do not pickle)
         return state
 
@@ -257,8 +258,9 @@ class Recorder:
         self._interval(prm)
         sc.wear.mark_sleeping(self.grain_table)
         self.recycle[k] = sc.wear.recycle_work
-        slider_velocities(ids, fl, self._tab, self._v_sl)
-        self._drag(self._v_sl, self._drag_rows, self._f_v)
+        if self._drag is not None:
+            slider_velocities(ids, fl, self._tab, self._v_sl)
+            self._drag[0](self._v_sl, self._drag[1], self._f_v)
         reduce_sample(ids, fl, ai, af, self._tab, self.grain_table, self._bs, self._pp, self._prm, sc.slider_terms,
                       self._f_v, self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact,
                       self.p_state, self.p_force, self._sp, self.means_state, self.spring_lengths, self._law_totals)

@@ -6,9 +6,9 @@ recorder's buffers. It is a sequence of small kernels, each one job: the bodies'
 contact forces and the friction power at the contacts (:func:`contacts`), the sliding bodies' forces, drag and
 energies (:func:`sliders`), the grains' states and energies (:func:`grains`), the springs' energy and damping
 (:func:`springs`), the drive (:func:`drive`) and the momentum of the bodies with energy (:func:`momentum`, which a
-shaken substrate's inertial force works on). The friction law's velocity part enters as its values at the sample,
-which the law's own kernel computes (:meth:`engine_sim.laws.Law.recorded_drag`) at the sliders' velocities
-(:func:`slider_velocities`). The running sums (kinetic and potential energy, dissipated power)
+shaken substrate's inertial force works on). The friction law's velocity part is the form the shipped laws share
+(:func:`law_drag`) plus, for a law of another form, its values at the sample, which the law's own kernel computes
+(:meth:`engine_sim.laws.Law.recorded_drag`) at the sliders' velocities (:func:`slider_velocities`). The running sums (kinetic and potential energy, dissipated power)
 are handed from kernel to kernel, so every sum is taken in one fixed order. Columns and parameters are read by the
 names of :mod:`engine_sim.sample_layout`.
 """
@@ -164,6 +164,17 @@ def friction_power(used, af, key, Vm, Q, blk, dt):
 
 
 @numba.njit(cache=True)
+def law_drag(c, bN, vc, vx):
+    """The velocity part the shipped laws share, on a slider at speed vx: c v + b N_pad ln(1 + |v|/v_c) sign(v)
+    (``c``, ``bN``, ``vc``: its row of ``sl``, columns 1-3, from :meth:`engine_sim.laws.Law.drag_terms`; scalars, as
+    an array argument costs a reference count per call)."""
+    f_v = c * vx
+    if bN > 0.0:
+        f_v += np.sign(vx) * bN * np.log1p(abs(vx) / vc)
+    return f_v
+
+
+@numba.njit(cache=True)
 def slider_velocities(ids, fl, tab, v):
     """Each sliding body's x velocity from the body buffer into ``v`` (zero for a body absent from it: asleep, at
     rest), as :func:`read_bodies` reads it: what a law's velocity part is evaluated at
@@ -179,8 +190,8 @@ def slider_velocities(ids, fl, tab, v):
 def step_mean_velocity(blk, P, sl, sp, ft, fn, fv, prm):
     """Each slider's mean velocity over the last pymunk step, v - dv / 2, dv = (the step's impulses) / m: contacts
     (``ft``, ``fn``: x, y forces), springs (elastic at the present places, where pymunk evaluated them; damping
-    -c_eff dt v_rel along them), the law's drag -f_v dt (``fv``: the law's velocity part per slider at the sample),
-    a vibration's field and gravity. A step's impulse J does
+    -c_eff dt v_rel along them), the law's drag -f_v dt (:func:`law_drag` plus ``fv``, the law's own velocity
+    part per slider at the sample), a vibration's field and gravity. A step's impulse J does
     J . (v_before + v_after) / 2; J . v_after over-counts J^2 / 2m, in the law's dampers (c dt / 4) sum dv^2, which
     a vibration makes large. Used in shaken scenes only (``pair_mid``; benchmarks/results/vibration.md)."""
     n_sl = P.shape[0]
@@ -208,7 +219,7 @@ def step_mean_velocity(blk, P, sl, sp, ft, fn, fv, prm):
     Vm = np.empty((n_sl, 2))
     for i in range(n_sl):
         m = sl[i, 0]
-        f_v = fv[i]
+        f_v = law_drag(sl[i, 1], sl[i, 2], sl[i, 3], P[i, 2]) + fv[i]
         Vm[i, 0] = P[i, 2] - 0.5 * ((F0[i, 0] + ft[i] - f_v) * dt / m + prm[VIB_LX])
         Vm[i, 1] = P[i, 3] - 0.5 * ((F0[i, 1] + fn[i]) * dt / m + prm[VIB_LY] - prm[GRAV] * dt)
     return Vm
@@ -218,8 +229,8 @@ def step_mean_velocity(blk, P, sl, sp, ft, fn, fv, prm):
 def sliders(P, Vm, sl, fv, ft, fn, touch, g, k, pad_force, micro_force, ke, pe, pout):
     """Per sliding body (the pads first, then any micro-pads): its tangential force against sliding into
     ``pad_force[k]`` or ``micro_force[k]``, and the sums: the tangential and normal contact force, the friction law's
-    velocity part (``fv``, per body at the sample: the law's compiled :meth:`~engine_sim.laws.Law.recorded_drag`;
-    ``sl``: mass first per body) and its power, the pads touching their track; the bodies' kinetic and potential
+    velocity part and its power (the form the shipped laws share, :func:`law_drag`, with ``sl``: mass, c, b N_pad,
+    v_c per body; plus ``fv``, a law's own part at the sample, :meth:`~engine_sim.laws.Law.recorded_drag`), the pads touching their track; the bodies' kinetic and potential
     energy added to ``ke``, ``pe``. The law's power pairs its force with the step's mean velocity ``Vm``
     (:func:`friction_power`)."""
     N = pad_force.shape[1]
@@ -236,7 +247,7 @@ def sliders(P, Vm, sl, fv, ft, fn, touch, g, k, pad_force, micro_force, ke, pe, 
         sft -= ft[i]
         sfn += fn[i]
         m_p = sl[i, 0]
-        f_v = fv[i]  # the law's velocity part on this body (drag)
+        f_v = law_drag(sl[i, 1], sl[i, 2], sl[i, 3], P[i, 2]) + fv[i]  # the law's velocity part on this body
         drag += f_v
         pout += f_v * Vm[i, 0]
         ke += 0.5 * m_p * (P[i, 2] ** 2 + P[i, 3] ** 2)
@@ -332,9 +343,9 @@ def momentum(M, blk, P, sl, Q, grain, D, dm):
 def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, fv, dm, k, out, pad_force, micro_force, n_contact,
                   p_state, p_force, sp, ms, ls, lt):
     """Row ``k`` of the recorder's buffers from the raw batch buffers (module docstring); ``grain``: the grain
-    table (its places are updated), ``bs``, ``pp``: the springs (:func:`springs`), ``sl``: the sliders' masses and
-    law dampers' c (:func:`sliders`), ``fv``: the law's velocity part per slider at this sample
-    (:func:`slider_velocities`, :meth:`engine_sim.laws.Law.recorded_drag`), ``dm``: masses of the drive's bodies. One
+    table (its places are updated), ``bs``, ``pp``: the springs (:func:`springs`), ``sl``: the sliders' law terms
+    (:func:`sliders`), ``fv``: a law's own velocity part per slider at this sample (zeros for the shipped laws;
+    :func:`slider_velocities`, :meth:`engine_sim.laws.Law.recorded_drag`), ``dm``: masses of the drive's bodies. One
     array per output keeps the argument list short enough for numba's dispatch, which runs every output step. Then
     the forces as means over the output step (:func:`engine_sim.means.means`; ``sp``, ``ms``, ``ls``, ``lt``: its
     springs, state and the law's impulse totals)."""

@@ -9,8 +9,8 @@ dF/dv > 0 at its operating point: a point on the weakening branch is refused at 
 The Coulomb part mu0 N_pad is pymunk's contact solver's, c v the linear law's corrected damper, and the Stribeck
 bump g_s(v) = N_pad dmu exp(-(v / v_s)^2) sign(v) a force written once per step from the sliding bodies'
 velocities (as the log law's velocity part), explicit: stable for max|g_s'| dt / m_pad = sqrt(2 / e) N_pad dmu dt /
-(v_s m_pad) < 0.5 (checked at load). The recorder gets the law's velocity part at each sample from
-:func:`stribeck_drag`, its impulses per step from :meth:`Law.impulse_totals`.
+(v_s m_pad) < 0.5 (checked at load). The recorder reads c v as the linear law's (``drag_terms``), the bump at each
+sample from :func:`stribeck_drag` (``recorded_drag``) and its impulses per step from ``impulse_totals``.
 """
 from __future__ import annotations
 
@@ -40,11 +40,11 @@ class StribeckSpec(FrictionSpec):
 
 @numba.njit(cache=True)
 def stribeck_drag(v, rows, out):
-    """The velocity part c v + N_pad dmu exp(-(v / v_s)^2) sign(v) per sliding body (``rows``: c, N_pad dmu,
-    v_s; scene units): the kernel of :meth:`Stribeck.recorded_drag`."""
+    """The bump N_pad dmu exp(-(v / v_s)^2) sign(v) per sliding body (``rows``: N_pad dmu, v_s; scene units): the
+    kernel of :meth:`Stribeck.recorded_drag`."""
     for i in range(v.shape[0]):
-        u = v[i] / rows[i, 2]
-        out[i] = rows[i, 0] * v[i] + np.sign(v[i]) * rows[i, 1] * np.exp(-u * u)
+        u = v[i] / rows[i, 1]
+        out[i] = np.sign(v[i]) * rows[i, 0] * np.exp(-u * u)
 
 
 @numba.njit(cache=True)
@@ -105,9 +105,8 @@ class Stribeck(Linear):
         return law["c"] - 2 * law["load_per_pad"] * law["dmu"] * u / law["v_s"] * math.exp(-u * u)
 
     def recorded_drag(self, scene):
-        rows = [(c * U.DAMPING, self.spec.dmu * load * U.FORCE, self.spec.v_s * U.VELOCITY)
-                for c, load in zip(scene.slider_c, scene.slider_load)]
-        return stribeck_drag, np.array(rows, dtype=float).reshape(-1, 3)
+        rows = [(self.spec.dmu * load * U.FORCE, self.spec.v_s * U.VELOCITY) for load in scene.slider_load]
+        return stribeck_drag, np.array(rows, dtype=float).reshape(-1, 2)
 
     def _per_body(self, scene):
         """N_pad dmu of each body of the space in the batch's order (0 for bodies that are not sliders) and its

@@ -4,10 +4,10 @@ recorded terms (its drag force and power) and its share of ``describe()`` (param
 
 Every law is velocity strengthening at its operating point, f(v) = mu N_pad + g(v), with the Coulomb part mu N_pad
 solved by pymunk's contact solver (mu carried by the substrate's shapes) and the velocity part g(v) added per sliding
-body. The recorder reads g through the law's own channels: its dampers' coefficient (``drag_terms``' c), the impulses
-it applied per step (``impulse_totals``) and g itself at each sample, by the law's compiled kernel
-(``recorded_drag``; :mod:`engine_sim.laws.velocity_part` holds the form the shipped laws share). A new law is one
-module with a :class:`Law` subclass decorated with ``@LAWS.register``: shipped, one import line below; a user's, named
+body. The recorder reads g through the law's own channels: its dampers' coefficient and the form the shipped laws
+share, g(v) = c v + b N_pad ln(1 + |v|/v_c) sign(v) (``drag_terms``), the impulses it applied per step
+(``impulse_totals``) and, for a law of another form, the rest of g at each sample by the law's own compiled kernel
+(``recorded_drag``). A new law is one module with a :class:`Law` subclass decorated with ``@LAWS.register``: shipped, one import line below; a user's, named
 in a scenario's ``plugins`` (:mod:`engine_sim.plugins`).
 """
 from __future__ import annotations
@@ -18,7 +18,6 @@ from typing import ClassVar
 import numpy as np
 
 from ..parts import Registry
-from .velocity_part import log_drag
 
 __all__ = ["FrictionSpec", "Law", "LAWS", "law_kind"]
 
@@ -65,13 +64,14 @@ class Law:
         """(c [N s/m], b N_pad [N], v_c [m/s]) of the velocity part in the recorder's form (b N_pad = 0: none)."""
         return c, 0.0, 1.0
 
-    def recorded_drag(self, scene) -> tuple:
-        """The law's velocity part g(v) at a sample, as the recorder computes it: ``(kernel, rows)``, with
-        ``kernel(v, rows, out)`` a numba-compiled function that writes g(v[i]) (x force, scene units) of sliding body i
-        (``scene.sliders`` order) at its velocity v[i] into ``out[i]``, and ``rows`` its parameters, one row per
-        sliding body (scene units). The recorder counts g against sliding in F_drag and its power in the dissipated
-        energy. This default is the form of :meth:`drag_terms` (:func:`~engine_sim.laws.velocity_part.log_drag`)."""
-        return log_drag, np.ascontiguousarray(scene.slider_terms[:, 1:4])
+    def recorded_drag(self, scene) -> tuple | None:
+        """The law's velocity part beyond the form of :meth:`drag_terms`, at a sample, as the recorder computes it:
+        ``(kernel, rows)``, with ``kernel(v, rows, out)`` a numba-compiled function that writes that part g_own(v[i])
+        (x force, scene units) of sliding body i (``scene.sliders`` order) at its velocity v[i] into ``out[i]``, and
+        ``rows`` its parameters, one row per sliding body (scene units). The recorder adds it to the drag_terms form
+        in F_drag and counts its power in the dissipated energy. None (the shipped laws): the drag_terms form is the
+        whole velocity part, and the recorder calls no kernel of the law's."""
+        return None
 
     def describe(self, load: float, c: float) -> dict:
         """The law's parameters for one sliding body (``metadata["scene"]["friction_law"]``)."""
