@@ -123,6 +123,10 @@ def test_a_channel_plugin_is_recorded_and_changes_nothing_else(tmp_path):
     np.testing.assert_allclose(ke[:, 0], 0.5 * sc.block.M * tr.v ** 2, rtol=1e-9)
     for f in ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "pad_force", "work_drive", "dissipated", "mech_energy"):
         assert np.array_equal(getattr(tr, f), getattr(ref, f)), f  # recording a channel changes no other field
+    from compare.io.netcdf import load_netcdf, save_netcdf
+
+    back = load_netcdf(save_netcdf(tr, tmp_path / "trace.nc"))  # the channel survives a netCDF round trip
+    assert np.array_equal(back.channels["block_kinetic_energy"], ke)
 
 
 @pytest.mark.slow  # a run and a compare of its trace in subprocesses (~40 s wall)
