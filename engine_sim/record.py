@@ -25,7 +25,8 @@ from pymunk._chipmunk import lib
 
 from . import sample_layout as R, units as U
 from .batch_reader import BatchReader
-from .reduction import reduce_sample
+from .channels import recorded_channels
+from .reduction import reduce_sample, slider_velocities
 from .sample_layout import COLS, MS_COLS, PRM
 from .vibration import VIB_COLS
 
@@ -134,6 +135,8 @@ class EngineTrace:
     # did [J] (the inertial force on every body in the substrate's frame, or the shaker's force on the block)
     vibration: np.ndarray = field(default_factory=lambda: np.zeros(0))
     work_vibration: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    # the channels the scenario names or its parts declare (engine_sim/channels.py): name -> (samples x columns), SI
+    channels: dict = field(default_factory=dict)
 
 
 class Recorder:
@@ -169,6 +172,8 @@ class Recorder:
         self.means_state = np.zeros((1 + len(scene.sliders), MS_COLS))
         self.spring_lengths = np.zeros(len(scene.block_springs) + len(scene.slider_springs))
         self.last_steps = None  # the scene's step count at the previous sample
+        # the recorded channels (engine_sim/channels.py), one buffer (samples x columns, scene units) each
+        self.channel_out = {ch.name: np.zeros((n_samples, ch.columns)) for ch in recorded_channels(scene)}
         self._tables()
 
     def _tables(self):
@@ -217,12 +222,19 @@ class Recorder:
         self._sp = np.array(sp, dtype=float).reshape(-1, 9)
         self._weights = {}
         self._law_totals = scene.law.impulse_totals(scene)  # the law's, updated in place as it steps
+        # a law's own velocity part at each sample, by its kernel at the sliders' velocities (Law.recorded_drag;
+        # None: the drag_terms form alone, which the reduction computes, and zeros here)
+        self._drag = scene.law.recorded_drag(scene)
+        self._v_sl = np.zeros(len(scene.sliders))
+        self._f_v = np.zeros(len(scene.sliders))
+        self._channels = [(ch.kernel, np.asarray(ch.table(), dtype=float), self.channel_out[ch.name])
+                          for ch in recorded_channels(scene)]
         self._n_last = -1  # the step count whose weights prm holds
 
     def __getstate__(self):
         state = self.__dict__.copy()
         for k in ("_tab", "_bodies", "_arbiters", "_prm", "_anchor", "_drive_mass", "_bs", "_pp",
-                  "_sp", "_weights", "_law_totals", "_n_last"):
+                  "_sp", "_weights", "_law_totals", "_drag", "_v_sl", "_f_v", "_channels", "_n_last"):
             del state[k]  # derived from the scene (pymunk ids change on unpickling; batch buffers do not pickle)
         return state
 
@@ -246,14 +258,19 @@ class Recorder:
         self._interval(prm)
         sc.wear.mark_sleeping(self.grain_table)
         self.recycle[k] = sc.wear.recycle_work
+        if self._drag is not None:
+            slider_velocities(ids, fl, self._tab, self._v_sl)
+            self._drag[0](self._v_sl, self._drag[1], self._f_v)
         reduce_sample(ids, fl, ai, af, self._tab, self.grain_table, self._bs, self._pp, self._prm, sc.slider_terms,
-                      self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact, self.p_state,
-                      self.p_force, self._sp, self.means_state, self.spring_lengths, self._law_totals)
+                      self._f_v, self._drive_mass, k, self.out, self.pad_force, self.micro_force, self.n_contact,
+                      self.p_state, self.p_force, self._sp, self.means_state, self.spring_lengths, self._law_totals)
         vib = getattr(sc, "vibration", None)
         if vib is not None:
             out, c = self.out, len(COLS)
             out[k, c], out[k, c + 1] = vib.record(sc, out[k, R.MOM_X], out[k, R.MOM_Y])
         self.t[k] = U.to_si(sc.steps * sc.dt, "time")
+        for kernel, table, buf in self._channels:
+            kernel(ids, fl, self._tab, table, buf[k])
         self.k += 1
 
     def _interval(self, prm):
@@ -295,4 +312,5 @@ class Recorder:
             particle_penetration=si(o["p_pen"], "length"), micro_force=si(self.micro_force[:n], "force"),
             metadata=metadata, vibration=si(self.out[:n, len(COLS)], "length"),
             work_vibration=cum(self.out[:n, len(COLS) + 1]),
+            channels={ch.name: si(self.channel_out[ch.name][:n], ch.quantity) for ch in recorded_channels(self.scene)},
         )

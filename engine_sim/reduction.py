@@ -6,7 +6,9 @@ recorder's buffers. It is a sequence of small kernels, each one job: the bodies'
 contact forces and the friction power at the contacts (:func:`contacts`), the sliding bodies' forces, drag and
 energies (:func:`sliders`), the grains' states and energies (:func:`grains`), the springs' energy and damping
 (:func:`springs`), the drive (:func:`drive`) and the momentum of the bodies with energy (:func:`momentum`, which a
-shaken substrate's inertial force works on). The running sums (kinetic and potential energy, dissipated power)
+shaken substrate's inertial force works on). The friction law's velocity part is the form the shipped laws share
+(:func:`law_drag`) plus, for a law of another form, its values at the sample, which the law's own kernel computes
+(:meth:`engine_sim.laws.Law.recorded_drag`) at the sliders' velocities (:func:`slider_velocities`). The running sums (kinetic and potential energy, dissipated power)
 are handed from kernel to kernel, so every sum is taken in one fixed order. Columns and parameters are read by the
 names of :mod:`engine_sim.sample_layout`.
 """
@@ -24,7 +26,7 @@ from .sample_layout import (  # the layout's names, frozen into the kernels as c
     G_ASLEEP, G_X, G_Y, STALE_TOL,
 )
 
-__all__ = ["reduce_sample"]
+__all__ = ["reduce_sample", "slider_velocities"]
 
 
 @numba.njit(cache=True)
@@ -163,8 +165,9 @@ def friction_power(used, af, key, Vm, Q, blk, dt):
 
 @numba.njit(cache=True)
 def law_drag(c, bN, vc, vx):
-    """The law's velocity part on a slider at speed vx: c v + b N_pad ln(1 + |v|/v_c) sign(v) (``c``, ``bN``,
-    ``vc``: its row of ``sl``, columns 1-3; scalars, as an array argument costs a reference count per call)."""
+    """The velocity part the shipped laws share, on a slider at speed vx: c v + b N_pad ln(1 + |v|/v_c) sign(v)
+    (``c``, ``bN``, ``vc``: its row of ``sl``, columns 1-3, from :meth:`engine_sim.laws.Law.drag_terms`; scalars, as
+    an array argument costs a reference count per call)."""
     f_v = c * vx
     if bN > 0.0:
         f_v += np.sign(vx) * bN * np.log1p(abs(vx) / vc)
@@ -172,10 +175,23 @@ def law_drag(c, bN, vc, vx):
 
 
 @numba.njit(cache=True)
-def step_mean_velocity(blk, P, sl, sp, ft, fn, prm):
+def slider_velocities(ids, fl, tab, v):
+    """Each sliding body's x velocity from the body buffer into ``v`` (zero for a body absent from it: asleep, at
+    rest), as :func:`read_bodies` reads it: what a law's velocity part is evaluated at
+    (:meth:`engine_sim.laws.Law.recorded_drag`)."""
+    v[:] = 0.0
+    for r in range(ids.shape[0]):
+        kind, i = body_of(tab, ids[r])
+        if kind == SLIDER:
+            v[i] = fl[5 * r + 2]
+
+
+@numba.njit(cache=True)
+def step_mean_velocity(blk, P, sl, sp, ft, fn, fv, prm):
     """Each slider's mean velocity over the last pymunk step, v - dv / 2, dv = (the step's impulses) / m: contacts
     (``ft``, ``fn``: x, y forces), springs (elastic at the present places, where pymunk evaluated them; damping
-    -c_eff dt v_rel along them), the law's drag -f_v dt, a vibration's field and gravity. A step's impulse J does
+    -c_eff dt v_rel along them), the law's drag -f_v dt (:func:`law_drag` plus ``fv``, the law's own velocity
+    part per slider at the sample), a vibration's field and gravity. A step's impulse J does
     J . (v_before + v_after) / 2; J . v_after over-counts J^2 / 2m, in the law's dampers (c dt / 4) sum dv^2, which
     a vibration makes large. Used in shaken scenes only (``pair_mid``; benchmarks/results/vibration.md)."""
     n_sl = P.shape[0]
@@ -203,23 +219,24 @@ def step_mean_velocity(blk, P, sl, sp, ft, fn, prm):
     Vm = np.empty((n_sl, 2))
     for i in range(n_sl):
         m = sl[i, 0]
-        f_v = law_drag(sl[i, 1], sl[i, 2], sl[i, 3], P[i, 2])
+        f_v = law_drag(sl[i, 1], sl[i, 2], sl[i, 3], P[i, 2]) + fv[i]
         Vm[i, 0] = P[i, 2] - 0.5 * ((F0[i, 0] + ft[i] - f_v) * dt / m + prm[VIB_LX])
         Vm[i, 1] = P[i, 3] - 0.5 * ((F0[i, 1] + fn[i]) * dt / m + prm[VIB_LY] - prm[GRAV] * dt)
     return Vm
 
 
 @numba.njit(cache=True)
-def sliders(P, Vm, sl, ft, fn, touch, g, k, pad_force, micro_force, ke, pe, pout):
+def sliders(P, Vm, sl, fv, ft, fn, touch, g, k, pad_force, micro_force, ke, pe, pout):
     """Per sliding body (the pads first, then any micro-pads): its tangential force against sliding into
     ``pad_force[k]`` or ``micro_force[k]``, and the sums: the tangential and normal contact force, the friction law's
-    velocity part c v + b N_pad ln(1 + |v|/v_c) sign(v) (``sl``: mass, c, b N_pad, v_c per body) and its power, the
-    pads touching their track; the bodies' kinetic and potential energy added to ``ke``, ``pe``. The law's power
-    pairs its force with the step's mean velocity ``Vm`` (:func:`friction_power`)."""
+    velocity part and its power (the form the shipped laws share, :func:`law_drag`, with ``sl``: mass, c, b N_pad,
+    v_c per body; plus ``fv``, a law's own part at the sample, :meth:`~engine_sim.laws.Law.recorded_drag`), the pads touching their track; the bodies' kinetic and potential
+    energy added to ``ke``, ``pe``. The law's power pairs its force with the step's mean velocity ``Vm``
+    (:func:`friction_power`)."""
     N = pad_force.shape[1]
     sft = 0.0
     sfn = 0.0
-    fv = 0.0
+    drag = 0.0
     nc = 0
     for i in range(sl.shape[0]):
         if i < N:
@@ -230,12 +247,12 @@ def sliders(P, Vm, sl, ft, fn, touch, g, k, pad_force, micro_force, ke, pe, pout
         sft -= ft[i]
         sfn += fn[i]
         m_p = sl[i, 0]
-        f_v = law_drag(sl[i, 1], sl[i, 2], sl[i, 3], P[i, 2])  # the law's velocity part on this body (drag)
-        fv += f_v
+        f_v = law_drag(sl[i, 1], sl[i, 2], sl[i, 3], P[i, 2]) + fv[i]  # the law's velocity part on this body
+        drag += f_v
         pout += f_v * Vm[i, 0]
         ke += 0.5 * m_p * (P[i, 2] ** 2 + P[i, 3] ** 2)
         pe += m_p * g * P[i, 1]
-    return sft, sfn, fv, nc, ke, pe, pout
+    return sft, sfn, drag, nc, ke, pe, pout
 
 
 @numba.njit(cache=True)
@@ -323,13 +340,15 @@ def momentum(M, blk, P, sl, Q, grain, D, dm):
 
 
 @numba.njit(cache=True)
-def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, dm, k, out, pad_force, micro_force, n_contact,
+def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, fv, dm, k, out, pad_force, micro_force, n_contact,
                   p_state, p_force, sp, ms, ls, lt):
     """Row ``k`` of the recorder's buffers from the raw batch buffers (module docstring); ``grain``: the grain
     table (its places are updated), ``bs``, ``pp``: the springs (:func:`springs`), ``sl``: the sliders' law terms
-    (:func:`sliders`), ``dm``: masses of the drive's bodies. One array per output keeps the argument list short
-    enough for numba's dispatch, which runs every output step. Then the forces as means over the output step
-    (:func:`engine_sim.means.means`; ``sp``, ``ms``, ``ls``, ``lt``: its springs, state and the law's impulse totals)."""
+    (:func:`sliders`), ``fv``: a law's own velocity part per slider at this sample (zeros for the shipped laws;
+    :func:`slider_velocities`, :meth:`engine_sim.laws.Law.recorded_drag`), ``dm``: masses of the drive's bodies. One
+    array per output keeps the argument list short enough for numba's dispatch, which runs every output step. Then
+    the forces as means over the output step (:func:`engine_sim.means.means`; ``sp``, ``ms``, ``ls``, ``lt``: its
+    springs, state and the law's impulse totals)."""
     g = prm[GRAV]
     prev = grain[:, G_X:G_Y + 1].copy()  # places at the previous sample: a grain's state is judged on its mean speed
     blk, P, D, Q = read_bodies(ids, fl, tab, grain, sl.shape[0], dm.shape[0])
@@ -338,13 +357,14 @@ def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, dm, k, out, pad_
     key = arbiter_keys(ai, tab)
     ft, fn, touch, p_touch, pen, p_pen, pairs, n_stale, used = contacts(ai, af, key, grain, Q, prm[DT], k, p_force,
                                                                         sl.shape[0])
-    Vm = step_mean_velocity(blk, P, sl, sp, ft, fn, prm) if prm[PAIR_MID] > 0.0 else P[:, 2:4].copy()
+    Vm = step_mean_velocity(blk, P, sl, sp, ft, fn, fv, prm) if prm[PAIR_MID] > 0.0 else P[:, 2:4].copy()
     pout = friction_power(used, af, key, Vm, Q, blk, prm[DT])
     ke = 0.5 * prm[MASS] * (blk[2] * blk[2] + blk[3] * blk[3])
     pe = prm[MASS] * g * blk[1]  # constant unless the block is free vertically (asperity field)
     for j in range(dm.shape[0]):
         ke += 0.5 * dm[j] * D[j, 1] * D[j, 1]
-    sft, sfn, fv, nc, ke, pe, pout = sliders(P, Vm, sl, ft, fn, touch, g, k, pad_force, micro_force, ke, pe, pout)
+    sft, sfn, f_drag, nc, ke, pe, pout = sliders(P, Vm, sl, fv, ft, fn, touch, g, k, pad_force, micro_force, ke, pe,
+                                                 pout)
     ke, pe = grains(grain, Q, prev, p_touch, g, prm[V_TRAP], prm[DT_OUT], k, p_state, ke, pe)
     pe, pout = springs(bs, pp, blk, P, Vm, pe, pout)
     f_drive, p_in, pe = drive(prm, hx, hvx, pe)
@@ -352,7 +372,7 @@ def reduce_sample(ids, fl, ai, af, tab, grain, bs, pp, prm, sl, dm, k, out, pad_
     out[k, V] = blk[2]
     out[k, F_T] = sft
     out[k, F_N] = sfn
-    out[k, F_DRAG] = fv
+    out[k, F_DRAG] = f_drag
     out[k, F_DRIVE] = f_drive
     out[k, PEN] = pen
     out[k, POWER_IN] = p_in

@@ -1,22 +1,28 @@
 """Scenarios: frozen SI parameter sets for the engine scene, loaded from TOML and validated once.
 
-A scenario file has a top-level ``name`` and ``description`` and the sections ``[block]``, ``[pads]``,
-``[friction]``, ``[substrate]``, ``[drive]``, ``[wear]`` and ``[run]``; every key is optional (defaults below, SI units).
+A scenario file has a top-level ``name`` and ``description`` (and optionally ``plugins``, a user's parts to load
+first, :mod:`engine_sim.plugins`, and ``channels``, extra channels to record, :mod:`engine_sim.channels`) and the
+sections ``[block]``, ``[pads]``, ``[friction]``, ``[substrate]``, ``[drive]``, ``[wear]`` and ``[run]``; every key
+is optional (defaults below, SI units).
 Unknown sections or keys, wrong types and out-of-range values raise :class:`ScenarioError` naming the
 file, the field and the limit, including the time-step limit that the pad springs impose and the regimes of the
 scene (:mod:`engine_sim.regime`: what its springs' lengths and pymunk's solver can carry).
 """
 from __future__ import annotations
 
+import pickle
 from dataclasses import dataclass, field, fields, replace
 from functools import cached_property
+from pathlib import Path
 
 from frictionnoise.base import G, InputError, check_number, read_toml
 
 from .arrangements import ARRANGEMENTS, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSpec  # noqa: F401
+from .channels import CHANNELS
 from .drives import DRIVES, DriveSpec
 from .drives.force import ForceSpec
 from .laws import LAWS, FrictionSpec
+from .plugins import load_plugins
 from .regime import check_regimes
 from .shipped import (SCENARIO_DIR, ScenarioError, nearest_names, resolve_scenario, scenario_summary,  # noqa: F401
                       shipped_file, shipped_scenarios)
@@ -66,6 +72,8 @@ class Scenario:
     wear: WearSpec = field(default_factory=WearSpec)
     run: RunSpec = field(default_factory=RunSpec)
     vibration: VibrationSpec | None = None  # [vibration] (engine_sim/vibration.py); None: the section is absent
+    plugins: tuple = ()  # a user's part modules, resolved (engine_sim/plugins.py), loaded before the sections are read
+    channels: tuple = ()  # extra recorded channels by name (engine_sim/channels.py)
 
     # ------------------------------------------------------------------ the parts (engine_sim/*/): each asked, none checked
     # Each is built once per scenario, on first use, and answers the scenario's derived quantities; a scene builds
@@ -109,6 +117,13 @@ class Scenario:
     def __getstate__(self):
         """The fields only: the parts built on first use are rebuilt after unpickling (a scene pickles its own)."""
         return {k: v for k, v in self.__dict__.items() if k not in _PARTS_ATTRS}
+
+    def __reduce_ex__(self, protocol):
+        """A scenario with plugins pickles its fields as bytes behind its plugins, so a process that unpickles it
+        (a spawned worker) loads the plugins before it meets their specs."""
+        if not self.plugins:
+            return super().__reduce_ex__(protocol)
+        return _with_plugins, (self.plugins, pickle.dumps(self.__getstate__(), protocol))
 
     # ------------------------------------------------------------------ derived quantities (SI)
     @property
@@ -224,7 +239,18 @@ class Scenario:
             if obj is None:  # an optional section left out ([vibration])
                 continue
             out[sec] = {f.name: getattr(obj, f.name) for f in fields(obj)}
+        for key in ("plugins", "channels"):  # written only when given (a trace's metadata lists them then)
+            if getattr(self, key):
+                out[key] = list(getattr(self, key))
         return out
+
+
+def _with_plugins(plugins, state: bytes) -> Scenario:
+    """A scenario unpickled after its plugins are loaded (:meth:`Scenario.__reduce_ex__`)."""
+    load_plugins(plugins)
+    sc = object.__new__(Scenario)
+    sc.__dict__.update(pickle.loads(state))
+    return sc
 
 
 # how each part family is built from its section (the section's kind names the class, engine_sim/*/)
@@ -331,10 +357,22 @@ def scenario_from_dict(data: dict, where: str = "", strict: bool = True) -> Scen
     """
     if not isinstance(data, dict):
         raise _err(where, "a scenario must be a table of sections")
-    top_keys = {"name", "description", *_SECTIONS}
+    top_keys = {"name", "description", "plugins", "channels", *_SECTIONS}
     unknown = sorted(set(data) - top_keys)
     if unknown:
         raise _err(where, f"unknown key {unknown[0]!r}; valid top-level keys: {', '.join(sorted(top_keys))}")
+    try:  # a user's parts register before the sections name them
+        base = Path(where).parent if where and Path(where).is_file() else None
+        plugins = load_plugins(data.get("plugins", []), base)
+    except ValueError as e:
+        raise _err(where, str(e)) from None
+    channels = data.get("channels", [])
+    if not isinstance(channels, list) or not all(isinstance(c, str) for c in channels):
+        raise _err(where, f"channels must be a list of channel names (got {channels!r})")
+    for c in channels:
+        if c not in CHANNELS:
+            raise _err(where, f"channels: {c!r} is not a registered channel (registered: "
+                              f"{', '.join(CHANNELS) or 'none'}; name its module in plugins)")
     parts = {}
     for sec in sorted(_SECTIONS, key=lambda s: s != "substrate"):
         raw = data.get(sec, {})
@@ -348,7 +386,8 @@ def scenario_from_dict(data: dict, where: str = "", strict: bool = True) -> Scen
     for key in ("name", "description"):
         if key in data and not isinstance(data[key], str):
             raise _err(where, f"{key} must be a string (got {type(data[key]).__name__})")
-    sc = Scenario(name=data.get("name", "unnamed"), description=data.get("description", ""), **parts)
+    sc = Scenario(name=data.get("name", "unnamed"), description=data.get("description", ""), **parts,
+                  plugins=plugins, channels=tuple(channels))
     _check_consistency(sc, where)
     if strict:  # a trace's metadata is read as recorded, whatever regime it ran in
         try:

@@ -38,6 +38,7 @@ def test_docs_front_page_names_every_how_to():
     toc = re.search(r"```\{toctree\}\n(.*?)```", (docs / "howto/index.md").read_text(), re.S).group(1)
     pages = {line.strip() for line in toc.splitlines() if line.strip() and not line.startswith(":")}
     named = {"add_substrate": "Add a substrate", "add_drive": "drive", "add_law": "friction law",
+             "add_channel": "record a channel of your own",
              "add_model": "reduced model", "add_study": "report study", "dask_sweeps": "sweep on a dask cluster",
              "checkpoint_resume": "checkpoint and resume a long run", "slope_test": "test a spectral slope",
              "shake_a_scene": "shake a scene"}

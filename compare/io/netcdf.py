@@ -82,7 +82,7 @@ def to_dataset(obj):
     xarray.Dataset
         One variable per array; the sample axis (``t`` in s, or ``omega`` in rad/s) is the coordinate of the
         dimension its length defines; other axes are named ``<variable>_<k>``. A ModelTrace's ``events`` are
-        variables named ``events.<key>``.
+        variables named ``events.<key>``, an EngineTrace's ``channels`` ``channels.<name>``.
     """
     xr = _xarray()
     name = _class_name(obj)
@@ -101,9 +101,9 @@ def to_dataset(obj):
         value = getattr(obj, f.name)
         if f.name == "metadata" or f.name == "provenance":
             attrs[f.name] = json.dumps(value, default=_json_default)
-        elif f.name == "events":
+        elif f.name in ("events", "channels"):  # a dict of arrays: one variable each
             for key, ev in value.items():
-                add(f"events.{key}", ev, None)
+                add(f"{f.name}.{key}", ev, None)
         elif value is None:
             empty.append(f.name)
         elif isinstance(value, np.ndarray):
@@ -142,8 +142,8 @@ def from_dataset(ds):
         if f.name in ("metadata", "provenance"):
             if f.name in ds.attrs:
                 kwargs[f.name] = json.loads(ds.attrs[f.name])
-        elif f.name == "events":
-            kwargs["events"] = {k.split(".", 1)[1]: ds[k].values for k in ds.variables if k.startswith("events.")}
+        elif f.name in ("events", "channels"):
+            kwargs[f.name] = {k.split(".", 1)[1]: ds[k].values for k in ds.variables if k.startswith(f.name + ".")}
         elif f.name in none_fields:
             kwargs[f.name] = None
         elif f.name in ds.variables:

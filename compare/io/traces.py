@@ -12,6 +12,7 @@ from frictionnoise.base import atomic_write
 __all__ = ["save_trace", "load_trace", "TraceFileError", "FORMAT"]
 
 FORMAT = "frictionnoise-trace-2"
+CHANNEL = "channel:"  # the .npz name of a recorded channel's array (engine_sim/channels.py) is this and its name
 
 
 class TraceFileError(ValueError):
@@ -34,7 +35,8 @@ def save_trace(trace, path) -> Path:
         The .npz file written.
     """
     path = Path(path).with_suffix(".npz")
-    arrays = {f.name: getattr(trace, f.name) for f in fields(trace) if f.name != "metadata"}
+    arrays = {f.name: getattr(trace, f.name) for f in fields(trace) if f.name not in ("metadata", "channels")}
+    arrays.update({CHANNEL + name: values for name, values in trace.channels.items()})  # one array a channel
     arrays["format"] = np.array(FORMAT)
     meta = {"format": FORMAT, **trace.metadata}
 
@@ -73,8 +75,8 @@ def load_trace(path):
     if "format" not in keys or str(data["format"]) != FORMAT:
         raise TraceFileError(f"{path}: not a frictionnoise trace (no '{FORMAT}' format tag)")
     need = [f.name for f in fields(EngineTrace) if f.name != "metadata" and f.default_factory is MISSING]
-    optional = [f.name for f in fields(EngineTrace) if f.name != "metadata" and f.default_factory is not MISSING
-                and f.name in keys]  # fields added later (micro_force): absent from older traces
+    optional = [f.name for f in fields(EngineTrace) if f.name not in ("metadata", "channels")
+                and f.default_factory is not MISSING and f.name in keys]  # fields added later (micro_force)
     missing = [k for k in need if k not in keys]
     if missing:
         raise TraceFileError(f"{path}: trace is missing field {missing[0]!r}")
@@ -85,4 +87,5 @@ def load_trace(path):
         meta = json.loads(meta_path.read_text())
     except json.JSONDecodeError as e:
         raise TraceFileError(f"{meta_path}: not valid JSON ({e})") from None
-    return EngineTrace(**{k: data[k] for k in need + optional}, metadata=meta)
+    channels = {k[len(CHANNEL):]: data[k] for k in data.files if k.startswith(CHANNEL)}
+    return EngineTrace(**{k: data[k] for k in need + optional}, channels=channels, metadata=meta)

@@ -2,11 +2,13 @@
 of the law as pymunk objects on each sliding body), stepping (a law that needs a force written each step),
 recorded terms (its drag force and power) and its share of ``describe()`` (parameters and slope dF/dv).
 
-Every law here is velocity strengthening, f(v) = mu N_pad + g(v), with the Coulomb part mu N_pad solved by
-pymunk's contact solver (mu carried by the substrate's shapes) and the velocity part g(v) added per sliding body.
-The recorder reads g in one form, g(v) = c v + b N_pad ln(1 + |v|/v_c) sign(v) (``drag_terms``), which covers
-both shipped laws. A new law is one module here with a :class:`Law` subclass decorated with ``@LAWS.register``
-and one import line below.
+Every law is velocity strengthening at its operating point, f(v) = mu N_pad + g(v), with the Coulomb part mu N_pad
+solved by pymunk's contact solver (mu carried by the substrate's shapes) and the velocity part g(v) added per sliding
+body. The recorder reads g through the law's own channels: its dampers' coefficient and the form the shipped laws
+share, g(v) = c v + b N_pad ln(1 + |v|/v_c) sign(v) (``drag_terms``), the impulses it applied per step
+(``impulse_totals``) and, for a law of another form, the rest of g at each sample by the law's own compiled kernel
+(``recorded_drag``). A new law is one module with a :class:`Law` subclass decorated with ``@LAWS.register``: shipped, one import line below; a user's, named
+in a scenario's ``plugins`` (:mod:`engine_sim.plugins`).
 """
 from __future__ import annotations
 
@@ -58,6 +60,15 @@ class Law(Part):
     def drag_terms(self, load: float, c: float) -> tuple[float, float, float]:
         """(c [N s/m], b N_pad [N], v_c [m/s]) of the velocity part in the recorder's form (b N_pad = 0: none)."""
         return c, 0.0, 1.0
+
+    def recorded_drag(self, scene) -> tuple | None:
+        """The law's velocity part beyond the form of :meth:`drag_terms`, at a sample, as the recorder computes it:
+        ``(kernel, rows)``, with ``kernel(v, rows, out)`` a numba-compiled function that writes that part g_own(v[i])
+        (x force, scene units) of sliding body i (``scene.sliders`` order) at its velocity v[i] into ``out[i]``, and
+        ``rows`` its parameters, one row per sliding body (scene units). The recorder adds it to the drag_terms form
+        in F_drag and counts its power in the dissipated energy. None (the shipped laws): the drag_terms form is the
+        whole velocity part, and the recorder calls no kernel of the law's."""
+        return None
 
     def describe(self, load: float, c: float) -> dict:
         """The law's parameters for one sliding body (``metadata["scene"]["friction_law"]``)."""
