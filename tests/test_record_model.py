@@ -86,3 +86,24 @@ def test_records_without_a_spectrum_are_refused_in_one_line(x, match):
     with pytest.raises(ValueError, match=match) as e:
         check_record(x, "x", "m")
     assert "\n" not in str(e.value)
+
+
+def test_expected_periodogram_of_a_dominant_floor_returns_the_truth():
+    # Whittle's likelihood is maximised by the truth when the periodogram is its own expectation. 2^16 samples of
+    # omega^-6 (three differences) with a floor meeting the power law at the band's geometric middle: the floor's
+    # differenced expectation spans 1e-19 to 1 of its Nyquist level and its share of the mean is about e^30, so
+    # the profile must resolve both. The tolerance 1e-3 is the profile's search precision (xatol 1e-5 in gamma,
+    # 1e-6 in the ln share) with margin.
+    n, g = 2**16, 6.0
+    rec = WhittleRecord(np.zeros(n + 3), DT, 3)
+    w1, wn = 2 * math.pi / (n * DT), math.pi / DT
+    B = math.sqrt(w1 * wn) ** -g
+    prof = PowerFloorProfile([rec], True)
+    a, am = prof.unit(g)
+    rec.periodogram = a * am * (2 * math.pi / DT) ** -g + B * rec.white_expected()
+    from compare.analysis.power_floor import minimum
+
+    gamma, _, t = minimum(PowerFloorProfile([rec], True), 3.0, 6.95, None)
+    A_fit, B_fit = PowerFloorProfile([rec], True).levels(gamma, t)
+    assert gamma == pytest.approx(g, abs=1e-3)
+    assert B_fit == pytest.approx(B, rel=1e-2)
