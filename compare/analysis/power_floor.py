@@ -80,7 +80,13 @@ class PowerFloorProfile:
         """(a / mean(a), mean(a)): the expected periodogram of omega^-gamma with A = (2 pi / dt)^gamma."""
         hit = self._cache.get(gamma)
         if hit is None:
-            a = _above_rounding(self.rec.expected_from_grid(self.fold(gamma)))[self.keep]
+            full = self.rec.memo.get(("power", gamma))
+            if full is None:
+                full = _above_rounding(self.rec.expected_from_grid(self.fold(gamma)))
+                if len(self.rec.memo) * full.size > 2**23:  # 64 MB of kept vectors at most
+                    self.rec.memo.clear()
+                self.rec.memo[("power", gamma)] = full
+            a = full[self.keep]
             am = float(a.mean())
             hit = (a / am, am)
             if len(self._cache) > 256:

@@ -130,6 +130,9 @@ class WhittleRecord:
         I_j of the tapered, differenced record (Units: those of x^2 s / s^2k).
     n : int
         Samples of the differenced record used (the last few dropped for a fast FFT length, at most 0.5 %).
+    memo : dict
+        Expected periodograms kept by their users (e.g. per exponent), so that fits over several bands of one
+        record compute each once.
     """
 
     def __init__(self, x, dt: float, order: int, *, oversample: int = _OVERSAMPLE, taper: float = TAPER):
@@ -172,6 +175,7 @@ class WhittleRecord:
             v.append(np.concatenate([[0.0], v[-1][:-1]]) - v[-1])
         V = np.array(v)
         self._taper_gram = V @ V.T
+        self.memo = {}  # expected periodograms by key, shared by every fit of this record (power_floor's profiles)
 
     def expected_from_grid(self, values: np.ndarray) -> np.ndarray:
         """Ibar_j from the sampled record's (undifferenced) spectrum on :attr:`grid_omega` (eq. 8 of Sykulski et
