@@ -12,8 +12,8 @@ floor free (also where it is zero: the bound of an estimator that does not know 
 bound of one told the floor).
 
     python -m benchmarks.exponent_coverage --seeds 200       # the page (minutes per cell at 2^16)
-    python -m benchmarks.exponent_coverage --smoke           # CI: 6 seeds at 2^12, writes nothing
-    python -m benchmarks.exponent_coverage --seeds 80 --lengths 12,14 --rows a.json   # runs in parallel,
+    python -m benchmarks.exponent_coverage --quick --out t.md  # CI smoke: 2 seeds at 2^10, a few seconds
+    python -m benchmarks.exponent_coverage --seeds 80 --lengths 12,14 --rows a.json   # runs in pieces,
     python -m benchmarks.exponent_coverage --combine a.json b.json                    # then one page
 
 Binomial criterion: a cell is rejected when its coverage count is below the 0.0005 or above the 0.9995 quantile of
@@ -46,7 +46,8 @@ CRITERION = ("Columns: coverage of the 95 % profile-likelihood interval; a cell 
              "the mean estimate less the truth; the ratio is the median half-width over the Cramer-Rao half-width with "
              "the floor free; flagged: the record model's flags (bend, split-half; the split-half test is skipped here "
              "and runs in the model I-like records below); min decades: the narrowest identified band; old: "
-             "fit_power_law's automatic band on the Welch spectrum, its 95 % half-width and flags.")
+             "fit_power_law's automatic band on the Welch spectrum, its 95 % half-width (in brackets: over the Cramer-Rao "
+             "half-width with the floor free) and flags.")
 
 
 def floor_rms(n: int, gamma: float, where: str) -> float:
@@ -177,7 +178,8 @@ def table(rows) -> str:
                    f"{r['median_half']:.4f} | {r['cr_half']:.4f} / {r.get('cr_known', r['cr_half']):.4f} | "
                    f"{r['median_half'] / r['cr_half']:.2f} | "
                    f"{100 * r['flag_rate']:.0f} % | {r['min_decades']:.2f} | "
-                   + (f"{100 * r['old_coverage']:.1f} % | {r['old_bias']:+.4f} | {r['old_median_half']:.4f} | "
+                   + (f"{100 * r['old_coverage']:.1f} % | {r['old_bias']:+.4f} | {r['old_median_half']:.4f} "
+                      f"({r['old_median_half'] / r['cr_half']:.1f}×) | "
                       f"{100 * r['old_flag_rate']:.0f} % |" if "old_coverage" in r else "not run | | | |"))
     return head + "\n".join(out) + "\n"
 
@@ -211,18 +213,21 @@ def merged(rows) -> list:
     return list(out.values())
 
 
-def write_page(rows, commands, wall, model1=None) -> None:
-    """docs/results/exponent_coverage.md from the rows of one or more runs (and the model I-like records)."""
-    PAGE.write_text(
+def write_page(rows, commands, wall, model1=None, path=PAGE) -> None:
+    """The page (docs/results/exponent_coverage.md unless ``path``) from the rows of one or more runs (and the
+    model I-like records)."""
+    Path(path).write_text(
         "# Exponent coverage on lab-length records\n\n"
-        f"Reproduce: {commands} ({wall / 60:.0f} min of one core on 2 shared cores); `--smoke` runs the 2^12 cells "
-        "with 6 seeds.\n\n" + (__doc__.split("\n\n", 1)[1].split("    python -m")[0])
+        f"Reproduce: {commands} ({wall / 60:.0f} min of one core on 2 shared cores); `--quick --out FILE` writes "
+        "the same table for 2 seeds at 2^10 samples in a few seconds (a smoke test, not a measurement).\n\n" + (__doc__.split("\n\n", 1)[1].split("    python -m")[0])
         + "\n" + CRITERION + f"\n\nResult: {pooled(rows)}.\n\n" + table(rows) + (model1_text(model1) if model1 else ""))
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--smoke", action="store_true", help="6 seeds at 2^12, all cells; write nothing")
+    ap.add_argument("--quick", action="store_true", help="every cell at 2^10 samples with 2 seeds (a smoke test)")
+    ap.add_argument("--out", default=None, metavar="MD", help="write the page here (default: the docs page; "
+                    "--quick writes only here)")
     ap.add_argument("--seeds", type=int, default=200, help="seeds per cell")
     ap.add_argument("--lengths", default="12,14,16", help="log2 of the record lengths, comma-separated")
     ap.add_argument("--no-old", action="store_true", help="skip the spectrum-and-band estimator")
@@ -237,7 +242,8 @@ def main(argv=None) -> int:
         parts = [json.loads(Path(f).read_text()) for f in args.combine]
         rows = merged([r for p in parts for r in p.get("rows", [])])
         m1 = next((p["model1"] for p in parts if "model1" in p), None)
-        write_page(rows, " and ".join(f"`{p['command']}`" for p in parts), sum(p["wall_s"] for p in parts), m1)
+        write_page(rows, " and ".join(f"`{p['command']}`" for p in parts), sum(p["wall_s"] for p in parts), m1,
+                   args.out or PAGE)
         return 0
     if args.model1:
         m = model1_like(args.model1)
@@ -246,25 +252,26 @@ def main(argv=None) -> int:
             Path(args.rows).write_text(json.dumps({"model1": m, "wall_s": m["wall_s"], "command":
                                                    f"python -m benchmarks.exponent_coverage --model1 {args.model1}"}))
         return 0
-    lengths = [2**12] if args.smoke else [2 ** int(s) for s in args.lengths.split(",")]
-    seeds = 6 if args.smoke else args.seeds
+    lengths = [2**10] if args.quick else [2 ** int(s) for s in args.lengths.split(",")]
+    seeds = 2 if args.quick else args.seeds
     rows = []
     t0 = time.perf_counter()
-    cmd = (f"python -m benchmarks.exponent_coverage --seeds {seeds} --lengths {args.lengths}"
+    cmd = ("python -m benchmarks.exponent_coverage --quick" if args.quick else
+           f"python -m benchmarks.exponent_coverage --seeds {seeds} --lengths {args.lengths}"
            + (" --no-old" if args.no_old else "") + (f" --first-seed {args.first_seed}" if args.first_seed else ""))
     for n in lengths:
         for g in GAMMAS:
             for where in FLOORS:
                 rows.append(cell(n, g, where, seeds, not args.no_old, args.first_seed))
                 print(table(rows[-1:]).splitlines()[-1], flush=True)
-                if args.rows and not args.smoke:  # every cell as it ends: a long run can be stopped and combined
+                if args.rows and not args.quick:  # every cell as it ends: a long run can be stopped and combined
                     Path(args.rows).write_text(json.dumps(
                         {"rows": rows, "command": cmd, "wall_s": time.perf_counter() - t0}, indent=1))
     wall = time.perf_counter() - t0
     print(pooled(rows))
-    if args.smoke or args.rows:
+    if args.rows or (args.quick and not args.out):
         return 0
-    write_page(rows, f"`{cmd}`", wall)
+    write_page(rows, f"`{cmd}`", wall, path=args.out or PAGE)
     return 0
 
 
