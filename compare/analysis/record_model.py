@@ -16,10 +16,14 @@ crossover; a **bend test** (Rao's efficient score for changes of the exponent at
 band, :func:`compare.analysis.power_floor.bend_p`); and a **split-half test** of stationarity: the model fitted to each half of the record apart
 and to both with shared parameters, twice the log-likelihood gain chi2 with 3 degrees of freedom (2 without a floor).
 
-Without a band given, a record whose spectrum bends (bend test p < :data:`TEST_LEVEL`: a corner, the other side of a
-crossover between mechanisms) is fitted over a narrower band: a quarter decade is taken off the end whose removal
-leaves the larger p-value, until the test passes or the band would span less than a decade. A record still failing
-either test is flagged (``flags``; ``power_law`` False).
+Without a band given, a record whose spectrum may bend (bend test p < :data:`SCREEN_LEVEL`: a corner, a folded
+resonance, the other side of a crossover between mechanisms) is searched by binary segmentation: a band is kept when the split
+test (:func:`split_p`: the model fitted on each side of a knot apart and over the whole band, knots every quarter
+decade, Bonferroni over the knots) does not reject at :data:`TEST_LEVEL`, else cut at its best knot and each side
+searched alike, down to a decade; of the kept bands the one with the most Fourier ordinates is fitted. The bend
+test is the cheap screen (no refit), the split test the decision: a searched record is flagged only when no band of a
+decade is left, one not searched when its bend test rejects at :data:`TEST_LEVEL`, and either when the split-half
+test does (``flags``; ``power_law`` False).
 """
 from __future__ import annotations
 
@@ -32,9 +36,10 @@ from scipy import stats
 from .power_floor import PowerFloorProfile, bend_p, interval, keep_band, level_cov, minimum
 from .whittle import MAX_ORDER, WhittleRecord, order_for
 
-__all__ = ["RecordFit", "fit_record", "TEST_LEVEL", "GAMMA_MIN", "check_record"]
+__all__ = ["RecordFit", "fit_record", "split_p", "TEST_LEVEL", "SCREEN_LEVEL", "GAMMA_MIN", "check_record"]
 
-TEST_LEVEL = 0.01  # the bend and split-half tests reject (and the band is narrowed, or the fit flagged) below it
+TEST_LEVEL = 0.01  # the bend, split and split-half tests flag a record (or cut a band) below it
+SCREEN_LEVEL = 0.1  # below it the bend test (a score test: no refit) hands the band to the split test (refits)
 GAMMA_MIN = 1.05  # a sampled omega^-gamma with gamma <= 1 has infinite variance (its folded sum diverges)
 _HEADROOM = 0.95  # gamma < 2k + 0.95: the differenced spectrum's zero-frequency peak omega^-0.95 is still integrable
 
@@ -307,13 +312,16 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
         rec, prof, res = _fit_order(x, dt, k, floor, band)
     g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
     bend = bend_p(prof, g, t)
-    if band is None and bend < TEST_LEVEL:
-        bend_whole = bend
+    searched, split_flag = False, None
+    if band is None and bend < SCREEN_LEVEL:
+        searched = True
+        whole = (float(rec.omega[0]), float(rec.omega[-1]))
         narrowed = _narrowed(x, dt, k, floor, rec.omega, bend)
         if narrowed is None:
-            notes.append(f"one power law does not fit every frequency (bend test p = {bend:.2g}) and no band of a "
-                         "decade passes the split test")
-        else:
+            split_flag = (f"no band of a decade holds one power law (bend test p = {bend:.2g}; the split test rejects "
+                          f"every band at {TEST_LEVEL:g})")
+        elif narrowed[4] != whole:
+            bend_whole = bend
             rec, prof, res, bend, trimmed = narrowed
             g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
             notes.append(f"one power law does not fit every frequency (bend test p = {bend_whole:.2g}); "
@@ -335,7 +343,9 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
     p = _split_half_p(x, dt, k, floor, g, band) if stationarity and len(x) >= 64 + 2 * k else math.nan
     if p < TEST_LEVEL:
         flags.append(f"not stationary: the halves' spectra differ (split-half likelihood ratio, p = {p:.2g})")
-    if bend < TEST_LEVEL:
+    if split_flag:
+        flags.append(split_flag)
+    elif bend < TEST_LEVEL and not searched:
         flags.append(f"the spectrum bends within the band (bend test p = {bend:.2g})")
     return RecordFit(gamma=g, gamma_low=float(g_lo), gamma_high=float(g_hi), prefactor=A, floor=B,
                      floor_rms=math.sqrt(2.0 * math.pi * B / dt), crossover=cross, band=band_out, order=k,
