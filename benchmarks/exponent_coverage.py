@@ -44,8 +44,8 @@ PAGE = Path(__file__).resolve().parents[1] / "docs" / "results" / "exponent_cove
 CRITERION = ("Columns: coverage of the 95 % profile-likelihood interval; a cell is rejected when its count of covering "
              "intervals lies outside the 0.0005-0.9995 quantiles of Binomial(seeds, 0.95) (two-sided p < 0.001); bias "
              "the mean estimate less the truth; the ratio is the median half-width over the Cramer-Rao half-width with "
-             "the floor free; flagged: the record model's flags (bend, split-half; the split-half test is skipped here "
-             "and runs in the model I-like records below); min decades: the narrowest identified band; old: "
+             "the floor free; flagged: the record model's flags (bend or split test, split-half; the split-half test is "
+             "skipped here and runs in the model I-like records below); min decades: the narrowest identified band; old: "
              "fit_power_law's automatic band on the Welch spectrum, its 95 % half-width (in brackets: over the Cramer-Rao "
              "half-width with the floor free) and flags.")
 
