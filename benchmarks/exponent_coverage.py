@@ -47,7 +47,10 @@ CRITERION = ("Columns: coverage of the 95 % profile-likelihood interval; a cell 
              "the floor free; flagged: the record model's flags (bend or split test, split-half; the split-half test is "
              "skipped here and runs in the model I-like records below); min decades: the narrowest identified band; old: "
              "fit_power_law's automatic band on the Welch spectrum, its 95 % half-width (in brackets: over the Cramer-Rao "
-             "half-width with the floor free) and flags.")
+             "half-width with the floor free) and flags. With fewer seeds than 1000 per cell the coverage criterion is the "
+             "binomial one; the bias criterion (|mean bias| below a quarter of the median half-width) is read only where "
+             "the mean's own scatter, half-width / (1.96 sqrt(seeds)), is below that quarter (seeds >= 62) or nearly "
+             "(20).")
 
 
 def floor_rms(n: int, gamma: float, where: str) -> float:
