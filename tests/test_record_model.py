@@ -86,3 +86,54 @@ def test_records_without_a_spectrum_are_refused_in_one_line(x, match):
     with pytest.raises(ValueError, match=match) as e:
         check_record(x, "x", "m")
     assert "\n" not in str(e.value)
+
+
+def test_expected_periodogram_of_a_dominant_floor_returns_the_truth():
+    # Whittle's likelihood is maximised by the truth when the periodogram is its own expectation. 2^16 samples of
+    # omega^-6 (three differences) with a floor meeting the power law at the band's geometric middle: the floor's
+    # differenced expectation spans 1e-19 to 1 of its Nyquist level and its share of the mean is about e^30, so
+    # the profile must resolve both. The tolerance 1e-3 is the profile's search precision (xatol 1e-5 in gamma,
+    # 1e-6 in the ln share) with margin.
+    n, g = 2**16, 6.0
+    rec = WhittleRecord(np.zeros(n + 3), DT, 3)
+    w1, wn = 2 * math.pi / (n * DT), math.pi / DT
+    B = math.sqrt(w1 * wn) ** -g
+    prof = PowerFloorProfile([rec], True)
+    a, am = prof.unit(g)
+    rec.periodogram = a * am * (2 * math.pi / DT) ** -g + B * rec.white_expected()
+    from compare.analysis.power_floor import minimum
+
+    gamma, _, t = minimum(PowerFloorProfile([rec], True), 3.0, 6.95, None)
+    A_fit, B_fit = PowerFloorProfile([rec], True).levels(gamma, t)
+    assert gamma == pytest.approx(g, abs=1e-3)
+    assert B_fit == pytest.approx(B, rel=1e-2)
+
+
+def test_split_test_on_exact_expectations():
+    # With the periodogram equal to its expectation, Whittle's likelihood is maximised by the truth: one power law
+    # gives LR = 0 at every knot (p = 1 up to the profile's search precision), and a corner at 300 rad/s (omega^-4
+    # below, omega^-6 above, continuous; 195 ordinates below it) is rejected; without a floor in the model each side
+    # of the knot nearest the corner is one power law but for the ordinates between them, so that knot, within a
+    # quarter decade (their spacing) of the corner, is the best. (With a floor free on each side, a side's floor
+    # absorbs part of the bend and the best knot moves.)
+    from compare.analysis.record_model import split_p
+
+    rec = WhittleRecord(np.zeros(4096 + 3), DT, 3)  # three differences: fitted exponents from 3 to 6.95
+    band = (float(rec.omega[0]), float(rec.omega[-1]))
+    rec.periodogram = rec.expected(lambda w, p: w**-4.0, ())
+    assert split_p(rec, True, band)[0] > 0.99
+    rec.periodogram = rec.expected(lambda w, p: w**-4.0 * np.minimum(1.0, (300.0 / w) ** 2), ())
+    assert split_p(rec, True, band)[0] < 1e-6
+    p, knot = split_p(rec, False, band)
+    assert p < 1e-6 and abs(math.log10(knot / 300.0)) <= 0.25
+
+
+def test_spectrum_record_of_a_power_law_is_power_law_record():
+    # spectrum_record folds with 8 images where power_law_record sums the fold exactly (Hurwitz zeta): for
+    # omega^-4 the 8-image fold leaves out about 17^-3 / 3 of the Nyquist level, so with the same seed the two
+    # records agree to 1e-3 of their rms.
+    from compare.analysis.synthetic import spectrum_record
+
+    a = spectrum_record(2048, DT, lambda w: w**-4.0, 2, seed=3)
+    b = power_law_record(2048, DT, 4.0, seed=3)
+    assert np.max(np.abs(a - b)) < 1e-3 * np.std(b)

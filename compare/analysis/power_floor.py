@@ -19,7 +19,8 @@ from .whittle import WhittleRecord
 __all__ = ["PowerFloorProfile", "minimum", "interval", "bend_p", "level_cov", "keep_band"]
 
 _CHI2_95 = float(stats.chi2.ppf(0.95, 1))
-_RATIO_RANGE = (-25.0, 25.0)  # ln of the floor's share of the mean expected periodogram
+_RATIO_RANGE = (-100.0, 100.0)  # ln of the floor's share of the mean expected periodogram: a floor that meets an
+# omega^-gamma law mid-band has a share of about (n / 2)^(gamma / 2) (e^30 at gamma 6 and 2^16 samples)
 
 
 def _hurwitz_tail(q: np.ndarray, gamma: float) -> np.ndarray:
@@ -65,7 +66,7 @@ class PowerFloorProfile:
         self._logs = [np.log(u), np.log(1.0 - u), np.log(1.0 + u), np.log(2.0 - u), np.log(2.0 + u),
                       np.log(3.0 - u)]
         self._tails = (3.0 + u, 4.0 - u)
-        b = _above_rounding(rec.expected_from_grid(np.ones_like(u)))[self.keep]
+        b = rec.white_expected()[self.keep]  # closed form: exact where the differenced floor is tiny
         self.b_mean = float(b.mean())
         self.b = b / self.b_mean
         self._cache = {}
@@ -79,7 +80,13 @@ class PowerFloorProfile:
         """(a / mean(a), mean(a)): the expected periodogram of omega^-gamma with A = (2 pi / dt)^gamma."""
         hit = self._cache.get(gamma)
         if hit is None:
-            a = _above_rounding(self.rec.expected_from_grid(self.fold(gamma)))[self.keep]
+            full = self.rec.memo.get(("power", gamma))
+            if full is None:
+                full = _above_rounding(self.rec.expected_from_grid(self.fold(gamma)))
+                if len(self.rec.memo) * full.size > 2**23:  # 64 MB of kept vectors at most
+                    self.rec.memo.clear()
+                self.rec.memo[("power", gamma)] = full
+            a = full[self.keep]
             am = float(a.mean())
             hit = (a / am, am)
             if len(self._cache) > 256:
@@ -96,7 +103,7 @@ class PowerFloorProfile:
         a, _ = self.unit(gamma)
         best = (self._nll_ratio(a, None), None)
         if self.floor:
-            grid = np.linspace(*_RATIO_RANGE, 11)
+            grid = np.linspace(*_RATIO_RANGE, 41)
             vals = [self._nll_ratio(a, t) for t in grid]
             i = int(np.argmin(vals))
             if vals[i] < best[0]:

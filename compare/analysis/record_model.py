@@ -16,10 +16,14 @@ crossover; a **bend test** (Rao's efficient score for changes of the exponent at
 band, :func:`compare.analysis.power_floor.bend_p`); and a **split-half test** of stationarity: the model fitted to each half of the record apart
 and to both with shared parameters, twice the log-likelihood gain chi2 with 3 degrees of freedom (2 without a floor).
 
-Without a band given, a record whose spectrum bends (bend test p < :data:`TEST_LEVEL`: a corner, the other side of a
-crossover between mechanisms) is fitted over a narrower band: a quarter decade is taken off the end whose removal
-leaves the larger p-value, until the test passes or the band would span less than a decade. A record still failing
-either test is flagged (``flags``; ``power_law`` False).
+Without a band given, a record whose spectrum may bend (bend test p < :data:`SCREEN_LEVEL`: a corner, a folded
+resonance, the other side of a crossover between mechanisms) is searched by binary segmentation: a band is kept when the split
+test (:func:`split_p`: the model fitted on each side of a knot apart and over the whole band, knots every quarter
+decade, Bonferroni over the knots) does not reject at :data:`TEST_LEVEL`, else cut at its best knot and each side
+searched alike, down to a decade; of the kept bands the one with the most Fourier ordinates is fitted. The bend
+test is the cheap screen (no refit), the split test the decision: a searched record is flagged only when no band of a
+decade is left, one not searched when its bend test rejects at :data:`TEST_LEVEL`, and either when the split-half
+test does (``flags``; ``power_law`` False).
 """
 from __future__ import annotations
 
@@ -32,9 +36,10 @@ from scipy import stats
 from .power_floor import PowerFloorProfile, bend_p, interval, keep_band, level_cov, minimum
 from .whittle import MAX_ORDER, WhittleRecord, order_for
 
-__all__ = ["RecordFit", "fit_record", "TEST_LEVEL", "GAMMA_MIN", "check_record"]
+__all__ = ["RecordFit", "fit_record", "split_p", "TEST_LEVEL", "SCREEN_LEVEL", "GAMMA_MIN", "check_record"]
 
-TEST_LEVEL = 0.01  # the bend and split-half tests reject (and the band is narrowed, or the fit flagged) below it
+TEST_LEVEL = 0.01  # the bend, split and split-half tests flag a record (or cut a band) below it
+SCREEN_LEVEL = 0.1  # below it the bend test (a score test: no refit) hands the band to the split test (refits)
 GAMMA_MIN = 1.05  # a sampled omega^-gamma with gamma <= 1 has infinite variance (its folded sum diverges)
 _HEADROOM = 0.95  # gamma < 2k + 0.95: the differenced spectrum's zero-frequency peak omega^-0.95 is still integrable
 
@@ -165,29 +170,71 @@ def _split_half_p(x, dt, k, floor, g0, band) -> float:
     return float(stats.chi2.sf(lr, 3 if floor else 2))
 
 
+def _band_fit(rec, floor, band):
+    """(gamma, nll) of the power law (+ floor) over the Fourier ordinates of ``rec`` inside ``band``."""
+    k = rec.order
+    g, nll, _ = minimum(PowerFloorProfile([rec], floor, keep_band(rec, band)), max(GAMMA_MIN, 2 * k - 3.0),
+                        2 * k + _HEADROOM, None)
+    return g, nll
+
+
+def split_p(rec: WhittleRecord, floor: bool, band) -> tuple[float, float | None]:
+    """The likelihood-ratio test for a change of the spectrum inside ``band``: (Bonferroni p-value, best knot).
+
+    At each knot kappa (every quarter decade, at least half a decade and 16 Fourier ordinates inside either end) the
+    model is fitted to each side apart and to the whole band; twice the gain, LR(kappa), is chi2 with 3 degrees of
+    freedom (2 without a floor) under one power law (+ floor): every parameter may differ across the knot, so a
+    corner, a level step and a local rise all count. A floor at its bound of zero on one side makes the law a
+    mixture with fewer degrees of freedom, so the chi2 tail is conservative there. With K knots,
+    p = min(1, K P(chi2 > max LR)) (Bonferroni). (1, None) when no knot fits.
+    """
+    lo, hi = band
+    full = _band_fit(rec, floor, band)[1]
+    ln10 = math.log(10.0)
+    best, knot, count = 0.0, None, 0
+    for lk in np.arange(math.log(lo) + 0.5 * ln10, math.log(hi) - 0.5 * ln10 + 1e-9, 0.25 * ln10):
+        kappa = math.exp(lk)
+        below = int(np.sum((rec.omega >= lo) & (rec.omega < kappa)))
+        above = int(np.sum((rec.omega > kappa) & (rec.omega <= hi)))
+        if min(below, above) < 16:
+            continue
+        count += 1
+        lr = 2.0 * (full - _band_fit(rec, floor, (lo, kappa))[1] - _band_fit(rec, floor, (kappa, hi))[1])
+        if lr > best:
+            best, knot = lr, kappa
+    if not count:
+        return 1.0, None
+    return float(min(1.0, count * stats.chi2.sf(best, 3 if floor else 2))), knot
+
+
+def _segments(rec, floor, band, out):
+    """Binary segmentation: a band whose split test (:func:`split_p`) does not reject at :data:`TEST_LEVEL` is kept
+    (as (ordinates, decades, band)); a rejected one is cut at its best knot and each side searched the same way.
+    Sides shorter than a decade are dropped."""
+    lo, hi = band
+    if hi / lo < 10 * (1 - 1e-9):
+        return out
+    p, knot = split_p(rec, floor, band)
+    if p >= TEST_LEVEL or knot is None:
+        keep = (rec.omega >= lo * (1 - 1e-12)) & (rec.omega <= hi * (1 + 1e-12))
+        out.append((int(np.sum(keep)), math.log10(hi / lo), (lo, hi)))
+        return out
+    _segments(rec, floor, (lo, knot), out)
+    _segments(rec, floor, (knot, hi), out)
+    return out
+
+
 def _narrowed(x, dt, k, floor, omega, bend):
-    """Narrow the band a quarter decade at a time from the end whose removal leaves the larger bend-test p-value,
-    while the test rejects and the band spans more than a decade. Returns (record, profile, result, p, band)."""
-    lo, hi = float(omega[0]), float(omega[-1])
-    step = 10 ** 0.25
-    best = None
-    while True:
-        trials = []
-        for b in ((lo * step, hi), (lo, hi / step)):
-            if b[1] / b[0] < 10 * (1 - 1e-9):
-                continue
-            rec, prof, res = _fit_order(x, dt, k, floor, b)
-            trials.append((bend_p(prof, res[0], res[2]), b, rec, prof, res))
-        if not trials:
-            break
-        p, (lo, hi), rec, prof, res = max(trials, key=lambda tr: tr[0])
-        best = (rec, prof, res, p, (lo, hi))
-        if p >= TEST_LEVEL:
-            break
-    if best is None:
-        rec, prof, res = _fit_order(x, dt, k, floor, (lo, hi))
-        best = (rec, prof, res, bend, (lo, hi))
-    return best
+    """The band of a record whose spectrum bends: the binary segmentation's kept bands (:func:`_segments`), and of
+    them the one with the most Fourier ordinates (the most information on gamma). Returns (record, profile,
+    result, bend p, band), or None when no band of a decade or more is kept."""
+    rec = WhittleRecord(x, dt, k)
+    kept = _segments(rec, floor, (float(omega[0]), float(omega[-1])), [])
+    if not kept:
+        return None
+    band = max(kept)[2]
+    rec, prof, res = _fit_order(x, dt, k, floor, band)
+    return rec, prof, res, bend_p(prof, res[0], res[2]), band
 
 
 def check_record(x, name: str = "x", unit: str = "") -> None:
@@ -265,12 +312,23 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
         rec, prof, res = _fit_order(x, dt, k, floor, band)
     g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
     bend = bend_p(prof, g, t)
-    if band is None and bend < TEST_LEVEL:
-        rec, prof, res, bend, trimmed = _narrowed(x, dt, k, floor, rec.omega, bend)
-        g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
-        notes.append(f"one power law does not fit every frequency (bend test p < {TEST_LEVEL:g}); fitted over "
-                     f"{trimmed[0]:.3g}-{trimmed[1]:.3g} rad/s, the widest band where it does")
-        band = trimmed
+    searched, split_flag = False, None
+    if band is None and bend < SCREEN_LEVEL:
+        searched = True
+        whole = (float(rec.omega[0]), float(rec.omega[-1]))
+        narrowed = _narrowed(x, dt, k, floor, rec.omega, bend)
+        if narrowed is None:
+            split_flag = (f"no band of a decade holds one power law (bend test p = {bend:.2g}; the split test rejects "
+                          f"every band at {TEST_LEVEL:g})")
+        elif narrowed[4] != whole:
+            bend_whole = bend
+            rec, prof, res, bend, trimmed = narrowed
+            g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
+            notes.append(f"one power law does not fit every frequency (bend test p = {bend_whole:.2g}); "
+                         f"fitted over {trimmed[0]:.3g}-{trimmed[1]:.3g} rad/s, of the bands where a split test "
+                         f"(likelihood ratio at knots every quarter decade, Bonferroni, p >= {TEST_LEVEL:g}) finds "
+                         "one power law the one with the most frequencies")
+            band = trimmed
     if wall_hi or wall_lo:
         notes.append(f"the 95 % interval reaches the fitted range's {'upper' if wall_hi else 'lower'} limit "
                      f"{hi if wall_hi else lo:.2f} at differencing order {k}")
@@ -285,7 +343,9 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
     p = _split_half_p(x, dt, k, floor, g, band) if stationarity and len(x) >= 64 + 2 * k else math.nan
     if p < TEST_LEVEL:
         flags.append(f"not stationary: the halves' spectra differ (split-half likelihood ratio, p = {p:.2g})")
-    if bend < TEST_LEVEL:
+    if split_flag:
+        flags.append(split_flag)
+    elif bend < TEST_LEVEL and not searched:
         flags.append(f"the spectrum bends within the band (bend test p = {bend:.2g})")
     return RecordFit(gamma=g, gamma_low=float(g_lo), gamma_high=float(g_hi), prefactor=A, floor=B,
                      floor_rms=math.sqrt(2.0 * math.pi * B / dt), crossover=cross, band=band_out, order=k,

@@ -20,9 +20,9 @@ import math
 import numpy as np
 from scipy import special
 
-from .whittle import order_for
+from .whittle import folded, order_for
 
-__all__ = ["power_law_record", "sampled_power_law"]
+__all__ = ["power_law_record", "sampled_power_law", "spectrum_record"]
 
 
 def sampled_power_law(omega, gamma: float, prefactor: float, dt: float) -> np.ndarray:
@@ -90,6 +90,57 @@ def power_law_record(n: int, dt: float, gamma: float, *, prefactor: float = 1.0,
     x = y
     for _ in range(k):
         x = np.concatenate([[0.0], np.cumsum(x) * dt])  # diff(x) / dt is the previous series
+    if floor_rms:
+        x = x + floor_rms * rng.standard_normal(n)
+    return x
+
+
+def spectrum_record(n: int, dt: float, spectrum, order: int, *, floor_rms: float = 0.0, images: int = 8,
+                    seed: int = 0) -> np.ndarray:
+    """n samples of a Gaussian process with continuous spectrum ``spectrum(omega)``, as a sensor with a white
+    floor records it.
+
+    The k-th difference (k = ``order``) has the spectrum abs(2 sin(omega dt / 2) / dt)^2k C^(s)(omega), C^(s) the
+    continuous spectrum folded at Nyquist with ``images`` images per side (:func:`compare.analysis.whittle.folded`);
+    it is drawn by circulant embedding over 2n points (its autocovariance that of the spectrum sampled on that grid)
+    and summed k times, as in :func:`power_law_record`. The spectrum must fall no faster than omega^-2k near zero.
+
+    Parameters
+    ----------
+    n : int
+        Samples (at least 16).
+    dt : float
+        Sampling step (Units: s).
+    spectrum : callable
+        C_x(omega) of the continuous process at omega > 0 (rad/s) (Units: m^2 s for a displacement).
+    order : int
+        Differencing order k (0-6).
+    floor_rms : float, optional
+        The sensor's white noise (Units: m).
+    images : int, optional
+        Aliasing images folded in on each side.
+    seed : int, optional
+        Seed of :func:`numpy.random.default_rng`.
+
+    Returns
+    -------
+    ndarray
+        The record (Units: m), starting at 0 before the floor is added.
+    """
+    if n < 16:
+        raise ValueError(f"n must be at least 16 (got {n})")
+    rng = np.random.default_rng(seed)
+    m = 2 * n
+    u = np.arange(m // 2 + 1) / m
+    w = 2.0 * math.pi * u[1:] / dt
+    S = np.empty(m // 2 + 1)
+    S[1:] = np.abs(2.0 * np.sin(math.pi * u[1:]) / dt) ** (2 * order) * folded(lambda o, p: spectrum(o), dt, images)(w, ())
+    S[0] = S[1]  # the differenced spectrum's limit at zero frequency, one grid step away
+    lam = np.concatenate([S, S[-2:0:-1]]) * (2.0 * math.pi / dt)
+    xi = rng.standard_normal(m) + 1j * rng.standard_normal(m)
+    x = np.fft.fft(np.sqrt(lam / m) * xi).real[: n - order]
+    for _ in range(order):
+        x = np.concatenate([[0.0], np.cumsum(x) * dt])
     if floor_rms:
         x = x + floor_rms * rng.standard_normal(n)
     return x
