@@ -17,7 +17,9 @@ small once two differences flatten the spectrum; ``exact=True`` polishes the max
 The 95 % intervals come from the curvature of the grouped negative log-likelihood at the maximum over every free
 parameter and the floor (finite differences on the fitted scale; log-fitted parameters get asymmetric ends). A
 parameter whose feature (:meth:`Family.feature`) lies outside the band where the fitted family stands above the
-floor is "not identified": no interval; so is a scale whose 95 % interval spans more than a factor 100.
+floor is "not identified": no interval; so is a scale whose 95 % interval spans more than a factor 100, and so are
+the parameters placing a feature (a step, a micro level) whose amplitude the record does not tell from its neutral
+value.
 """
 from __future__ import annotations
 
@@ -197,6 +199,10 @@ def _bounds(fam: Family, v: float, lo: float, hi: float):
     return out + [(-80.0, 20.0)]
 
 
+# parameters restarted from the first maximum at a second value (factor of the band's top): the contacts' inertia
+# corner just above the band, where a scene's gram-sized pads put it (a 10-30 % tilt of the resonance's flanks)
+_RESTARTS = {"omega_1": 3.0}
+
 _IMAGES = 2  # aliasing images each side: a family falling as omega^-4 leaves out 5^-4 of its Nyquist level
 
 
@@ -275,8 +281,10 @@ def _start(G: Grouped, fam: Family, v: float, start_theta: dict | None):
         # against the ordinates: the zeros' spacing is read from the periodogram's own periodicity (the strongest
         # periods of its logarithm along the ordinates, and twice and three times them)
         freqs = np.concatenate([freqs, _zero_spacings(G)])
-    fixed_start = {"Q": 1.0, "omega_0": math.log10(hi * 1e3)}  # a resonance of quality 10; its spring damping unseen
-    trials = [[fixed_start[fam.params[i].name]] if fam.params[i].name in fixed_start
+    # a resonance of quality 10; its spring damping and the contacts' inertia unseen (:data:`_RESTARTS` tries the
+    # inertia near the band once the rest is fitted: on the grid it mimics a resonance's fall)
+    fixed_start = {"Q": [1.0], "omega_0": [math.log10(hi * 1e3)], "omega_1": [math.log10(hi * 1e3)]}
+    trials = [fixed_start[fam.params[i].name] if fam.params[i].name in fixed_start
               else [_param_at(fam.params[i].name, f, v) for f in freqs] for i in free]
     bnd = _bounds(fam, v, lo, hi)
     best, best_v = None, math.inf
@@ -390,34 +398,66 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         return val if math.isfinite(val) else 1e300
 
     res = optimize.minimize(grouped, q0, method="L-BFGS-B", bounds=bounds)
+    for i, p in enumerate(fam.params):
+        if p.name in _RESTARTS:
+            q1 = res.x.copy()
+            q1[i] = min(max(math.log10(_RESTARTS[p.name] * G.omega[-1]), bounds[i][0]), bounds[i][1])
+            # truncated Newton: L-BFGS-B's first projected step from here can leave the range where the spectrum
+            # is finite and stop there (measured on a scene's twin: one iteration, 19 short of this maximum)
+            again = optimize.minimize(grouped, q1, method="TNC", bounds=bounds)
+            if again.fun < res.fun:
+                res = again
     q, ident, band = _identify(record, fam, v, res.x)
-    neutral = [i for i, p in enumerate(fam.params) if not ident[i] and p.neutral is not None]
-    if neutral:
-        # a feature the record does not show: hold its amplitude at the neutral value, and the parameters that share
-        # its feature (its corner) where they are, and fit the rest again
-        feats = fam.features(_to_theta(fam, q), v)
-        names = {fam.params[i].name for i in neutral}
-        held = {j for j, p in enumerate(fam.params) if any(feats[p.name] == feats[n] for n in names)}
-        for i in held:
-            p = fam.params[i]
-            if i in neutral:
-                q[i] = math.log10(p.neutral) if p.log else p.neutral
-            bounds[i] = (q[i], q[i])
-        neutral = sorted(held)
-        res = optimize.minimize(grouped, np.clip(q, [b[0] for b in bounds], [b[1] for b in bounds]),
-                                method="L-BFGS-B", bounds=bounds)
-    if exact and record.n <= EXACT_N:
-        fit = maximum_likelihood(record, spectrum, res.x, bounds=bounds, images=None)
-    else:
-        fit = WhittleFit(tuple(map(float, res.x)), float(res.fun), bool(res.success))
-    q, ident, band = _identify(record, fam, v, fit.params)
-    for i in neutral:
-        ident[i] = False
+    unseen = [i for i, p in enumerate(fam.params) if not ident[i] and p.neutral is not None]
+    neutral = []
+    for _ in range(2):
+        if unseen:
+            # a feature the record does not show: hold its amplitude at the neutral value, and the parameters that
+            # share its feature (its corner) where they are, and fit the rest again
+            res, neutral = _hold(fam, v, grouped, res.x, bounds, unseen, neutral)
+        if exact and record.n <= EXACT_N:
+            fit = maximum_likelihood(record, spectrum, res.x, bounds=bounds, images=None)
+        else:
+            fit = WhittleFit(tuple(map(float, res.x)), float(res.fun), bool(res.success))
+        q, ident, band = _identify(record, fam, v, fit.params)
+        for i in neutral:
+            ident[i] = False
+        intervals = _intervals(fam, grouped, q, ident, neutral)
+        # a feature whose amplitude the record does not tell from its neutral value (no interval, or one holding it)
+        # is not seen either: held and fitted again once
+        unseen = [i for i, p in enumerate(fam.params) if i not in neutral and p.neutral is not None
+                  and (intervals[p.name] is None or intervals[p.name][0] <= p.neutral <= intervals[p.name][1])]
+        if not unseen:
+            break
     theta = _to_theta(fam, q)
-    floor = 10.0 ** q[-1]
-    # the curvature over every free parameter and the floor, so that an identified parameter's interval carries its
-    # correlation with the ones the band does not pin down (a resonance above the band still tilts its top); the
-    # held ones stay out. Intervals are then given to the identified parameters only.
+    n_free = 1 + sum(1 for i in range(len(fam.params)) if i not in neutral and ident[i])  # what the band shows
+    return FamilyFit(fam.name, theta, 10.0 ** q[-1], fit.nll, intervals, band, n_free, v, fit.converged, tuple(q),
+                     tuple(fam.params[i].name for i in neutral))
+
+
+def _hold(fam: Family, v: float, grouped, q, bounds, unseen, neutral):
+    """Hold the amplitudes ``unseen`` at their neutral values and the parameters sharing their features where they
+    are (narrowing ``bounds`` in place), and fit the rest again from ``q``. Returns (result, held indices)."""
+    q = np.array(q, dtype=float)
+    feats = fam.features(_to_theta(fam, q), v)
+    names = {fam.params[i].name for i in unseen}
+    held = set(neutral) | {j for j, p in enumerate(fam.params)
+                           if feats[p.name] is not None and any(feats[p.name] == feats[n] for n in names)}
+    held |= set(unseen)
+    for i in held:
+        p = fam.params[i]
+        if i in unseen:
+            q[i] = math.log10(p.neutral) if p.log else p.neutral
+        bounds[i] = (q[i], q[i])
+    res = optimize.minimize(grouped, np.clip(q, [b[0] for b in bounds], [b[1] for b in bounds]),
+                            method="L-BFGS-B", bounds=bounds)
+    return res, sorted(held)
+
+
+def _intervals(fam: Family, grouped, q, ident, neutral) -> dict:
+    """95 % intervals of the identified parameters from the curvature over every free parameter and the floor, so
+    that an identified parameter's interval carries its correlation with the ones the band does not pin down (a
+    resonance above the band still tilts its top); the held ones stay out. None for the others."""
     idx = [i for i in range(len(q) - 1) if i not in neutral] + [len(q) - 1]
 
     def nll_sub(s):
@@ -426,18 +466,12 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         return grouped(r)
 
     err = _errors(_hessian(nll_sub, q[idx]))
-    intervals = {}
+    intervals = {p.name: None for p in fam.params}
     for k, i in enumerate(idx[:-1]):
         p = fam.params[i]
-        if not ident[i]:
+        if not ident[i] or not math.isfinite(err[k]):
             continue
         lo, hi = q[i] - _Z95 * err[k], q[i] + _Z95 * err[k]
-        intervals[p.name] = (10.0**lo, 10.0**hi) if p.log else (lo, hi)
-        if not math.isfinite(err[k]) or (p.log and hi - lo > _WIDEST):
-            intervals[p.name] = None
-    for i, ok in enumerate(ident):
-        if not ok:
-            intervals[fam.params[i].name] = None
-    n_free = 1 + sum(1 for i in idx[:-1] if ident[i])  # what the information criterion counts: what the band shows
-    return FamilyFit(fam.name, theta, floor, fit.nll, intervals, band, n_free, v, fit.converged, tuple(q),
-                     tuple(fam.params[i].name for i in neutral))
+        if not (p.log and hi - lo > _WIDEST):
+            intervals[p.name] = (10.0**lo, 10.0**hi) if p.log else (lo, hi)
+    return intervals
