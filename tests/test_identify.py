@@ -144,6 +144,7 @@ def test_the_explanation_page_example():
     assert verdicts["model_II"] == verdicts["model_III"] == "rejected"
     assert verdicts["model_Iv"] == verdicts["model_ageing"] == verdicts["model_Ib"] == "indistinguishable"
     truth, _ = FAMILIES["model_I"].from_model(p)
-    for name in ("a", "L"):
-        value, half, _ = ranking[0].parameters[name]
-        assert abs(value - truth[name]) <= half, name
+    value, half, _ = ranking[0].parameters["L"]
+    assert abs(value - truth["L"]) <= half
+    # v / a = 0.5 rad/s at the bottom of the band (its lowest ordinate 0.1 rad/s): bounded from below only
+    assert ranking[0].parameters["a"] == "not identified"
