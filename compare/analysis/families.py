@@ -21,9 +21,9 @@ model's displacement spectrum rewritten in those parameters, the sliding speed v
   and beta' apart.
 - model III (section 6): ``L omega^-4 sinc^2(omega w / (2 v))``, gamma = 4 below 2 pi v / w and 6 above, with the
   window's zeros at multiples of 2 pi v / w (the continuum limit of the sampled moving window).
-- the ageing model: model I (without omega_1: its miniblocks are massless) with the contacts' friction slope c(omega) = c_inf (1 - b / (1 + i omega D_c / v)),
-  b = B / A, in place of m eta1, in the level and the resonance's damping: a level step of (A / (A - B))^2 below
-  v / D_c.
+- the ageing model: model I (without omega_1: its miniblocks are massless) with the contacts' friction slope
+  c(omega) = c_inf (1 - b / (1 + i omega D_c / v)), b = B / A, in place of m eta1, in the level and the resonance's
+  damping: a level step of (A / (A - B))^2 below v / D_c.
 - model_Iv (the shaken block) is model I's family at its mean speed, plus its line at the vibration frequency (a
   nuisance term of the fit).
 
@@ -260,7 +260,8 @@ FAMILIES["model_Ib"] = Family(
                               "omega3": th["omega3"]},
     _from_Ib, _I_SEP + "; n, alpha2, f_kin2 only through the micro level L2")
 FAMILIES["model_ageing"] = Family(
-    "model_ageing", _I_PARAMS[:5] + (Param("b", "", False, (0.0, 0.99), neutral=0.0), Param("D_c", "m", True, (1e-12, 1e3))),
+    "model_ageing",
+    _I_PARAMS[:5] + (Param("b", "", False, (0.0, 0.99), neutral=0.0), Param("D_c", "m", True, (1e-12, 1e3))),
     _ageing, lambda th, v: {**_I_features(th, v), "b": v / th["D_c"], "D_c": v / th["D_c"]},
     _from_ageing, "f_n A (with alpha, N, f_kin) only through the level; B / A through the step (A / (A - B))^2")
 FAMILIES["model_II"] = Family(
