@@ -61,8 +61,10 @@ def test_model_I_record_is_named_model_I(model_I_record):
 
 
 def test_model_II_record_is_named_model_II():
+    # 120 s: at 60 s the ageing family, its step near 200 rad/s and its resonance overdamped, follows model II's
+    # omega^-(7 - s) range closely enough that Vuong's test leaves it indistinguishable (p = 0.09 at seed 12)
     p = rm.wear_particle.WearParticleParams()
-    ranking = identify(record("model_II", p, 60.0, 12), DT, v=p.v)
+    ranking = identify(record("model_II", p, 120.0, 12), DT, v=p.v)
     assert ranking[0].model == "model_II" and ranking[0].verdict == "fits"
     assert {m.model: m.verdict for m in ranking}["model_I"] == "rejected"
 
@@ -142,6 +144,7 @@ def test_the_explanation_page_example():
     assert verdicts["model_II"] == verdicts["model_III"] == "rejected"
     assert verdicts["model_Iv"] == verdicts["model_ageing"] == verdicts["model_Ib"] == "indistinguishable"
     truth, _ = FAMILIES["model_I"].from_model(p)
-    for name in ("a", "L"):
-        value, half, _ = ranking[0].parameters[name]
-        assert abs(value - truth[name]) <= half, name
+    value, half, _ = ranking[0].parameters["L"]
+    assert abs(value - truth["L"]) <= half
+    # v / a = 0.5 rad/s at the bottom of the band (its lowest ordinate 0.1 rad/s): bounded from below only
+    assert ranking[0].parameters["a"] == "not identified"

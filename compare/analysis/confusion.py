@@ -17,7 +17,7 @@ import reduced_models as rm
 from .families import FAMILIES
 from .identify import identify
 
-__all__ = ["Cell", "CELLS", "SMOKE_CELLS", "run_cell", "DT", "FLOOR"]
+__all__ = ["Cell", "CELLS", "SMOKE_CELLS", "QUICK_CELLS", "run_cell", "binomial_interval", "DT", "FLOOR"]
 
 DT = 1e-3  # 1 kHz
 FLOOR = 1e-24  # m^2 s: a displacement sensor's white noise of rms sqrt(2 pi FLOOR / DT) = 79 pm
@@ -63,6 +63,27 @@ def _points():
 
 CELLS = tuple(Cell(m, lab, p, T) for T in (60.0, 300.0, 900.0) for (m, lab, p) in _points())
 SMOKE_CELLS = tuple(Cell(m, lab, p, 30.0) for (m, lab, p) in _points()[::2])
+QUICK_CELLS = tuple(Cell(m, lab, p, 10.0) for (m, lab, p) in _points()[::2])  # a CI smoke: seconds per record
+
+
+def binomial_interval(k: int, n: int, level: float = 0.95) -> tuple:
+    """Clopper-Pearson interval of a fraction from ``k`` successes in ``n`` records (the table's criteria are read
+    against it where a cell has fewer than 100 seeds: a criterion "at least p0" is shown when the interval's low end
+    reaches p0, contradicted when its high end falls below p0).
+
+    Returns
+    -------
+    (float, float)
+        Low and high ends; (0, 1) for n = 0.
+    """
+    from scipy import stats
+
+    if n == 0:
+        return 0.0, 1.0
+    a = 1 - level
+    lo = 0.0 if k == 0 else float(stats.beta.ppf(a / 2, k, n - k + 1))
+    hi = 1.0 if k == n else float(stats.beta.ppf(1 - a / 2, k + 1, n - k))
+    return lo, hi
 
 
 def _record(cell: Cell, seed: int) -> np.ndarray:

@@ -6,10 +6,14 @@ model's displacement spectrum rewritten in those parameters, the sliding speed v
 
 - model I (eqs. A5-A11): ``L omega^-4 R(omega a / v) G(omega)``, the omega^-4 level L (proportional to
   alpha^2 v f_kin^2 / (N a (m eta1)^2), eq. A11), the renewal length a (corner near v/a), the block's resonance
-  omega_c = sqrt(N k0 / M), its quality Q = N m eta1 / (M omega_c) and the contact springs' damping corner
-  omega_0 = k0 / (m eta0). R(x) = 1 - exp(-x^2/12) cos x is the renewal force's (1 - <cos omega tau>) of eq. (A8)
-  with the paper's cumulant closure; G = |1 - r^2 / (1 + i omega / omega_0) + i r / Q|^-2, r = omega / omega_c, is
-  |Z|^2 (m eta1 omega)^2 of eq. (A5) with the miniblock's inertia (omega / eta1 ~ 1e-5) left out.
+  omega_c = sqrt(N k0 / M), its quality Q = N m eta1 / (M omega_c), the contact springs' damping corner
+  omega_0 = k0 / (m eta0) and the contacts' own friction rate omega_1 = eta1 (their inertia). R(x) = 1 - cos(x)
+  sinc^2(x / 2) is the renewal force's (1 - <cos omega tau>) of eq. (A8) over the renewal interval's own law,
+  tau = (a / v)(1 + r - r') with r, r' uniform, as the simulators and the scenes' patch tracks draw it (the paper's
+  cumulant closure exp(-x^2/12) cos x differs from it by up to 5 % at x = 4-6, which long records resolve);
+  G = |(1 - r^2 / (1 + i omega / omega_0))(1 + i omega / omega_1) + i r / Q|^-2, r = omega / omega_c, is
+  |Z|^2 (m eta1 omega)^2 of eq. (A5) exactly (the miniblock's inertia in the factor with omega_1: negligible for the
+  paper's reference, omega / eta1 ~ 1e-5, but 10-30 % at the resonance's flanks for a scene's 1 g pads).
 - model Ib: model I plus the micro level ``L2 omega^-4 R(omega a2 / v) / (1 + (omega / omega3)^2)``.
 - model II (eq. B2 and eq. 3): ``S C_x^(1)(omega; s, 1/omega_hi, 1/omega_lo)``, the closed form of one particle of
   force 1 N on a 1 kg block with both states' mean times log-uniform in [1/omega_hi, 1/omega_lo] and
@@ -17,9 +21,9 @@ model's displacement spectrum rewritten in those parameters, the sliding speed v
   and beta' apart.
 - model III (section 6): ``L omega^-4 sinc^2(omega w / (2 v))``, gamma = 4 below 2 pi v / w and 6 above, with the
   window's zeros at multiples of 2 pi v / w (the continuum limit of the sampled moving window).
-- the ageing model: model I with the contacts' friction slope c(omega) = c_inf (1 - b / (1 + i omega D_c / v)),
-  b = B / A, in place of m eta1, in the level and the resonance's damping: a level step of (A / (A - B))^2 below
-  v / D_c.
+- the ageing model: model I (without omega_1: its miniblocks are massless) with the contacts' friction slope
+  c(omega) = c_inf (1 - b / (1 + i omega D_c / v)), b = B / A, in place of m eta1, in the level and the resonance's
+  damping: a level step of (A / (A - B))^2 below v / D_c.
 - model_Iv (the shaken block) is model I's family at its mean speed, plus its line at the vibration frequency (a
   nuisance term of the fit).
 
@@ -125,14 +129,20 @@ def identified(feature, band) -> bool:
 
 # ----------------------------------------------------------------------------- shapes
 def _renewal(x):
-    """1 - <cos omega tau> of the renewal interval, exp(-x^2/12) cos x closure of eq. (A8), x = omega a / v."""
-    return 1.0 - np.exp(-x * x / 12.0) * np.cos(x)
+    """1 - <cos omega tau> of eq. (A8), x = omega a / v, over the interval tau = (a / v)(1 + r - r'), r and r'
+    uniform: <exp(i omega tau)> = exp(i x) |<exp(i x r)>|^2 = exp(i x) sinc^2(x / 2), real apart from exp(i x)."""
+    return 1.0 - np.cos(x) * np.sinc(x / (2.0 * np.pi)) ** 2
 
 
 def _block(w, th, slope=1.0):
-    """|Z|^2 (c omega)^2 of eq. (A5), c the contacts' friction slope at high frequency; ``slope`` = c(omega) / c."""
+    """|Z|^2 (c omega)^2 of eq. (A5), c the contacts' friction slope at high frequency; ``slope`` = c(omega) / c.
+
+    S / (N K i omega c) of (A5), K = k0 (1 + i omega / omega_0), reduces to
+    (1 - r^2 / (1 + i omega / omega_0))(1 + i m omega / c(omega)) + i r / Q(omega), m / c = 1 / omega_1."""
     r = w / th["omega_c"]
-    return 1.0 / np.abs(1.0 - r * r / (1.0 + 1j * w / th["omega_0"]) + 1j * r / (th["Q"] * slope)) ** 2
+    spring = 1.0 - r * r / (1.0 + 1j * w / th["omega_0"])
+    inertia = 1j * w / (th["omega_1"] * slope) if "omega_1" in th else 0.0  # massless miniblocks: none
+    return 1.0 / np.abs(spring * (1.0 + inertia) + 1j * r / (th["Q"] * slope)) ** 2
 
 
 def _model_I(th, w, v):
@@ -174,25 +184,28 @@ def _model_II(th, w, v):
 
 
 # ----------------------------------------------------------------------------- from a model's parameters
-def _I_point(p, slope, v):
+def _I_point(p, slope, v, mass=None):
+    """Model I's family point at the contacts' friction slope ``slope`` (N s/m) and speed ``v`` (m/s); ``mass`` the
+    miniblock's (kg; None: massless, omega_1 at its bound)."""
     wc = math.sqrt(p.N * p.k0 / p.M)
     w0 = p.k0 / (p.m * p.eta0) if p.eta0 > 0 else _I_PARAMS[4].bounds[1]
+    w1 = slope / mass if mass else _I_PARAMS[5].bounds[1]
     L = p.alpha**2 * v * p.f_kin**2 / (12 * np.pi * p.N * p.a * slope**2)  # eq. (A11)
-    return {"L": L, "a": p.a, "omega_c": wc, "Q": p.N * slope / (p.M * wc), "omega_0": w0}
+    return {"L": L, "a": p.a, "omega_c": wc, "Q": p.N * slope / (p.M * wc), "omega_0": w0, "omega_1": w1}
 
 
 def _from_I(p):
-    return _I_point(p, p.m * p.eta1, p.v), p.v
+    return _I_point(p, p.m * p.eta1, p.v, p.m), p.v
 
 
 def _from_Iv(p):
     V, s1 = vibrating_block.steady_state(p)
-    return _I_point(p, s1, V), V
+    return _I_point(p, s1, V, p.m), V
 
 
 def _from_Ib(p):
     c = p.m * p.eta1 + p.n_micro * p.m2 * p.eta3
-    th = _I_point(p, c, p.v)
+    th = _I_point(p, c, p.v, p.m + p.n_micro * p.m2)
     th.update(L2=float(multiscale.asymptotic_spectrum(p, 1.0, "micro_white")), a2=p.a2,
               omega3=multiscale.regime_frequencies(p)["omega3"])
     return th, p.v
@@ -201,6 +214,7 @@ def _from_Ib(p):
 def _from_ageing(p):
     c_inf = p.f_n * p.A / p.v  # the friction slope above v / D_c, where the state cannot follow
     th = _I_point(p, c_inf, p.v)
+    del th["omega_1"]  # massless miniblocks
     th.update(b=p.B / p.A, D_c=p.D_c)
     return th, p.v
 
@@ -224,11 +238,12 @@ def _from_III(p):
 _LEVEL4 = "m^2 s^-3"  # C_x omega^4: m^2 s (rad/s)^4
 _I_PARAMS = (Param("L", _LEVEL4, True, (1e-40, 1e10)), Param("a", "m", True, (1e-9, 1e3)),
              Param("omega_c", "rad/s", True, (1e-3, 1e9)), Param("Q", "", True, (0.05, 1e4)),
-             Param("omega_0", "rad/s", True, (1e-3, 1e12)))
+             Param("omega_0", "rad/s", True, (1e-3, 1e12)), Param("omega_1", "rad/s", True, (1e-3, 1e12)))
 
 
 def _I_features(th, v):
-    return {"L": None, "a": 2 * v / th["a"], "omega_c": th["omega_c"], "Q": th["omega_c"], "omega_0": th["omega_c"]}
+    return {"L": None, "a": 2 * v / th["a"], "omega_c": th["omega_c"], "Q": th["omega_c"], "omega_0": th["omega_c"],
+            "omega_1": th.get("omega_1")}
 
 
 _I_SEP = "alpha, N, f_kin and m eta1 only through the level L ~ alpha^2 v f_kin^2 / (N a (m eta1)^2) (eq. A11)"
@@ -245,7 +260,8 @@ FAMILIES["model_Ib"] = Family(
                               "omega3": th["omega3"]},
     _from_Ib, _I_SEP + "; n, alpha2, f_kin2 only through the micro level L2")
 FAMILIES["model_ageing"] = Family(
-    "model_ageing", _I_PARAMS + (Param("b", "", False, (0.0, 0.99), neutral=0.0), Param("D_c", "m", True, (1e-12, 1e3))),
+    "model_ageing",
+    _I_PARAMS[:5] + (Param("b", "", False, (0.0, 0.99), neutral=0.0), Param("D_c", "m", True, (1e-12, 1e3))),
     _ageing, lambda th, v: {**_I_features(th, v), "b": v / th["D_c"], "D_c": v / th["D_c"]},
     _from_ageing, "f_n A (with alpha, N, f_kin) only through the level; B / A through the step (A / (A - B))^2")
 FAMILIES["model_II"] = Family(

@@ -14,10 +14,13 @@ small once two differences flatten the spectrum; ``exact=True`` polishes the max
 :mod:`compare.analysis.whittle` (records of at most :data:`EXACT_N` samples: its mean costs 0.03 s per evaluation at
 2e4 samples and 1.5 s at 4e5). Every family compared on one record must be fitted alike.
 
-The 95 % intervals come from the curvature of the grouped negative log-likelihood at the maximum over every free
-parameter and the floor (finite differences on the fitted scale; log-fitted parameters get asymmetric ends). A
+The 95 % intervals (:mod:`compare.analysis.family_intervals`) come from the curvature of the grouped negative
+log-likelihood at the maximum over every free parameter and the floor (finite differences on the fitted scale;
+log-fitted parameters get asymmetric ends), a corner's from the likelihood along its profile line. A
 parameter whose feature (:meth:`Family.feature`) lies outside the band where the fitted family stands above the
-floor is "not identified": no interval; so is a scale whose 95 % interval spans more than a factor 100.
+floor is "not identified": no interval; so is a scale whose 95 % interval spans more than a factor 100, and so are
+the parameters placing a feature (a step, a micro level) whose amplitude the record does not tell from its neutral
+value.
 """
 from __future__ import annotations
 
@@ -26,8 +29,9 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import optimize, stats
+from scipy import optimize
 
+from . import family_intervals
 from .families import Family, identified
 from .whittle import WhittleFit, WhittleRecord, maximum_likelihood
 
@@ -35,13 +39,11 @@ __all__ = ["FamilyFit", "Grouped", "fit_family", "record_for", "sampled_spectrum
 
 ORDER = 2  # differences: every family's omega^-4 range flat, the floor rising as omega^4
 EXACT_N = 2**15  # records up to this many samples get the debiased likelihood's maximum
-_Z95 = float(stats.norm.ppf(0.975))
-_GRID = 5  # trial points per corner parameter when choosing a start
+_GRID = 9  # trial points per corner parameter when choosing a start (5 missed a resonance between two of them)
 _ALONE = 64  # lowest ordinates kept alone
 _FINE_GROUPS = 20_000  # linear groups of a family that is not smooth: 4000 ordinates per model III zero spacing at
 #   400 s and v / w = 10 /s become 400 groups
 _BIN = 0.01  # relative width of a bin above them
-_WIDEST = 2.0  # a scale whose 95 % interval spans more than two decades is not identified
 
 
 def record_for(x, dt: float) -> WhittleRecord:
@@ -197,6 +199,10 @@ def _bounds(fam: Family, v: float, lo: float, hi: float):
     return out + [(-80.0, 20.0)]
 
 
+# parameters restarted from the first maximum at a second value (factor of the band's top): the contacts' inertia
+# corner just above the band, where a scene's gram-sized pads put it (a 10-30 % tilt of the resonance's flanks)
+_RESTARTS = {"omega_1": 3.0}
+
 _IMAGES = 2  # aliasing images each side: a family falling as omega^-4 leaves out 5^-4 of its Nyquist level
 
 
@@ -275,8 +281,10 @@ def _start(G: Grouped, fam: Family, v: float, start_theta: dict | None):
         # against the ordinates: the zeros' spacing is read from the periodogram's own periodicity (the strongest
         # periods of its logarithm along the ordinates, and twice and three times them)
         freqs = np.concatenate([freqs, _zero_spacings(G)])
-    fixed_start = {"Q": 1.0, "omega_0": math.log10(hi * 1e3)}  # a resonance of quality 10; its spring damping unseen
-    trials = [[fixed_start[fam.params[i].name]] if fam.params[i].name in fixed_start
+    # a resonance of quality 1 or 10; its spring damping and the contacts' inertia unseen (:data:`_RESTARTS` tries the
+    # inertia near the band once the rest is fitted: on the grid it mimics a resonance's fall)
+    fixed_start = {"Q": [0.0, 1.0], "omega_0": [math.log10(hi * 1e3)], "omega_1": [math.log10(hi * 1e3)]}
+    trials = [fixed_start[fam.params[i].name] if fam.params[i].name in fixed_start
               else [_param_at(fam.params[i].name, f, v) for f in freqs] for i in free]
     bnd = _bounds(fam, v, lo, hi)
     best, best_v = None, math.inf
@@ -327,37 +335,6 @@ def _identify(record: WhittleRecord, fam: Family, v: float, q):
     return q, [identified(feats[p.name], band) for p in fam.params], band
 
 
-def _hessian(f, q, h=1e-3):
-    n = len(q)
-    H = np.empty((n, n))
-    f0 = f(q)
-    for i in range(n):
-        for j in range(i, n):
-            ei, ej = np.eye(n)[i] * h, np.eye(n)[j] * h
-            if i == j:
-                H[i, i] = (f(q + ei) - 2 * f0 + f(q - ei)) / h**2
-            else:
-                H[i, j] = H[j, i] = (f(q + ei + ej) - f(q + ei - ej) - f(q - ei + ej) + f(q - ei - ej)) / (4 * h**2)
-    return H
-
-
-def _errors(H) -> np.ndarray:
-    """Standard errors from the curvature H of a negative log-likelihood; a parameter along a flat or negative
-    direction (the record does not constrain it) gets NaN and the others are read with it left out, the flattest
-    first."""
-    keep = list(range(len(H)))
-    err = np.full(len(H), np.nan)
-    while keep:
-        sub = H[np.ix_(keep, keep)]
-        ev = np.linalg.eigvalsh(sub) if np.all(np.isfinite(sub)) else np.array([-1.0])
-        if ev.min() > 1e-10 * max(ev.max(), 1e-300):
-            err[keep] = np.sqrt(np.diag(np.linalg.inv(sub)))
-            return err
-        keep.pop(int(np.argmin(np.abs(np.diag(sub)) / np.sqrt(np.abs(np.diag(sub)).max() + 1e-300)))
-                 if np.all(np.isfinite(np.diag(sub))) else 0)
-    return err
-
-
 def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dict | None = None,
                exact: bool = False) -> FamilyFit:
     """Maximum-likelihood fit of family ``fam`` plus a white floor to ``record``, with 95 % intervals.
@@ -390,54 +367,58 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         return val if math.isfinite(val) else 1e300
 
     res = optimize.minimize(grouped, q0, method="L-BFGS-B", bounds=bounds)
+    for i, p in enumerate(fam.params):
+        if p.name in _RESTARTS:
+            q1 = res.x.copy()
+            q1[i] = min(max(math.log10(_RESTARTS[p.name] * G.omega[-1]), bounds[i][0]), bounds[i][1])
+            # truncated Newton: L-BFGS-B's first projected step from here can leave the range where the spectrum
+            # is finite and stop there (measured on a scene's twin: one iteration, 19 short of this maximum)
+            again = optimize.minimize(grouped, q1, method="TNC", bounds=bounds)
+            if again.fun < res.fun:
+                res = again
     q, ident, band = _identify(record, fam, v, res.x)
-    neutral = [i for i, p in enumerate(fam.params) if not ident[i] and p.neutral is not None]
-    if neutral:
-        # a feature the record does not show: hold its amplitude at the neutral value, and the parameters that share
-        # its feature (its corner) where they are, and fit the rest again
-        feats = fam.features(_to_theta(fam, q), v)
-        names = {fam.params[i].name for i in neutral}
-        held = {j for j, p in enumerate(fam.params) if any(feats[p.name] == feats[n] for n in names)}
-        for i in held:
-            p = fam.params[i]
-            if i in neutral:
-                q[i] = math.log10(p.neutral) if p.log else p.neutral
-            bounds[i] = (q[i], q[i])
-        neutral = sorted(held)
-        res = optimize.minimize(grouped, np.clip(q, [b[0] for b in bounds], [b[1] for b in bounds]),
-                                method="L-BFGS-B", bounds=bounds)
-    if exact and record.n <= EXACT_N:
-        fit = maximum_likelihood(record, spectrum, res.x, bounds=bounds, images=None)
-    else:
-        fit = WhittleFit(tuple(map(float, res.x)), float(res.fun), bool(res.success))
-    q, ident, band = _identify(record, fam, v, fit.params)
-    for i in neutral:
-        ident[i] = False
+    unseen = [i for i, p in enumerate(fam.params) if not ident[i] and p.neutral is not None]
+    neutral = []
+    for _ in range(2):
+        if unseen:
+            # a feature the record does not show: hold its amplitude at the neutral value, and the parameters that
+            # share its feature (its corner) where they are, and fit the rest again
+            res, neutral = _hold(fam, v, grouped, res.x, bounds, unseen, neutral)
+        if exact and record.n <= EXACT_N:
+            fit = maximum_likelihood(record, spectrum, res.x, bounds=bounds, images=None)
+        else:
+            fit = WhittleFit(tuple(map(float, res.x)), float(res.fun), bool(res.success))
+        q, ident, band = _identify(record, fam, v, fit.params)
+        for i in neutral:
+            ident[i] = False
+        intervals = family_intervals.intervals(fam, grouped, q, ident, neutral, bounds, _FEATURE_LAW)
+        # a feature whose amplitude the record does not tell from its neutral value (no interval, or one holding it)
+        # is not seen either: held and fitted again once
+        unseen = [i for i, p in enumerate(fam.params) if i not in neutral and p.neutral is not None
+                  and (intervals[p.name] is None or intervals[p.name][0] <= p.neutral <= intervals[p.name][1])]
+        if not unseen:
+            break
     theta = _to_theta(fam, q)
-    floor = 10.0 ** q[-1]
-    # the curvature over every free parameter and the floor, so that an identified parameter's interval carries its
-    # correlation with the ones the band does not pin down (a resonance above the band still tilts its top); the
-    # held ones stay out. Intervals are then given to the identified parameters only.
-    idx = [i for i in range(len(q) - 1) if i not in neutral] + [len(q) - 1]
-
-    def nll_sub(s):
-        r = q.copy()
-        r[idx] = s
-        return grouped(r)
-
-    err = _errors(_hessian(nll_sub, q[idx]))
-    intervals = {}
-    for k, i in enumerate(idx[:-1]):
-        p = fam.params[i]
-        if not ident[i]:
-            continue
-        lo, hi = q[i] - _Z95 * err[k], q[i] + _Z95 * err[k]
-        intervals[p.name] = (10.0**lo, 10.0**hi) if p.log else (lo, hi)
-        if not math.isfinite(err[k]) or (p.log and hi - lo > _WIDEST):
-            intervals[p.name] = None
-    for i, ok in enumerate(ident):
-        if not ok:
-            intervals[fam.params[i].name] = None
-    n_free = 1 + sum(1 for i in idx[:-1] if ident[i])  # what the information criterion counts: what the band shows
-    return FamilyFit(fam.name, theta, floor, fit.nll, intervals, band, n_free, v, fit.converged, tuple(q),
+    n_free = 1 + sum(1 for i in range(len(fam.params)) if i not in neutral and ident[i])  # what the band shows
+    return FamilyFit(fam.name, theta, 10.0 ** q[-1], fit.nll, intervals, band, n_free, v, fit.converged, tuple(q),
                      tuple(fam.params[i].name for i in neutral))
+
+
+def _hold(fam: Family, v: float, grouped, q, bounds, unseen, neutral):
+    """Hold the amplitudes ``unseen`` at their neutral values and the parameters sharing their features where they
+    are (narrowing ``bounds`` in place), and fit the rest again from ``q``. Returns (result, held indices)."""
+    q = np.array(q, dtype=float)
+    feats = fam.features(_to_theta(fam, q), v)
+    names = {fam.params[i].name for i in unseen}
+    held = set(neutral) | {j for j, p in enumerate(fam.params)
+                           if feats[p.name] is not None and any(feats[p.name] == feats[n] for n in names)}
+    held |= set(unseen)
+    for i in held:
+        p = fam.params[i]
+        if i in unseen:
+            q[i] = math.log10(p.neutral) if p.log else p.neutral
+        bounds[i] = (q[i], q[i])
+    res = optimize.minimize(grouped, np.clip(q, [b[0] for b in bounds], [b[1] for b in bounds]),
+                            method="L-BFGS-B", bounds=bounds)
+    return res, sorted(held)
+

@@ -137,10 +137,12 @@ def _coincides(best: str, other: str, fits: dict, level: float) -> bool:
     fam_b, fam_o = FAMILIES[best], FAMILIES[other]
     if fam_b.shape is fam_o.shape:
         return True
-    base = {p.name for p in fam_b.params}
+    # the best's parameters this record identifies (model I's contacts' inertia above the band is not one, and the
+    # ageing family, whose miniblocks are massless, has none)
+    base = {p.name for p in fam_b.params if fits[best].intervals.get(p.name) is not None}
     if not base <= {p.name for p in fam_o.params}:
         return False
-    extra = [p.name for p in fam_o.params if p.name not in base]
+    extra = [p.name for p in fam_o.params if p.name not in {q.name for q in fam_b.params}]
     if all(fits[other].intervals.get(n) is None for n in extra):
         return True
     return 2 * (fits[best].nll - fits[other].nll) < float(stats.chi2.ppf(level, len(extra)))
