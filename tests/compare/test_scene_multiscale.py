@@ -70,7 +70,7 @@ def test_micro_fields_are_validated_one_line_naming_the_field():
 
 def test_scene_and_model_Ib_check_the_micro_fields_alike():
     """One helper (frictionnoise.base.check_number) checks a micro-pad field in the scenario and its model Ib twin: the same
-    bad value gives the same message after the field's name (issue: two hand-written checks had drifted apart)."""
+    bad value gives the same message after the field's name."""
     from dataclasses import replace
 
     from reduced_models.multiscale import MultiscaleParams

@@ -1,5 +1,5 @@
-"""Importing any project module, and drawing with it, leaves matplotlib's backend as the program set it (issue
-14: plots.py and render.py once called matplotlib.use("Agg") at import)."""
+"""Importing any project module, and drawing with it, leaves matplotlib's backend as the program set it (no module
+calls matplotlib.use at import)."""
 import subprocess
 import sys
 
