@@ -7,13 +7,7 @@ spectrum), written as markdown and a PNG.
     python -m compare.studies.vibration_sweep --force DIR/force_* --velocity DIR/velocity_* \\
         [--png study-results/vibration_sweep.png]
 
-The twins (amplitude 0) are in the 1000 Hz files; each drive's folders are read together. The tasks' results of
-the committed table are kept under study-results/vibration_sweep_tasks/ (one folder per sweep file), so
-
-    python -m compare.studies.vibration_sweep --force study-results/vibration_sweep_tasks/force_* \
-        --velocity study-results/vibration_sweep_tasks/velocity_*
-
-rebuilds it without running a scene (tests/compare/test_vibration_report.py holds the two equal).
+The twins (amplitude 0) are in the 1000 Hz files; each drive's folders are read together.
 """
 import argparse
 from pathlib import Path
