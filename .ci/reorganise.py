@@ -110,7 +110,15 @@ def plan() -> tuple:
 
 def rewrite(moves: dict, dry: bool):
     subs = []
-    for old, new in moves.items():
+    # every study and every test in its folder, not only those moved now: a file merged later may name one moved before
+    placed = dict(moves)
+    for f in tracked("compare/studies", "tests"):
+        rel = f.relative_to(ROOT)
+        if rel.parts[0] == "compare" and rel.suffix == ".py" and rel.stem != "__init__":
+            placed.setdefault(Path("benchmarks") / rel.name, rel)
+        elif rel.parts[0] == "tests" and len(rel.parts) == 3 and rel.name.startswith("test_"):
+            placed.setdefault(Path("tests") / rel.name, rel)
+    for old, new in placed.items():
         if old.parts[0] == "benchmarks":
             subs.append((rf"\bbenchmarks\.{old.stem}\b", f"compare.studies.{old.stem}"))
             subs.append((rf"\bbenchmarks/{old.name}", f"compare/studies/{old.name}"))
