@@ -6,7 +6,7 @@ Reference case: AgeingParams() (model I's block, springs and renewals; F_N = 20 
 D_c = 0.1 mm, ageing law), 900 s at 1 kHz, seed 0, default rtol 1e-6: wall and CPU time, best of 3, with the load.
 Work-precision: 100 s of the same case at rtol 1e-4 ... 1e-7 against rtol 1e-9 (same seed, same renewals): the
 largest error in zeta over the samples relative to zeta's rms, and the band-averaged C_x error per log band
-(0.5-2000 rad/s). Writes benchmarks/results/ageing_cost.md.
+(0.5-2000 rad/s). Writes study-results/ageing_cost.md.
 """
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ from compare.analysis.spectra import band_average, displacement_spectrum
 from reduced_models import ageing as ag
 from reduced_models import spring_block as sb
 
-OUT = Path(__file__).parent / "results" / "ageing_cost.md"
+OUT = Path("study-results") / "ageing_cost.md"
 
 
 def main():
@@ -60,6 +60,7 @@ def main():
         L.append(f"| {rtol:.0e} | {np.abs(z - zr).max() / zr.std():.1e} | {np.abs(e).max():.1e} | "
                  + " ".join(f"{x:+.0e}" for x in e) + f" | {el:.2f} | {tr.metadata['steps_accepted']} |")
     L += ["", f"Load at the end: {os.getloadavg()[0]:.1f} (1-min average, 2 cores shared by several sessions).", ""]
+    OUT.parent.mkdir(exist_ok=True)
     OUT.write_text("\n".join(L))
     print("\n".join(L))
 

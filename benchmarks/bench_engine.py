@@ -8,11 +8,13 @@ other processes do not advance; ``--clock wall`` with time.perf_counter. ``--tab
 per-scene table.
 
     python -m benchmarks.bench_engine [--steps N] [--smoke] [--clock cpu|wall] [--table-only] [NAME ...]
+    python -m pytest benchmarks/bench_engine.py       # the harness's entry, one per shipped scene
 """
 import argparse
 import time
 
 import numpy as np
+import pytest
 
 import engine_sim
 from compare.analysis.fits import fit_power_law
@@ -60,6 +62,25 @@ def loop_ratio(sc, n_steps: int, repeat: int = 3, ratio: bool = False):
     if ratio:
         return med(bare), med(full), float(np.median(np.array(full) / np.array(bare)))
     return med(bare), med(full)
+
+
+HARNESS_SCENES = ("pads_friction_patches", "constant_velocity")  # the patch tracks (what most studies run) and the simplest
+
+
+@pytest.mark.parametrize("name", HARNESS_SCENES)
+def test_loop_against_bare_step(benchmark, ratio, smoke, name):
+    """The harness's entry: one maintenance chunk of the project's loop (MAINTAIN_EVERY output steps, their
+    recording and one substrate maintenance) timed by the harness, and in the same run the loop / bare-step
+    ratio (``loop_ratio``, chunks taking turns), which the docs quote (target <= 1.10)."""
+    sc = load_scenario(shipped_scenarios()[name])
+    ratio("loop / bare pymunk step", loop_ratio(sc, 3000 if smoke else 20_000, repeat=1 if smoke else 3, ratio=True)[2])
+    scene = Scene(sc)
+    scene.advance(2000)
+    rounds = 5 if smoke else 40
+    rec = Recorder(scene, (rounds + 2) * MAINTAIN_EVERY + 1)
+    rec.sample()
+    loop = Loop(scene, rec)
+    benchmark.pedantic(loop.run, args=(MAINTAIN_EVERY,), rounds=rounds, warmup_rounds=1)
 
 
 def main(argv=None):

@@ -8,7 +8,7 @@ is scipy's DOP853 (explicit, 8th order) on the same equations at rtol = atol = 1
 (switches to BDF when stiff) at 1e-12; Radau at 1e-13 took minutes per run with the Python right-hand side. Errors: the largest difference in
 ln V over the samples of the first 10 cycles (samples every 1/100 cycle; a slip event lasts ~1e-6 cycle, so the
 samples see the stick and healing phases, whose ln V carries the accumulated timing error of the events) and the
-relative error of the slip at the last sample (half a cycle after the 10th event). Writes benchmarks/results/rate_state_work_precision.md.
+relative error of the slip at the last sample (half a cycle after the 10th event). Writes study-results/rate_state_work_precision.md.
 """
 from __future__ import annotations
 
@@ -23,7 +23,7 @@ from scipy.integrate import solve_ivp
 
 from reduced_models import rate_state as rs
 
-OUT = Path(__file__).parent / "results" / "rate_state_work_precision.md"
+OUT = Path("study-results") / "rate_state_work_precision.md"
 
 
 def _events(t, slip):
@@ -95,6 +95,7 @@ def main():
         lines += ["", f"100 cycles at the default rtol 1e-8 ({n_cyc} slip events counted, 100 samples per cycle): "
                   f"{best:.3f} s wall (best of 3), {tr.metadata['steps_accepted']} steps.", ""]
     lines += [f"Machine load while measured: {os.getloadavg()[0]:.2f} (1-min average, 2 cores shared).", ""]
+    OUT.parent.mkdir(exist_ok=True)
     OUT.write_text("\n".join(lines))
     print("\n".join(lines))
 

@@ -12,7 +12,7 @@ import time
 import numpy as np
 
 from reduced_models.wear_particle import WearParticleParams, theory_force_spectrum
-from tests.test_wear_particle_spectrum import reference_b2
+from tests.reduced_models.test_wear_particle_spectrum import reference_b2
 
 
 def main(argv=None):

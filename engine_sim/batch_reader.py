@@ -5,7 +5,7 @@ look up pymunk's iterator function on every call, and the caller then wraps each
 6 us per read of a few tens of bodies, against 2-3 us for the C iteration itself. The recorder reads twice per output
 step, so :class:`BatchReader` makes the struct, the function pointer and the numpy views once and calls the same C
 function pymunk's does. A view is rebuilt when pymunk's array moves (it grows by reallocation), so the data are
-always the array's own; ``tests/test_batch_reader.py`` checks them against pymunk's public calls.
+always the array's own; ``tests/engine_sim/test_batch_reader.py`` checks them against pymunk's public calls.
 """
 from __future__ import annotations
 

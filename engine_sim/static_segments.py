@@ -7,7 +7,7 @@ attribute hooks, one property setter per friction, filter and neighbour pair, an
 pymunk's Python-side bookkeeping as pymunk keeps it (the shape's ``_body``, ``_shape``, ``_h`` and ``_space``,
 the body's ``_shapes``, the space's ``_shapes`` and ``_removed_shapes``), so the shapes they make are
 ``pymunk.Segment`` objects that pymunk lists, queries, pickles and removes as its own. They rely on pymunk's
-internals as of pymunk 7 (``tests/test_static_segments.py`` checks them against pymunk's public path).
+internals as of pymunk 7 (``tests/engine_sim/test_static_segments.py`` checks them against pymunk's public path).
 """
 from __future__ import annotations
 

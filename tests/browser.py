@@ -1,4 +1,4 @@
-"""Headless Chromium for the browser tests (tests/test_docs_browser.py, tests/test_report_browser.py): Debian's
+"""Headless Chromium for the browser tests (tests/project/test_docs_browser.py, tests/compare/test_report_browser.py): Debian's
 `chromium` driven through `chromium-driver` with selenium, in a 1280 x 900 window with the console's log kept.
 
 Where no browser or driver is installed a test skips saying what is missing, except under CI (CI=true), where it

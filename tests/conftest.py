@@ -90,7 +90,7 @@ def installed(tmp_path_factory):
 @pytest.fixture(scope="session")
 def installed_quick_report(installed):
     """(folder, wall s) of `frictionnoise report --quick` (the README's main job: the models and the headline
-    scenes) from the installed package, once per session: read by tests/test_install.py."""
+    scenes) from the installed package, once per session: read by tests/project/test_install.py."""
     from tests.installed import quick_report
 
     return quick_report(installed)
@@ -99,7 +99,7 @@ def installed_quick_report(installed):
 @pytest.fixture(scope="session")
 def installed_all_scenes_report(installed):
     """(folder, wall s) of `frictionnoise report --quick --all-scenes` (every shipped scene at its quick length)
-    from the installed package, once per session: read by tests/test_install.py and tests/test_report_cli.py."""
+    from the installed package, once per session: read by tests/project/test_install.py and tests/compare/test_report_cli.py."""
     from tests.installed import quick_report
 
     return quick_report(installed, "--all-scenes", out="rep-all")

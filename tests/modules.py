@@ -12,6 +12,8 @@ def project_modules() -> dict:
         for path in sorted((ROOT / pkg).rglob("*.py")):
             if not (path.parent / "__init__.py").exists():
                 continue  # a script beside package data (engine_sim/scenarios/data/make_reciprocating.py), not a module
+            if path.relative_to(ROOT).parts[:2] == ("compare", "studies"):
+                continue  # the research studies: not installed, run by their smokes in CI (.ci/run)
             if path.name == "__main__.py":
                 continue  # `python -m package`: importing it runs the program
             parts = path.relative_to(ROOT).with_suffix("").parts

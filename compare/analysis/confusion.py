@@ -3,7 +3,7 @@ exact simulator, with a white sensor floor, identified; per cell (model, paramet
 seeds whose true model ranks first or indistinguishable from the first, is named alone, is displaced by a wrong
 model named alone, and the coverage of the true family's 95 % intervals for the parameters the record identifies.
 
-:data:`CELLS` are the stated grid; ``benchmarks/confusion_table.py`` runs it and writes docs/results/identification.md.
+:data:`CELLS` are the stated grid; ``compare/studies/confusion_table.py`` runs it and writes docs/results/identification.md.
 """
 from __future__ import annotations
 

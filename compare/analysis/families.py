@@ -177,7 +177,7 @@ def _model_II(th, w, v):
     if w.size <= _N_NODES:
         return th["S"] * wear_particle.theory_spectrum(one, w, order=_ORDER)
     # the closed form is smooth on a log scale (corners of Lorentzians): 384 nodes over the band, log-log
-    # interpolation, within 1e-4 of the direct evaluation (tests/test_families.py)
+    # interpolation, within 1e-4 of the direct evaluation (tests/compare/test_families.py)
     nodes = np.geomspace(w.min(), w.max(), _N_NODES)
     vals = np.log(wear_particle.theory_spectrum(one, nodes, order=_ORDER))
     return th["S"] * np.exp(np.interp(np.log(w), np.log(nodes), vals))

@@ -1,7 +1,7 @@
 """Power-law fits C(omega) = A omega^-gamma to spectra, with an honest uncertainty.
 
 Two methods share the band rules below; ``method="whittle"`` is the default (:data:`DEFAULT_METHOD`), chosen from
-``python -m benchmarks.fit_methods`` (README, "Exponent fits": over 500 seeds of omega^-2, -4, -5, -6 at 2^14-2^18
+``python -m compare.studies.fit_methods`` (README, "Exponent fits": over 500 seeds of omega^-2, -4, -5, -6 at 2^14-2^18
 samples it met |bias| < 0.02 and 93-97 % coverage in all 12 rows, least squares in 10, with an interval 8-16 %
 narrower).
 
@@ -25,7 +25,7 @@ scatter of the binned ordinates about the line (the residual variance, so curvat
 widen it) and (b) the value expected from the Welch chi-square scatter alone (a floor against a run
 of ordinates that happen to scatter little). ``gamma_err`` is the
 half-width of the 95 % confidence interval, ``t_{0.975, n-2} * gamma_se``. Over 500 seeds of synthetic
-power laws the 95 % interval covered the truth in 93.8-97.4 % of cases (benchmarks/results/fit_methods.md).
+power laws the 95 % interval covered the truth in 93.8-97.4 % of cases (study-results/fit_methods.md).
 
 Not a power law
 ---------------
@@ -181,7 +181,7 @@ def _auto_band(lnw, lnC, var, w, min_decades):
 
 
 METHODS = ("whittle", "lsq")
-DEFAULT_METHOD = "whittle"  # chosen from the table in benchmarks/results/fit_methods.md (README, "Exponent fits")
+DEFAULT_METHOD = "whittle"  # chosen from the table in study-results/fit_methods.md (README, "Exponent fits")
 
 
 def _whittle_gamma(lnw: np.ndarray, P: np.ndarray) -> tuple[float, float, float, int]:

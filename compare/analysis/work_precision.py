@@ -1,6 +1,6 @@
 """Engine speed against error: wall time per simulated second against the error of C_x relative to a
 converged run with the same seed (same substrate and forces), and the Pareto front. Used by
-benchmarks/work_precision.py and the full `frictionnoise report`."""
+compare/studies/work_precision.py and the full `frictionnoise report`."""
 from __future__ import annotations
 
 import time

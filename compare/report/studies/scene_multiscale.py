@@ -15,7 +15,7 @@ Procedure (:func:`multiscale_parameters`, stated in the report as here):
   distance, reported beside the scenario's a2 (the model uses the scenario's);
 - F_drive from steady sliding, N (f_kin + c v) + N n (f_kin2 + c2 v), with eta1 = c / m.
 
-The procedure is tested on an exact case (tests/test_multiscale_fit.py): model Ib simulations with known
+The procedure is tested on an exact case (tests/reduced_models/test_multiscale_fit.py): model Ib simulations with known
 parameters give back alpha2 and a2 within their statistical tolerance.
 """
 from __future__ import annotations

@@ -46,7 +46,7 @@ def fitting_part(sc):
 # 12.5 s is the shortest record whose spectra hold 4 s Welch segments (2^12 samples at 1 ms; 5 of them, half
 # overlapping): they resolve 3-30 v/a and the ratio bands down to 4 frequency steps, and gamma's 95 % half-width is
 # about 0.2 on the friction-patch scenes (sqrt(9/5) that of a 20 s record). Model III's comparison below its corner
-# v/w needs segments of about 8 s, so asperity_field records 20 s. Per scene: benchmarks/results/report_speed.md.
+# v/w needs segments of about 8 s, so asperity_field records 20 s. Per scene: python -m benchmarks.bench_report.
 FULL_DURATION = {"model_I": 12.5, "model_II": 12.5, "model_ageing": 12.5, "model_III": 20.0}
 
 

@@ -8,7 +8,7 @@ from ..study import Figure, Study, StudyResult
 # 1.4e-4 s: the coarsest step the loader accepts (0.95 of the pad-spring limit omega dt < 0.3)
 SETTINGS = [(1.4e-4, 2), (1e-4, 2), (1e-4, 10), (5e-5, 2)]
 # dt = 2.5e-5 s at the scene's 2 solver iterations: on this scene 20 iterations give the same x(t) bit for bit (8 s,
-# seed 0) at 2.7x the cost (benchmarks/results/report_speed.md); the 1e-4 s pair above shows it again in each run
+# seed 0) at 2.7x the cost (python -m benchmarks.bench_report); the 1e-4 s pair above shows it again in each run
 REFERENCE = (2.5e-5, 2)
 
 

@@ -1,0 +1,59 @@
+"""The vibration sweep's answer from its task files: the rows, figure and answer of :mod:`compare.report.vibration`
+(each shaken cell against its unshaken twin of the same seed, the line at omega_v removed from x(t) before the
+spectrum), written as markdown and a PNG.
+
+    for n in force_1000hz force_20hz force_2000hz velocity_1000hz velocity_20hz velocity_2000hz; do
+        frictionnoise sweep scenarios/sweeps/vibration_sweep_$n.toml -o DIR/$n --serial; done
+    python -m compare.studies.vibration_sweep --force DIR/force_* --velocity DIR/velocity_* \\
+        [--png study-results/vibration_sweep.png]
+
+The twins (amplitude 0) are in the 1000 Hz files; each drive's folders are read together.
+"""
+import argparse
+from pathlib import Path
+
+from compare.report.vibration import VibratedScene, answer, cells, load_tasks
+
+
+def markdown(rows: list, sc: VibratedScene) -> str:
+    """The rows as a markdown table (95 % Student-t intervals over the paired seeds)."""
+    out = ["| f (Hz) | drive | A (um) | xi | A / (mu N/k0) | A / A_onset | C_x / twin | (Coulomb / twin)^2 | gamma | "
+           "Coulomb / twin | rigid | linear pads | compliant | speed / twin | drive force / twin | pred. (rigid, compliant) | line (um) | seeds |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        cf = r["constant_force"]
+        pred = (f"speed {r['speed_rigid']:.3f}, {r['speed_compliant']:.3f}" if cf else
+                f"force {r['drive_rigid']:.3f}, {r['drive_compliant']:.3f}; speed {r['speed_rigid']:.3f}, "
+                f"{r['speed_compliant']:.3f}")
+        out.append(
+            f"| {r['frequency']:g} | {'force' if cf else 'velocity'} | {r['amplitude'] * 1e6:.3g} | {r['xi']:.3g} | "
+            f"{r['amplitude'] / sc.deflection:.2g} | {r['amplitude'] / r['A_onset']:.2g} | "
+            f"{r['C_ratio']:.3g} +- {r['C_ratio_ci']:.2g} | "
+            f"{r['coulomb_sq']:.3g} +- {r['coulomb_sq_ci']:.2g} | "
+            f"{r['gamma']:.2f} +- {r['gamma_ci']:.2f} (twin {r['gamma_twin']:.2f}) | "
+            f"{r['coulomb']:.3f} +- {r['coulomb_ci']:.3f} | {r['coulomb_rigid']:.3f} | {r['coulomb_pads']:.3f} | "
+            f"{r['coulomb_compliant']:.3f} | "
+            f"{r['speed']:.4f} +- {r['speed_ci']:.4f} | {r['drive']:.4f} +- {r['drive_ci']:.4f} | {pred} | "
+            f"{r['line'] * 1e6:.3g} | {r['seeds']} |")
+    return "\n".join(out)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--force", nargs="+", default=[], help="task folders of the constant force drive")
+    ap.add_argument("--velocity", nargs="+", default=[], help="task folders of the constant velocity drive")
+    ap.add_argument("--png", type=Path, help="write the figure here")
+    a = ap.parse_args(argv)
+    sc = VibratedScene()
+    rows = cells(load_tasks(a.force), sc) + cells(load_tasks(a.velocity), sc)
+    print(markdown(rows, sc))
+    print()
+    print(answer(rows, sc).replace("&plusmn;", "+-"))
+    if a.png is not None:
+        from compare.report import plots
+
+        plots.save_figure(plots.vibration_figure(rows), a.png)
+
+
+if __name__ == "__main__":
+    main()

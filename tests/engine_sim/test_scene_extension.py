@@ -1,0 +1,88 @@
+"""What extending the scene asks: compare computes a law's slope by asking the law registry, never by a law's name."""
+import re
+from pathlib import Path
+
+import pytest
+
+from compare.analysis.extract import friction_slope
+from engine_sim import load_scenario, shipped_scenarios
+from engine_sim.laws import LAWS
+from engine_sim.scene import describe
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_compare_names_no_law():
+    src = (ROOT / "compare/analysis/extract.py").read_text()
+    named = [name for name in LAWS if re.search(rf"[\"']{name}[\"']", src)]
+    assert not named, f"compare/analysis/extract.py names the laws {named}: ask engine_sim.laws.LAWS instead"
+
+
+@pytest.mark.parametrize("name", sorted(shipped_scenarios()))
+def test_the_described_slope_is_the_recorded_velocity_part(name):
+    # compare reads the slope of the velocity part the recorder records (drag_terms: c v + b N_pad ln(1 + v/v_c));
+    # where the law strengthens, that is the law's own slope: exactly for the linear and log laws, to 2e-3 for the
+    # rate-and-state law's steady log form (b = A - B, v_c = v_ss) against its exact asinh at the shipped speeds
+    # (tests/engine_sim/test_rate_state_law.py); a weakening rate-and-state pad records no steady velocity part (b = 0)
+    sc = load_scenario(name)
+    law, load, v = sc.law_part, sc.arrangement_part.pad_load(), sc.steady_velocity
+    desc = describe(sc)["friction_law"]
+    got = friction_slope(desc, v)
+    c, bN, vc = law.drag_terms(load, desc["c"])
+    assert got == pytest.approx(c + bN / (vc + v), rel=1e-12)
+    if law.slope(v, load, desc["c"]) > 0:
+        assert got == pytest.approx(law.slope(v, load, desc["c"]), rel=2e-3 if desc["law"] == "rate_state" else 1e-12)
+
+
+def test_a_scenario_builds_its_parts_once_and_a_scene_its_own():
+    from engine_sim import Scene
+
+    sc = load_scenario("pads_rate_state").with_run(warmup=0.0)
+    assert sc.law_part is sc.law_part and sc.arrangement_part is sc.arrangement_part
+    a, b = Scene(sc), Scene(sc)
+    # a law's impulse totals are per scene: two scenes of one scenario share no part
+    assert a.law is not b.law and a.law is not sc.law_part and a.drive is not b.drive
+    a.advance(a.n_sub)
+    assert a.law.impulse_totals(a) is not b.law.impulse_totals(b)
+
+
+class _Scene:
+    """A stand-in scene that logs what the loop asks of it."""
+
+    n_sub = 3
+
+    def __init__(self):
+        self.log = []
+
+    def maintain(self):
+        self.log.append("maintain")
+
+    def advance(self, n):
+        self.log.append(f"advance {n}")
+
+
+class _Recorder:
+    def __init__(self, log):
+        self.log = log
+
+    def sample(self):
+        self.log.append("sample")
+
+
+def test_the_loop_samples_maintains_every_64_and_ends_a_recording_on_its_sample():
+    from engine_sim.loop import MAINTAIN_EVERY, Loop
+
+    s = _Scene()
+    n = MAINTAIN_EVERY + 2
+    seen = []
+    loop = Loop(s, _Recorder(s.log), n_out=n, on_maintain=seen.append)
+    loop.step()
+    loop.run(n - 1)
+    assert loop.k == n and seen == [0, MAINTAIN_EVERY]
+    assert s.log[:3] == ["sample", "maintain", "advance 3"]
+    assert s.log.count("sample") == n and s.log.count("advance 3") == n - 1 and s.log[-1] == "sample"
+    i = [j for j, e in enumerate(s.log) if e == "sample"][MAINTAIN_EVERY]
+    assert s.log[i + 1] == "maintain"  # right after the 65th sample, before its steps
+    s.log.clear()
+    Loop(s).run(2)  # a warm-up: no recorder, every output step steps
+    assert s.log == ["maintain", "advance 3", "advance 3"]

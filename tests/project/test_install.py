@@ -1,0 +1,117 @@
+"""A non-editable install ships the scenarios: `pip install .` into a fresh venv, then run them by name from another
+folder (the scenario files are package data: an install without them would lose every scene, silently). The install
+and its quick reports are session fixtures (tests/installed.py, conftest.py): tests/compare/test_report_cli.py reads the
+same every-scene report. The tests are in the slow tier's `timing` group (one core, nothing beside them): a quick report runs its
+own worker processes on both cores."""
+import subprocess
+import time
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+pytestmark = [pytest.mark.slow, pytest.mark.timing]
+
+
+def _listed(exe, cwd) -> list:
+    listed = subprocess.run([exe, "scenarios"], cwd=cwd, check=True, capture_output=True, text=True).stdout
+    return [line.split()[0] for line in listed.splitlines() if line.strip() and not line[0].isspace()]
+
+
+def test_non_editable_install_runs_shipped_scenarios_by_name(installed):
+    from engine_sim import shipped_scenarios
+
+    py, exe, elsewhere, t_install, isolation = installed
+    names = _listed(exe, elsewhere)
+    assert names == sorted(shipped_scenarios()), names  # every shipped scene, none lost
+    t1 = time.perf_counter()
+    r = subprocess.run([exe, "run", "pads_friction_patches", "--duration", "0.5", "-o", "out"], cwd=elsewhere,
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert (elsewhere / "out" / "trace.npz").exists() and (elsewhere / "out" / "trace.json").exists()
+    t2 = time.perf_counter()
+    # the report's machinery (compare.studies once went uninstalled: report and compare failed after pip install .)
+    r = subprocess.run([exe, "compare", "pads_friction_patches", "--duration", "2", "-o", "cmp"], cwd=elsewhere,
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert (elsewhere / "cmp" / "index.html").exists() and (elsewhere / "cmp" / "summary.json").exists()
+    # every package folder of the tree is installed
+    tree = sorted(".".join(d.relative_to(ROOT).parts) for d in ROOT.rglob("__init__.py") for d in [d.parent]
+                  if d.parts[len(ROOT.parts)] in {"frictionnoise", "engine_sim", "reduced_models", "compare"})
+    r = subprocess.run([py, "-c", "import importlib, sys\nfor m in sys.argv[1:]: importlib.import_module(m)", *tree],
+                       cwd=elsewhere, capture_output=True, text=True)
+    assert r.returncode == 0 and len(tree) >= 6, (tree, r.stderr[-2000:])
+    print(f"install {t_install:.1f} s (build isolation: {'off' if isolation else 'on'}), "
+          f"run by name {t2 - t1:.1f} s, compare {time.perf_counter() - t2:.1f} s, packages {tree}")
+
+
+def _design(py, elsewhere) -> dict:
+    """The installed package's registry: study key -> (quick, headline)."""
+    import json
+
+    out = subprocess.run([py, "-c", "import json; from compare.report import studies; print(json.dumps("
+                                    "[[s.key, [s.quick, s.headline]] for s in studies.STUDIES]))"],
+                         cwd=elsewhere, check=True, capture_output=True, text=True).stdout
+    return {k: tuple(v) for k, v in json.loads(out)}
+
+
+def _sections_hold_figures(html: str, names) -> None:
+    """Each named scene is a section of the page, in its contents, with at least one figure."""
+    import re
+
+    for name in names:
+        anchor = "s-" + re.sub(r"[^A-Za-z0-9_-]+", "-", f"scenarios/{name}")
+        section = html.split(f"<section id='{anchor}'>", 1)
+        assert len(section) == 2, f"no section for {name}"
+        assert "<figure" in section[1].split("</section>", 1)[0], f"no figure in the section of {name}"
+        assert f"href='#{anchor}'" in html, f"{name} not in the contents"
+
+
+# the README's main job: about 30 s on 2 idle cores with a warm numba cache, once per session
+def test_non_editable_install_quick_report_holds_the_models_and_the_headline_scenes(installed, installed_quick_report):
+    """`frictionnoise report --quick` (the README's first command) from another folder holds the models and the
+    headline scenes (compare.report.studies.scenes.HEADLINE_SCENES: one per mechanism of the paper), each a section
+    with a figure, and its page says how to get every other scene (a lost scene would be silent)."""
+    import json
+
+    py, exe, elsewhere, _, _ = installed
+    design = _design(py, elsewhere)
+    headline = sorted(k.split("/", 1)[1] for k, (quick, head) in design.items()
+                      if k.startswith("scenarios/") and quick and head)
+    assert headline == ["asperity_field", "pads_friction_patches", "pads_with_wear"], headline
+    rep, wall = installed_quick_report  # `report --quick -o rep` run by `exe` in `elsewhere`
+    summary = json.loads((rep / "summary.json").read_text())
+    assert sorted(summary["scenarios"]) == headline, sorted(summary["scenarios"])
+    assert {"model_I", "model_II", "model_III", "model_Ib"} <= set(summary), sorted(summary)
+    html = (rep / "index.html").read_text()
+    _sections_hold_figures(html, headline)
+    assert "--quick --all-scenes" in html  # where the other scenes are
+    print(f"quick report from the installed package: {wall:.1f} s, scenes {headline}")
+
+
+# every scene at its quick length: about 70 s on 2 idle cores, once per session
+def test_non_editable_install_all_scenes_report_holds_every_shipped_scene(installed, installed_all_scenes_report):
+    """`frictionnoise report --quick --all-scenes` from another folder holds every shipped scene, not only the model
+    sections. The design, asked of the installed package: the quick studies are one per shipped scene
+    (`compare.report.studies.scenes.scene_studies`) plus the models and any quick study of a scene beside a model
+    (pads_multiscale against model Ib); the full report adds no scene of its own. Each scene is in summary.json and
+    is a section of index.html with at least one figure."""
+    import json
+
+    py, exe, elsewhere, _, _ = installed
+    names = _listed(exe, elsewhere)
+    design = _design(py, elsewhere)
+    # every shipped scene has a study of its own (key scenarios/<name>) in the quick report; further studies of a
+    # scene (scenarios/<name>_model_Ib: a model beside it) may be quick or left to the full report
+    own = {k.split("/", 1)[1]: quick for k, (quick, _) in design.items() if k.split("/", 1)[-1] in names}
+    assert sorted(own) == names and all(own.values()), (own, names)
+    quick_keys = sorted(k.split("/", 1)[1] for k, (quick, _) in design.items() if k.startswith("scenarios/") and quick)
+    rep, wall = installed_all_scenes_report
+    summary = json.loads((rep / "summary.json").read_text())
+    quick_keys = sorted({*quick_keys, "pads_multiscale_model_Ib"})  # the pads_multiscale study serves model Ib too
+    assert sorted(summary["scenarios"]) == quick_keys, (sorted(summary["scenarios"]), quick_keys)
+    for name in names:
+        assert summary["scenarios"][name], name  # numbers, not an empty entry
+    _sections_hold_figures((rep / "index.html").read_text(), names)
+    print(f"quick report of every scene from the installed package: {wall:.1f} s, scenes {names}")
