@@ -7,7 +7,7 @@ those pass through unchanged; lengths scale by 1e3, masses by 1e3, times by 1e3,
 The scene's builder (:class:`engine_sim.scene.Scene`) converts each part's SI spec once, by the dimensions the part
 declares (``scene_units``: field -> dimension), into a :class:`SceneValues` that the part reads while it builds and
 steps; the recorder converts the samples back to SI (:mod:`engine_sim.record`) and the drawings label scene values
-in SI (:mod:`engine_sim.render`, :mod:`engine_sim.side_render`). ``tests/test_units_boundary.py`` checks that no
+in SI (:mod:`engine_sim.render`, :mod:`engine_sim.side_render`). ``tests/engine_sim/test_units_boundary.py`` checks that no
 other module holds a conversion.
 """
 from __future__ import annotations

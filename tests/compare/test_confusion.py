@@ -14,9 +14,9 @@ def test_a_model_I_cell_counts_each_record_once():
 
 
 def test_quick_table_is_a_smoke_of_the_whole_command(tmp_path):
-    # benchmarks/confusion_table.py --quick: the command that rebuilds docs/results/identification.md, on three 10 s
+    # compare/studies/confusion_table.py --quick: the command that rebuilds docs/results/identification.md, on three 10 s
     # cells with one seed, writes a table with one row per cell and the pooled coverage
-    from benchmarks.confusion_table import main
+    from compare.studies.confusion_table import main
     from compare.analysis.confusion import QUICK_CELLS
 
     out = tmp_path / "table.md"

@@ -21,7 +21,7 @@ tolerance, ``_FILLED``), and the checker's own test below shows what it catches.
 import ast
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 ENGINE = ROOT / "engine_sim"
 UNITS_MODULE = ENGINE / "units.py"
 BOUNDARY = {ENGINE / n for n in ("scene.py", "record.py", "render.py", "side_render.py")}

@@ -3,7 +3,7 @@
 there), then of the same in a second process on the cache the first wrote (what loads it). Turns alternate base,
 new, base, new, ... so that a drift in the machine's speed hits both.
 
-    python -m benchmarks.recorder_compile BASE_TREE NEW_TREE [--repeats 3] [--scene constant_velocity]
+    python -m compare.studies.recorder_compile BASE_TREE NEW_TREE [--repeats 3] [--scene constant_velocity]
 
 Each process runs with cwd = its tree (its own engine_sim) and NUMBA_CACHE_DIR a fresh folder per turn.
 """

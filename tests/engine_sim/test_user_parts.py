@@ -16,7 +16,7 @@ from engine_sim import ScenarioError, load_scenario
 from engine_sim.scenario import resolve_scenario
 from engine_sim.scene import describe
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 LAW = ROOT / "tests" / "stribeck_law.py"
 CHANNEL = ROOT / "tests" / "block_energy_channel.py"
 CLI = [str(Path(sys.executable).parent / "frictionnoise")]  # the installed command line
@@ -63,7 +63,7 @@ def test_stribeck_law_recorded_and_energy_balanced(stribeck_run):
     law = sc.law_part
     assert type(law).__name__ == "Stribeck" and tr.metadata["scenario"]["plugins"] == [str(LAW)]
     # the energy balance W_drive = dissipated + change of mechanical energy within 2 %, the tolerance the shipped
-    # laws meet (tests/test_engine.py::test_energy_balance; measured here 2e-6)
+    # laws meet (tests/engine_sim/test_engine.py::test_energy_balance; measured here 2e-6)
     W, D, dE = tr.work_drive[-1], tr.dissipated[-1], tr.mech_energy[-1]
     assert abs(W - D - dE) < 0.02 * W
     # the force balance: contact friction plus the law's recorded velocity part against the drive, within 2 % as

@@ -1,7 +1,7 @@
-"""benchmarks.exponent_coverage: the quick mode (a CI smoke) runs every cell and writes its table."""
+"""compare.studies.exponent_coverage: the quick mode (a CI smoke) runs every cell and writes its table."""
 import re
 
-from benchmarks import exponent_coverage
+from compare.studies import exponent_coverage
 
 
 def test_quick_mode_writes_the_table(tmp_path):

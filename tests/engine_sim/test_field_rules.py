@@ -8,7 +8,7 @@ import pytest
 import engine_sim
 from frictionnoise.base import check_seconds, check_seed
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 PACKAGES = ("compare", "frictionnoise", "engine_sim", "reduced_models")
 
 
