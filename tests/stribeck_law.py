@@ -21,7 +21,6 @@ import numba
 import numpy as np
 import pymunk.batch as B
 
-from engine_sim import units as U
 from engine_sim.laws import LAWS, FrictionSpec
 from engine_sim.laws.linear import Linear
 
@@ -66,6 +65,7 @@ class Stribeck(Linear):
     """The Stribeck law (module docstring)."""
 
     name = "stribeck"
+    scene_units = {"v_s": "velocity"}  # the scene's builder hands v_s in scene units as self.own.v_s
     Spec = StribeckSpec
     per_step_impulses = True
     positive = frozenset({"v_s"})
@@ -105,7 +105,7 @@ class Stribeck(Linear):
         return law["c"] - 2 * law["load_per_pad"] * law["dmu"] * u / law["v_s"] * math.exp(-u * u)
 
     def recorded_drag(self, scene):
-        rows = [(self.spec.dmu * load * U.FORCE, self.spec.v_s * U.VELOCITY) for load in scene.slider_load]
+        rows = [(self.spec.dmu * load, self.own.v_s) for load in scene.slider_load]
         return stribeck_drag, np.array(rows, dtype=float).reshape(-1, 2)
 
     def _per_body(self, scene):
@@ -114,14 +114,14 @@ class Stribeck(Linear):
         rd = B.Buffer()
         B.get_space_bodies(scene.space, B.BodyFields.BODY_ID, rd)
         ids = np.frombuffer(rd.int_buf(), dtype=np.int64)
-        ndmu = {b.id: self.spec.dmu * load * U.FORCE for b, load in zip(scene.sliders, scene.slider_load)}
+        ndmu = {b.id: self.spec.dmu * load for b, load in zip(scene.sliders, scene.slider_load)}
         where = {b.id: k for k, b in enumerate(scene.sliders)}
         return (np.array([ndmu.get(int(i), 0.0) for i in ids]),
                 np.array([where.get(int(i), -1) for i in ids], dtype=np.int64))
 
     def advance(self, scene, n):
         ndmu, idx = self._per_body(scene)
-        vs = self.spec.v_s * U.VELOCITY
+        vs = self.own.v_s
         step, dt, space, rd, wr = scene.space.step, scene.dt, scene.space, B.Buffer(), B.Buffer()
         f = np.zeros(2 * ndmu.size)
         acc = np.zeros(ndmu.size)
