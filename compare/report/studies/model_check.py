@@ -75,7 +75,7 @@ def model_result(name: str, seed: int = 0, duration: float | None = None, params
         f"per log band: {ratio_range(ratios)} (worst |ln ratio| {worst:.3f}).",
     ]) + table(f"C_x({name} simulated) / C_x(closed form), per log band", ["band (rad/s)", "ratio"],
                ratio_rows(ratios))
-    return StudyResult(f"models/{name}", f"Model {name} against its closed form", numbers,
+    return StudyResult(f"models/{name}", f"{name} against its closed form", numbers,
                        (Figure(f"model_{name}", plots.figure_png_bytes(fig), caption),), text,
                        (timing(name, f"{T:g} s, dt_out = {dt_out:.3g} s", f"{wall:.3f}", f"{log_err(ratios):.3f}"),),
                        (ratio_verdict(f"models/{name}", "C_x / its closed form", ratios, 1.25, "1 (closed form)"),))
