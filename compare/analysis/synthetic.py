@@ -84,15 +84,7 @@ def power_law_record(n: int, dt: float, gamma: float, *, prefactor: float = 1.0,
     w = 2.0 * math.pi * u[1:] / dt
     S[1:] = np.abs(2.0 * np.sin(math.pi * u[1:]) / dt) ** (2 * k) * sampled_power_law(w, gamma, prefactor, dt)
     S[0] = prefactor if gamma == 2 * k else 0.0  # the limit of S_y at zero frequency
-    lam = np.concatenate([S, S[-2:0:-1]]) * (2.0 * math.pi / dt)  # circulant eigenvalues (full circle)
-    xi = rng.standard_normal(m) + 1j * rng.standard_normal(m)
-    y = np.fft.fft(np.sqrt(lam / m) * xi).real[: n - k]
-    x = y
-    for _ in range(k):
-        x = np.concatenate([[0.0], np.cumsum(x) * dt])  # diff(x) / dt is the previous series
-    if floor_rms:
-        x = x + floor_rms * rng.standard_normal(n)
-    return x
+    return _drawn(S, n, k, dt, floor_rms, rng)
 
 
 def spectrum_record(n: int, dt: float, spectrum, order: int, *, floor_rms: float = 0.0, images: int = 8,
@@ -136,11 +128,18 @@ def spectrum_record(n: int, dt: float, spectrum, order: int, *, floor_rms: float
     S = np.empty(m // 2 + 1)
     S[1:] = np.abs(2.0 * np.sin(math.pi * u[1:]) / dt) ** (2 * order) * folded(lambda o, p: spectrum(o), dt, images)(w, ())
     S[0] = S[1]  # the differenced spectrum's limit at zero frequency, one grid step away
-    lam = np.concatenate([S, S[-2:0:-1]]) * (2.0 * math.pi / dt)
+    return _drawn(S, n, order, dt, floor_rms, rng)
+
+
+def _drawn(S: np.ndarray, n: int, k: int, dt: float, floor_rms: float, rng) -> np.ndarray:
+    """n samples of the process whose k-th difference has the one-sided grid spectrum ``S`` (2n points, m^2 s per
+    (s^k)^2), drawn by circulant embedding and summed k times, plus a white floor of rms ``floor_rms`` (m)."""
+    m = 2 * n
+    lam = np.concatenate([S, S[-2:0:-1]]) * (2.0 * math.pi / dt)  # circulant eigenvalues (full circle)
     xi = rng.standard_normal(m) + 1j * rng.standard_normal(m)
-    x = np.fft.fft(np.sqrt(lam / m) * xi).real[: n - order]
-    for _ in range(order):
-        x = np.concatenate([[0.0], np.cumsum(x) * dt])
+    x = np.fft.fft(np.sqrt(lam / m) * xi).real[: n - k]
+    for _ in range(k):
+        x = np.concatenate([[0.0], np.cumsum(x) * dt])  # diff(x) / dt is the previous series
     if floor_rms:
         x = x + floor_rms * rng.standard_normal(n)
     return x
