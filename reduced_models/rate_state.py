@@ -38,8 +38,8 @@ Integration: an embedded Dormand-Prince 5(4) pair with its 4th-order dense outpu
 Solving ODEs I, sec. II.5-6), step-size control on the local error in (psi, phi) (absolute, i.e. relative in V
 and theta) and in delta (relative to D_c + |delta|), compiled with numba. In log variables the system is only
 mildly stiff (stiffness ratio k D_c / (sigma A) near steady sliding), so the explicit pair takes steps set by
-accuracy except for very stiff springs; ``benchmarks/bench_rate_state.py`` gives its work-precision table
-against a Radau (implicit, stiff) solution at rtol 1e-13.
+accuracy except for very stiff springs; ``python -m compare.studies.rate_state_work_precision`` gives its
+work-precision table against a Radau (implicit, stiff) solution at rtol 1e-13.
 """
 from __future__ import annotations
 

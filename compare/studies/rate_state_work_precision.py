@@ -1,6 +1,6 @@
 """Work-precision of the rate-and-state spring-slider integrator and the 100-cycle timing.
 
-    .venv/bin/python -m benchmarks.bench_rate_state
+    .venv/bin/python -m compare.studies.rate_state_work_precision
 
 Case: the default slider (A = 0.005, B = 0.01, D_c = 10 um, sigma = 10 MPa, V_lp = 1 um/s, eta = 5e6 Pa s/m) at
 k = 0.5 k_c, ageing and slip laws, started 10 % above V_lp: stick-slip with V from ~1e-11 to ~1e-1 m/s. The reference
@@ -54,7 +54,7 @@ def reference(p, duration, dt_out, V_init, method="DOP853", tol=1e-13):
 def main():
     base = rs.SpringSliderParams()
     lines = ["# Rate-and-state spring-slider: work-precision and the 100-cycle timing", "",
-             "Produced by `python -m benchmarks.bench_rate_state`. k = 0.5 k_c, V_init = 1.1 V_lp, default parameters "
+             "Produced by `python -m compare.studies.rate_state_work_precision`. k = 0.5 k_c, V_init = 1.1 V_lp, default parameters "
              "otherwise (stick-slip, V between ~1e-11 and ~1e-1 m/s). Reference: scipy DOP853 at rtol = atol = 1e-13. "
              "Error in ln V: max over the samples (100 per cycle) of the first 10 cycles; slip error: relative error "
              "of the slip at the last sample (half a cycle after the 10th event).", ""]

@@ -1,6 +1,6 @@
 """The ageing model's cost: the reference case (900 s at 1 kHz) and a work-precision table.
 
-    .venv/bin/python -m benchmarks.bench_ageing
+    .venv/bin/python -m compare.studies.ageing_cost
 
 Reference case: AgeingParams() (model I's block, springs and renewals; F_N = 20 N, A = 0.12, B = 0.04,
 D_c = 0.1 mm, ageing law), 900 s at 1 kHz, seed 0, default rtol 1e-6: wall and CPU time, best of 3, with the load.
@@ -27,7 +27,7 @@ def main():
     p = ag.AgeingParams()
     ag.simulate(p, 1.0, 1e-3, seed=0)  # compile / load the cache
     L = ["# Ageing model: cost and work-precision", "",
-         "Produced by `python -m benchmarks.bench_ageing`. Reference case: `AgeingParams()`, 900 s at 1 kHz, seed 0.",
+         "Produced by `python -m compare.studies.ageing_cost`. Reference case: `AgeingParams()`, 900 s at 1 kHz, seed 0.",
          ""]
     rows = []
     for name, params, mod in (("ageing (default rtol 1e-6)", p, ag), ("ageing, slip law", ag.AgeingParams(law="slip"), ag),
