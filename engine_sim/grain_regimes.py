@@ -25,7 +25,7 @@ def wedge_regime(r: float, R: float, mu_pad: float, mu_track: float) -> tuple[st
     :func:`climb_force`); if it is shallower the grain slides ahead with a force of order mu_track m g (pushed, zero
     in the light limit); if it contains phi the grain is wedged: every force along phi balances it, so rigid-body
     mechanics leaves its magnitude undetermined (a static indeterminacy, as of a Coulomb wedge), and a contact
-    solver picks one through its step, iterations and mass ratio (study-results/wear_light_limit.md). On a
+    solver picks one through its step, iterations and mass ratio (``python -m compare.studies.wear_light_limit``). On a
     track of friction patches mu_track varies from patch to patch (:func:`regime_shares`)."""
     theta = math.asin((R - r) / (R + r))
     phi, cone = math.atan2(1.0, mu_track), math.atan(mu_pad)

@@ -35,7 +35,7 @@ __all__ = ["EngineTrace", "Recorder", "step_weights", "FORCE_CHANNELS"]
 # How each recorded force is made in the default recording (run.forces = "mean"), by trace field: "exact" (the mean
 # over the output step from momenta and known impulses), "quadrature" (a smooth spring force integrated from the
 # step's two ends) or "point" (the last pymunk step's contact force at the sample). Measured against the exact means
-# on every shipped scene in study-results/recorder_alias.md. The first sample of a recording has no output step
+# on every shipped scene by `python -m compare.studies.recorder_alias --all`. The first sample of a recording has no output step
 # before it: its forces are point samples.
 FORCE_CHANNELS = {
     "F_t": "exact: the sliders' total tangential contact force, from the sliding system's momentum (its springs "

@@ -193,7 +193,7 @@ def step_mean_velocity(blk, P, sl, sp, ft, fn, fv, prm):
     -c_eff dt v_rel along them), the law's drag -f_v dt (:func:`law_drag` plus ``fv``, the law's own velocity
     part per slider at the sample), a vibration's field and gravity. A step's impulse J does
     J . (v_before + v_after) / 2; J . v_after over-counts J^2 / 2m, in the law's dampers (c dt / 4) sum dv^2, which
-    a vibration makes large. Used in shaken scenes only (``pair_mid``; study-results/vibration.md)."""
+    a vibration makes large. Used in shaken scenes only (``pair_mid``; docs/results/vibration.md)."""
     n_sl = P.shape[0]
     dt = prm[DT]
     F0 = np.zeros((n_sl, 2))

@@ -34,7 +34,7 @@ __all__ = ["WearSpec", "NoWear", "wear_part", "check_wear", "draw_radii", "grain
 # the tracks' segment radius (50 um by default) adds to the margin.
 WEAR_SPEED_FACTOR = 10.0
 WEAR_TUNNEL_FRACTION = 0.25
-# The grain step rule (study-results/wear_convergence.md): a grain of mass m_g squeezed by a pad feels
+# The grain step rule (`python -m compare.studies.wear_convergence`): a grain of mass m_g squeezed by a pad feels
 # the pad's springs, omega_g = sqrt((k0 + k_normal) / m_g). Every grain run measured with omega_g dt <= 0.65 closed
 # the energy balance within 0.5 % (the clean branch); every one with omega_g dt >= 0.81 chattered (residual 2.4-8 %,
 # grains sunk into the track at 1e-6 kg), whatever the solver iterations. The step is cut into substeps so that

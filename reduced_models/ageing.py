@@ -57,7 +57,7 @@ _BLOCK_INTERVALS = 256  # renewal intervals drawn per miniblock at a time (the d
 class AgeingParams:
     """Model I with rate-and-state contacts, SI units. Defaults: model I's reference case (section 4) for the block,
     springs and renewal; rate-and-state values for rubber on concrete as stated in
-    ``study-results/velocity_scaling.md`` (A - B = 0.08 from the paper's Fig. 9 / Table 1; B / A and D_c
+    for ``python -m compare.studies.velocity_scaling`` (A - B = 0.08 from the paper's Fig. 9 / Table 1; B / A and D_c
     assumed).
 
     Attributes

@@ -10,7 +10,8 @@ __all__ = ["balances", "SAMPLES_PER_PERIOD"]
 # that fold onto their means when the output rate is a multiple of its frequency. Measured on the sweep's scenes at
 # 1 kHz and 40 steps per period, past the onset: sampled every step (40 per period) within 6e-5 of the drive's
 # work (0.1 s at 2.72 and 6.58 um), 8e-8 (3 s at 3 um); at 20 per period 7e-5 to 4.5e-4 over 0.1 s but 1.4e-3 and
-# 1.5e-3 over 3 s at 3 um (two seeds); at 4 per period 5e-3 to 5e-2 (study-results/vibration.md).
+# 1.5e-3 over 3 s at 3 um (two seeds); at 4 per period 5e-3 to 5e-2 (docs/results/vibration.md; `python -m
+# compare.studies.energy_ledger` measures one sampling).
 SAMPLES_PER_PERIOD = 40
 
 

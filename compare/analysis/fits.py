@@ -24,8 +24,8 @@ Uncertainty: ``gamma_se`` is the standard error of the slope: the larger of (a) 
 scatter of the binned ordinates about the line (the residual variance, so curvature or extra noise
 widen it) and (b) the value expected from the Welch chi-square scatter alone (a floor against a run
 of ordinates that happen to scatter little). ``gamma_err`` is the
-half-width of the 95 % confidence interval, ``t_{0.975, n-2} * gamma_se``. Over 500 seeds of synthetic
-power laws the 95 % interval covered the truth in 93.8-97.4 % of cases (study-results/fit_methods.md).
+half-width of the 95 % confidence interval, ``t_{0.975, n-2} * gamma_se``. Its coverage over 500 seeds of
+synthetic power laws: docs/results/exponent_fits.md (``python -m compare.studies.fit_methods``).
 
 Not a power law
 ---------------
@@ -181,7 +181,7 @@ def _auto_band(lnw, lnC, var, w, min_decades):
 
 
 METHODS = ("whittle", "lsq")
-DEFAULT_METHOD = "whittle"  # chosen from the table in study-results/fit_methods.md (README, "Exponent fits")
+DEFAULT_METHOD = "whittle"  # chosen from the table of docs/results/exponent_fits.md (compare.studies.fit_methods)
 
 
 def _whittle_gamma(lnw: np.ndarray, P: np.ndarray) -> tuple[float, float, float, int]:

@@ -33,9 +33,9 @@ SIZES = {
               "wear.r_max": 200e-6},
     "power": {"wear.distribution": "power", "wear.exponent": 3.0, "wear.r_min": 20e-6, "wear.r_max": 200e-6},
 }
-# Track types: smooth patches (the base scene, gamma 4.00 +- 0.05 without particles) or a flat-bottomed cavity in
-# every other patch (the scenario's pit widths and depth; 2.89 +- 0.05 without particles), measured in
-# study-results/wear_base_scene.md.
+# Track types: smooth patches (the base scene) or a flat-bottomed cavity in every other patch (the scenario's pit
+# widths and depth); their particle-free exponents: `python -m compare.studies.wear_base_scene`, and the quick
+# study's page docs/results/wear_study_quick.md.
 TRACKS = {"smooth": {"substrate.pit_p": 0.0}, "cavities": {"substrate.pit_p": 0.5}}
 _FACTORS = {"study.size": SIZES, "study.track": TRACKS}
 N_BANDS = 3  # log bands of C_x and C_F over the fit band
@@ -109,7 +109,7 @@ def task_stats(tr, sc, band) -> dict:
         "fit_CF_grains": _fit(sg, band), "CFg_bands": band_average(sg, edges).tolist(),
         "B2_bands": band_average(sg, edges, pred).tolist(), "F_g_mean": float(Fg.mean()),
         # the grains' force split by their state: in the light limit only the trapped part survives (a pushed or wedged
-        # grain's force falls with its mass; study-results/wear_light_limit.md)
+        # grain's force falls with its mass; python -m compare.studies.wear_light_limit)
         "F_g_trapped": float((tr.p_force * (tr.p_state == 1)).sum(axis=1).mean()),
         "F_g_moving": float((tr.p_force * (tr.p_state == 2)).sum(axis=1).mean()),
         # at the mean patch friction; the patches' spread moves a grain between regimes (engine_sim.wear.regime_shares)
@@ -238,8 +238,8 @@ def mass_split(results: list, results_other: list) -> list:
     trapped and moving parts at each mass (N), their ratios other / this (geometric mean over the seeds; per seed
     too), the moving part's share of the grains' force, and the C_x band levels' ratio. In the light limit the
     moving part vanishes (a pushed or wedged grain's force goes with its mass) and the trapped part stays
-    (study-results/wear_light_limit.md, one pad): so the trapped part is this scene's light-limit estimate of
-    the grains' force, a trapped ratio near 1 says it holds in the 30-pad scene too, and the moving share is how
+    (``python -m compare.studies.wear_light_limit``, one pad): so the trapped part is this scene's light-limit
+    estimate of the grains' force, a trapped ratio near 1 says it holds in the 30-pad scene too, and the moving share is how
     far the total sits above it."""
     def by_seed(rs):
         out = {}

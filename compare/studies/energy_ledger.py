@@ -1,4 +1,4 @@
-"""A per-step energy ledger of the sweep's vibrated_patches scene (study-results/vibration.md, energy balance).
+"""A per-step energy ledger of the sweep's vibrated_patches scene (docs/results/vibration.md, energy balance).
 
 Steps the scene one pymunk step at a time with a recorder sampling every step, and books every impulse's work
 exactly, J . (v_before + v_after) / 2 (the kinetic energy identity of pymunk's semi-implicit Euler): the springs' and

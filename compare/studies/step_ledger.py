@@ -1,5 +1,5 @@
 """A prototype: the energy balance of a shaken scene booked exactly inside its step loop, its cost and its residual
-(study-results/vibration.md, "An exact ledger inside the step loop: cost and residual").
+(docs/results/vibration.md, "An exact ledger inside the step loop: cost and residual").
 
 Each pymunk step of the part's loop (engine_sim/vibration.py, substrate target along x) is followed by one
 ``pymunk.batch`` read of the bodies' places and velocities and one numba call that books, with v_mid = (v_before +
@@ -258,7 +258,7 @@ def main(argv=None):
                   f"ledger {r_led:+.2e} (" + ", ".join(f"{k} {a:.6g} / {b:.6g}" for k, (a, b) in parts.items())
                   + f") {time.time() - t0:.0f} s")
             worst = max(worst, abs(r_led))
-    if worst > 1e-4:  # measured 1e-5 at worst (study-results/vibration.md): the ledger no longer closes
+    if worst > 1e-4:  # measured 1e-5 at worst (docs/results/vibration.md): the ledger no longer closes
         sys.exit(f"the ledger's residual {worst:.2e} exceeds 1e-4")
 
 

@@ -2,8 +2,8 @@
 
     python -m compare.studies.wear_study_step [--duration 30] [--omega-dt 0.3] [--json study-results/wear_study_step.json]
 
-The full study (study-results/wear_study.md) flags 2 of 4 runs of the cavity track with 100 broad grains
-(residuals 0.65-1.13 %) under the grain step rule (engine_sim.wear.grain_step: omega_g dt <= 0.6, 4 substeps). The
+The full study (`python -m compare.studies.wear_study` on the sweep wear_study.toml) flags 2 of 4 runs of the
+cavity track with 100 broad grains (residuals 0.65-1.13 %) under the grain step rule (engine_sim.wear.grain_step: omega_g dt <= 0.6, 4 substeps). The
 rule is set by the lightest grain squeezed by a pad's springs; there, grains of up to 200 um wedge in the 60 um deep
 pits and carry most of a pad's load. This reruns the cell's four seeds with the rule's bound lowered (0.3: 7
 substeps) and writes, per seed, the residual, the grains' mean force (trapped part beside it) and gamma at both

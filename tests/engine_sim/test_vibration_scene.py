@@ -279,7 +279,7 @@ def test_vibration_adds_at_most_5_percent_to_a_step(name):
     # CPU time, which other processes do not advance) against the unshaken scene's loop (minimum over 100 chunks,
     # so the smallest step and the largest share). Measured 0.6 us on 16-19 us (3-4 %) under both drives at load
     # 2-4; with the velocity drive's anchor set by a second setter each step and the momentum summed by a kernel
-    # of its own it was 1.7 us (9-10 %) (study-results/vibration.md). The riding anchor's own cost lies
+    # of its own it was 1.7 us (9-10 %) (docs/results/vibration.md, "Cost"). The riding anchor's own cost lies
     # inside space.step (one body and a groove joint): bench_vibration --before-after measures the whole loop.
     from benchmarks.bench_vibration import VIBRATIONS, loop_cost, overhead, scenario
 
@@ -302,7 +302,7 @@ def test_energy_balance_at_40_steps_per_period(scenario):
     # the balance was off by 0.12 of the drive's work at 1.13 um (0.71 at 2.72 um). The dissipation pairs each
     # step's impulses with the step's mean velocity (test_energy_balance_past_the_onset_sampled_every_step). Measured
     # -1.3e-5 and -1.8e-5 at 1.13 um (below the onset of reversal); past the onset (2.72 um) -4.1e-4 and 2.6e-3,
-    # 6.58 um -5.5e-2 and -4.0e-2: the powers sampled every 10 steps alias (study-results/vibration.md)
+    # 6.58 um -5.5e-2 and -4.0e-2: the powers sampled every 10 steps alias (docs/results/vibration.md)
     from engine_sim.scenario import SCENARIO_DIR
 
     d = tomllib.loads((SCENARIO_DIR / "sweeps" / scenario).read_text())

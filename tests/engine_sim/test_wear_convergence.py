@@ -4,7 +4,7 @@ in the step below the rule's.
 
 Measured on this code (8 s runs, 1 s warm-up, seed 0): the grains' mean force on the pads reads 0.3775 N at the rule's
 step, 0.3941 N (+4.4 %) with doubled iterations, 0.4340 N (+15.0 %) at half the rule's step (5e-5 -> 2.5e-5 s; the test takes 116 s;
-study-results/wear_convergence.md: +8 +- 3 % over seeds 0-2 against rows from an earlier code version),
+`python -m compare.studies.wear_convergence` measures seeds 0-2),
 with energy residuals of 0.10-0.12 %. The runs are deterministic, so seed 0 reproduces these numbers; the bounds hold the
 verdicts: iterations within 6 %, the step's effect positive and below 30 % (the test fails if the grains converge
 in dt, which would be news to write down, or drift further).

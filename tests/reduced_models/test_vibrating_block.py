@@ -150,7 +150,7 @@ def test_line_at_omega_v(paired_runs):
 def test_reference_case_is_shaken_and_compare_runs_it(tmp_path):
     # `.reference()` is the paper's case on a shaken substrate (30 um at 3000 rad/s), so `frictionnoise compare
     # model_Iv` shows the vibration's effect: the closed form's in-band level 0.544 of the unshaken one (eq. A11
-    # with the mean-field slope; the value study-results/vibration.md measured 0.559 against), and the
+    # with the mean-field slope; the value docs/results/vibration.md quotes a measurement against), and the
     # simulated run against its closed form within the report's factor 1.25 (measured 0.935-1.078, 200 s)
     import json
     from dataclasses import replace

@@ -92,8 +92,8 @@ def asperity_result(name, sc, quick, seed, trace, duration, progress) -> StudyRe
         "velocity strengthening would give an inertial band but no steady sliding under constant force.",
         "<b>Averaged force</b>: the scene's contact force is its mean over each output step (the recorder's default, "
         "from momenta read at the step's two ends). Its short asperity pulses make point samples alias: against the "
-        "exact means of the same run, a point sample per output step reads C_F up to 6.7x too high in a band below "
-        "half the output Nyquist frequency (study-results/recorder_alias.md, 8 s, seed 0): point samples "
+        "exact means of the same run, a point sample per output step reads C_F several times too high in a band "
+        "below half the output Nyquist frequency (python -m compare.studies.recorder_alias): point samples "
         "would overstate the scene / model III ratios and flatten the force exponent with white aliased power.",
         "Models I and II do not apply to this scene: its feet see no friction patches, and it has no wear particles.",
     ]) + table("Model III parameters extracted from the scene", ["parameter", "value", "unit", "provenance"], param_rows(ex)) \
