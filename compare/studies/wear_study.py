@@ -1,14 +1,16 @@
 """The wear study's results as committed tables (Markdown + CSV + figure) from a sweep folder.
 
-    frictionnoise sweep scenarios/sweeps/wear_study_quick.toml --workers 1 -o /tmp/wear_study_quick
-    python -m compare.studies.wear_study /tmp/wear_study_quick --wall S --command "..." [--out study-results/wear_study_quick]
+    frictionnoise sweep scenarios/sweeps/wear_study_quick.toml --serial -o /tmp/wear_study_quick
+    python -m compare.studies.wear_study /tmp/wear_study_quick --wall S --out docs/results/wear_study_quick
     python -m compare.studies.wear_study /tmp/wear_study --sweep scenarios/sweeps/wear_study.toml --workers 2 --wall S \
         --command "..." --mass-folder /tmp/wear_study_mass --mass-sweep scenarios/sweeps/wear_study_mass.toml \
         --out study-results/wear_study
 
 Reads the sweep's stored tasks (compare.sweep.load_results), computes the cells (compare.wear_study.cells) and writes
-PREFIX.md (the command, the wall time, the cell table, the answer in numbers, the projected wall time of the full
-study from the measured cost per simulated second), PREFIX.csv (one row per cell) and PREFIX.png (the figure).
+PREFIX.md (the commands, the cell table, the answer in numbers, then the cost: the wall time, each cell's wall
+seconds per simulated second and the projected wall time of the full study), PREFIX.csv (one row per cell) and
+PREFIX.png (the figure). The quick study's page is docs/results/wear_study_quick.md: its seeded table holds no
+timing, so a rerun of the same commands writes the same rows (tests/project/test_study_pages.py rebuilds two).
 With ``--mass-folder`` (a sweep of the same cells at another grain mass), the change of gamma per decade of mass
 (compare.wear_study.mass_sensitivity) widens every cell's interval (compare.wear_study.widen), in the table and
 the answer.
@@ -32,6 +34,7 @@ _COLS = ("track", "size", "count", "n", "gamma", "gamma_err", "delta_gamma", "de
          "delta_gamma_err_total", "Cx_ratio_bands", "fit_CF_grains", "fit_CF_friction", "trapped_frac", "moving_frac",
          "covered_fraction", "F_g_mean", "F_g_trapped", "F_g_moving", "regime_fractions", "B2_ratio_bands",
          "energy_resid_max", "energy_flagged", "left_interface", "wall_per_sim_s", "substeps")
+_TABLE_COLS = tuple(c for c in _COLS if c != "wall_per_sim_s")  # the page's table: the seeded columns
 
 
 def _cell_text(v):
@@ -80,7 +83,8 @@ def _light_limit_lines(rows, split, sens) -> list:
     if not grains:
         return []
     L = ["## Light-grain limit in the 30-pad scene (computed)", "",
-         "Only the trapped part of the grains' force has a light limit (one pad: wear_light_limit.md); the moving "
+         "Only the trapped part of the grains' force has a light limit (one pad: `python -m compare.studies."
+         "wear_light_limit`); the moving "
          "(pushed or wedged) part goes with the grains' mass. Share of the grains' mean force that is moving, at the "
          "study's mass, per track: "
          + "; ".join(f"{t}: {min(sh):.2f}-{max(sh):.2f} over {len(sh)} cells" for t in ("smooth", "cavities")
@@ -107,14 +111,25 @@ def _light_limit_lines(rows, split, sens) -> list:
     return L
 
 
+def table_lines(rows) -> list:
+    """The cell table as Markdown lines (header, rule, one line per cell) of the seeded columns: every column of the
+    CSV but the timing (wall_per_sim_s), so that a rerun writes the same lines."""
+    return (["| " + " | ".join(_TABLE_COLS) + " |", "|" + "---|" * len(_TABLE_COLS)]
+            + ["| " + " | ".join(_cell_text(r.get(c)) for c in _TABLE_COLS) + " |" for r in rows])
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("folder", help="the sweep's output folder")
     ap.add_argument("--wall", type=float, required=True, help="the sweep's measured wall time (s)")
-    ap.add_argument("--command", required=True)
+    ap.add_argument("--command", default=None,
+                    help="the commands that made the folder and this page, as the page states them (default: the "
+                         "sweep's and this study's, with the folder written FOLDER)")
+    ap.add_argument("--load", default=None, help="the machine's load while the sweep ran (for the cost section)")
     ap.add_argument("--sweep", default="scenarios/sweeps/wear_study_quick.toml")
     ap.add_argument("--full", default="scenarios/sweeps/wear_study.toml")
-    ap.add_argument("--out", default="study-results/wear_study_quick")
+    ap.add_argument("--out", default="docs/results/wear_study_quick",
+                    help="the files' prefix (PREFIX.md, .csv, .png)")
     ap.add_argument("--workers", type=int, default=1, help="the sweep's worker processes (for the text)")
     ap.add_argument("--mass-folder", default=None, help="a sweep of the same cells at another grain mass")
     ap.add_argument("--mass-sweep", default="scenarios/sweeps/wear_study_mass.toml")
@@ -133,6 +148,7 @@ def main(argv=None):
         sens.update(mass_kg=m0, other_mass_kg=m1)
         rows = widen(rows, sens)
     out = Path(a.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
     buf = io.StringIO()
     w = csv.writer(buf)
     w.writerow(_COLS)
@@ -142,10 +158,11 @@ def main(argv=None):
     plots.save_figure(gamma_figure(rows), out.with_suffix(".png"))
     proj = projected_wall(results, full)
     sim = sum("wear" in r for r in results)
+    command = a.command or (f"frictionnoise sweep {a.sweep} --serial -o FOLDER; python -m compare.studies.wear_study "
+                            f"FOLDER --wall S --out {a.out}")
     L = [f"# Wear study ({spec.name}): does debris steepen the spectrum?", "",
-         f"Command: `{a.command}`  ",
-         f"Wall time: {a.wall:.0f} s ({a.wall / 3600:.2f} h) for {sim} tasks on {a.workers} worker"
-         f"{'s' if a.workers > 1 else ''} (2 cores).  ",
+         f"Reproduce: `{command}` (S: the sweep's wall time, for the cost section). The tables hold no timing: the "
+         "same commands write the same rows on any machine (seeded runs).", "",
          f"Sweep: `{a.sweep}`: {spec.description.replace(chr(10), ' ')}", "",
          "gamma: Whittle fit of C_x over 3-30 v/a (v the law's speed, a = 1 mm: 15-150 rad/s), mean over seeds, +- the "
          "larger of the seed scatter's 95 % half-width (t quantile) and the per-seed 95 % intervals combined; rise: "
@@ -155,16 +172,15 @@ def main(argv=None):
          "covered: grains' summed diameters over the tracks' grain windows (30 x 7 mm); B2: the grains' measured C_F over "
          "eq. (B2) built from the cell's own trap/move episodes, per band (1 = model II exact); F_g_trapped / F_g_moving: "
          "the grains' mean force on the pads while trapped / moving (N; only the trapped part has a light-grain limit, "
-         "study-results/wear_light_limit.md); regime_fractions: the cell's grains by engine_sim.wear.wedge_regime; "
-         "*_err_total: the 95 % half-width with one decade of grain mass added in quadrature (when measured). Energy "
-         "residuals above 1 % are flagged.", "",
-         "| " + " | ".join(_COLS) + " |", "|" + "---|" * len(_COLS)]
-    for r in rows:
-        L.append("| " + " | ".join(_cell_text(r.get(c)) for c in _COLS) + " |")
-    L += ["", "## Answer (computed)", "", answer(rows).replace("&plusmn;", "+-"), ""]
+         "`python -m compare.studies.wear_light_limit`); regime_fractions: the cell's grains by "
+         "engine_sim.wear.wedge_regime; err_total columns: the 95 % half-width with one decade of grain mass added in "
+         "quadrature (when measured). Energy residuals above 1 % are flagged.", ""]
+    L += table_lines(rows)
+    L += ["", f"![gamma against the particle count per track and size]({out.name}.png)", "",
+          "## Answer (computed)", "", answer(rows).replace("&plusmn;", "+-"), ""]
     if sens is not None:
         L += ["## Grain mass systematic (computed)", "",
-              f"`{a.mass_sweep}` ({a.mass_folder}{f', {a.mass_wall:.0f} s wall' if a.mass_wall else ''}): the same cells and "
+              f"`{a.mass_sweep}`: the same cells and "
               f"seeds at {sens['other_mass_kg']:g} kg against {sens['mass_kg']:g} kg ({sens['decades']:+.0f} decade), paired "
               "by seed; change of gamma per decade of grain mass, pooled per track, with its 95 % interval (seed scatter), "
               "and the systematic half-width it implies for one decade (|change| + interval):", ""]
@@ -177,11 +193,17 @@ def main(argv=None):
                      f"{c['mean']:+.3f} |")
         L.append("")
     L += _light_limit_lines(rows, split, sens)
+    L += ["## Cost (timings: machine and load dependent, not reproduced by a rerun)", "",
+          f"Wall time: {a.wall:.0f} s ({a.wall / 3600:.2f} h) for {sim} tasks on {a.workers} worker"
+          f"{'s' if a.workers > 1 else ''} (2 cores{f', load {a.load}' if a.load else ''})"
+          f"{f'; the mass sweep {a.mass_wall:.0f} s' if a.mass_wall else ''}. Wall seconds per simulated second, "
+          "per cell: " + "; ".join(f"{r['track']} {r['size']} {r['count']}: {r['wall_per_sim_s']:.3g}" for r in rows)
+          + ".", ""]
     if a.full != a.sweep:
-        L += ["## Full study projection", "",
-              f"`{a.full}`: {len(expand(full))} tasks; at the cost per simulated second measured here per particle count, "
-              f"{proj:.0f} s on one core ({proj / 3600:.1f} h), about {proj / 7200:.1f} h on two free cores.", ""]
-    out.with_suffix(".md").write_text("\n".join(L) + "\n")
+        L += [f"Full study projection: `{a.full}`, {len(expand(full))} tasks; at the cost per simulated second measured "
+              f"here per particle count, {proj:.0f} s on one core ({proj / 3600:.1f} h), about {proj / 7200:.1f} h on "
+              "two free cores.", ""]
+    out.with_suffix(".md").write_text("\n".join(L).rstrip("\n") + "\n")
     print(out.with_suffix(".md").read_text())
 
 

@@ -1,6 +1,13 @@
-"""A results page rebuilt by its study's code gives the committed table: one row of docs/results/exponent_coverage.md
-(records of 2^12 samples, gamma = 2, no floor: seeds 0-59, the page's run at 2^12) recomputed by
-compare.studies.exponent_coverage and compared as text with the committed row (the table holds no timing)."""
+"""A results page rebuilt by its study's code gives the committed table, compared as text (the tables hold no
+timing):
+
+- one row of docs/results/exponent_coverage.md (records of 2^12 samples, gamma = 2, no floor: seeds 0-59, the page's
+  run at 2^12) recomputed by compare.studies.exponent_coverage;
+- two rows of docs/results/wear_study_quick.md (the smooth track's particle-free twin and its 25 narrow grains, seeds
+  0 and 1: 4 of the page's 28 tasks) by the page's own sweep file with its grid cut to those cells, run by the
+  sweep runner the page's command uses and tabled by compare.studies.wear_study.
+"""
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -17,3 +24,29 @@ def test_exponent_coverage_row_rebuilds():
     committed = [line for line in (ROOT / "docs/results/exponent_coverage.md").read_text().splitlines()
                  if line.startswith("| 2^12 | 2 | none |")]
     assert committed == [rebuilt]
+
+
+def _table_rows(page: Path) -> list:
+    return [line for line in page.read_text().splitlines() if line.startswith("| ")]
+
+
+@pytest.mark.slow  # 4 scene runs of 3.5 s, two of them with 25 wear grains (about a minute on an idle core)
+def test_wear_quick_study_rows_rebuild(tmp_path):
+    from compare.report.wear_study import cells
+    from compare.studies import wear_study as ws
+    from compare.sweep import load_results, load_sweep, run_sweep
+    from engine_sim.shipped import shipped_file
+
+    spec = load_sweep(shipped_file("scenarios/sweeps/wear_study_quick.toml"))
+    cut = replace(spec, grid={**spec.grid, "wear.count": [0, 25], "study.size": ["narrow"],
+                              "study.track": ["smooth"]})
+    assert cut.grid["seed"] == [0, 1]  # the page's seeds: the cut keeps them
+    report = run_sweep(cut, tmp_path, serial=True)
+    assert report["failed"] == 0 and report["done"] == 4
+    header, rule, *rebuilt = ws.table_lines(cells(load_results(tmp_path, cut)))
+    committed = _table_rows(ROOT / "docs/results/wear_study_quick.md")
+    assert committed[0] == header  # the same columns, no timing among them
+    assert "wall_per_sim_s" not in header
+    assert [r.split(" | ")[:3] for r in rebuilt] == [["| smooth", "-", "0"], ["| smooth", "narrow", "25"]]
+    for row in rebuilt:
+        assert row in committed
