@@ -52,7 +52,8 @@ def _cell_text(v):
 def projected_wall(results, full_spec) -> float:
     """Seconds on one core for every task of ``full_spec``: each task's simulated time (duration + warm-up) times the
     wall seconds per simulated second measured in the quick study's cell of the same count and size (the count's
-    mean when the cell was not run; counts in between interpolated linearly)."""
+    mean when the cell was not run; counts in between interpolated linearly, counts above the largest measured
+    priced at its cost: then a lower bound, as the cost grows with the count)."""
     from compare.sweep.spec import build_point
     per = {}
     for r in results:
@@ -200,9 +201,12 @@ def main(argv=None):
           "per cell: " + "; ".join(f"{r['track']} {r['size']} {r['count']}: {r['wall_per_sim_s']:.3g}" for r in rows)
           + ".", ""]
     if a.full != a.sweep:
+        measured = max(int(r["wear"]["count"]) for r in results if r.get("wear"))
+        beyond = max(int(v) for v in full.grid.get("wear.count", [0])) > measured
         L += [f"Full study projection: `{a.full}`, {len(expand(full))} tasks; at the cost per simulated second measured "
-              f"here per particle count, {proj:.0f} s on one core ({proj / 3600:.1f} h), about {proj / 7200:.1f} h on "
-              "two free cores.", ""]
+              f"here per particle count, {'at least ' if beyond else ''}{proj:.0f} s on one core ({proj / 3600:.1f} h), "
+              f"about {proj / 7200:.1f} h on two free cores"
+              f"{f' (counts above {measured} priced at the cost of {measured})' if beyond else ''}.", ""]
     out.with_suffix(".md").write_text("\n".join(L).rstrip("\n") + "\n")
     print(out.with_suffix(".md").read_text())
 

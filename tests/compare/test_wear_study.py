@@ -76,7 +76,7 @@ def test_particle_free_twin_runs_once_per_track_and_seed():
     assert sorted(twins) == sorted({(t, s) for t in ("smooth", "cavities") for s in (0, 1)})  # each once
     # kept at its first occurrence (the grid's first size), so a sweep folder written before keeps its cached twins
     assert {p["study.size"] for p, _ in pts if p["wear.count"] == 0} == {quick.grid["study.size"][0]}
-    assert len(pts) == (2 * 3 + 1) * 2 * 2
+    assert len(pts) == (1 * 3 + 1) * 2 * 2
     # a grid without a wear count is left as it was
     from compare.sweep import SweepSpec
     spec = SweepSpec(name="v", target="scenario", fixed={}, grid={"drive.v": [1e-3, 2e-3], "seed": [0, 1]},
