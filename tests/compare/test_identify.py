@@ -143,6 +143,8 @@ def test_the_explanation_page_example():
     assert ranking[0].model == "model_I" and verdicts["model_I"] == "fits"
     assert verdicts["model_II"] == verdicts["model_III"] == "rejected"
     assert verdicts["model_Iv"] == verdicts["model_ageing"] == verdicts["model_Ib"] == "indistinguishable"
+    # "they coincide with model I on this band" (the page)
+    assert all(m.coincides_with == "model_I" for m in ranking if m.model in ("model_Iv", "model_ageing", "model_Ib"))
     truth, _ = FAMILIES["model_I"].from_model(p)
     value, half, _ = ranking[0].parameters["L"]
     assert abs(value - truth["L"]) <= half
