@@ -4,19 +4,29 @@ directions.
 
 Ranking: by the Bayesian information criterion of the Whittle fit, nll + k ln(n) / 2 (n Fourier ordinates, k
 fitted parameters with the floor), so a family that only adds a feature the record does not show ranks below the
-one without it; criteria within 1 of the lowest count as a tie, won by the family with fewer parameters. Models whose families coincide (model_Iv is model I's family plus a line) share one fit.
+one without it; criteria within 1 of the lowest count as a tie, won by the family with fewer parameters. Models
+whose families are one (model_Iv is model I's family plus a line) share one fit.
 
 Comparison: each model against the best by Vuong's test (Vuong 1989, Econometrica 57, 307) on the per-ordinate
 log-likelihood differences d_j: Z = sum d_j / (sqrt(n) sd(d)); the one-sided p-value 1 - Phi(Z) is the chance of a
 lead this large were the model as close to the record as the best. The parameter counts enter the ranking only
 (Schwarz's correction inside Z would reject a family that nests the best and adds a feature the record does not
 show, for a penalty far larger than its tiny sd(d)): a richer family that fits no better is "indistinguishable", not
-rejected. Where two families coincide on the record (sd(d) = 0) p = 1. The p-values of the comparisons are adjusted by Holm's step-down method
-(Holm 1979). A model is "rejected" at adjusted p < alpha. The best "fits" when every other model is rejected or
-coincides with it on the record (the same family, or one extending it by features the record does not identify:
-model_Iv, or the ageing model with its step outside the band, are model I there); else the best is
-"indistinguishable". Every model not rejected but the best is "indistinguishable", with what would separate it. A record
-flagged as not stationary gets no mechanism.
+rejected. Where two families coincide on the record (sd(d) = 0) p = 1. The p-values of the comparisons are adjusted
+by Holm's step-down method (Holm 1979). A model is "rejected" at adjusted p < alpha.
+
+Coinciding families: a model whose family is the best's (model_Iv is model I's family plus a line), or nests it by
+features with a neutral value (model Ib's micro level, the ageing step) whose gain over the best the record does not
+show, is the best's family on this record's band: it "coincides" with the best. Its gain T = 2 (nll_best - nll_other)
+is judged against the simulated null table of the pair, record length and sampling step
+(:mod:`compare.analysis.null_tables`) where one applies, else against chi^2 with the identified extra parameters'
+count (optimistic: the extra corner is not identified under the null, so the fit's search over it inflates T); these
+p-values are Holm-adjusted across the nesting models, and a model coincides at adjusted p >= alpha, or whenever the
+fit held its extra features at their neutral values. A coinciding model's extra parameters are "not identified".
+
+Verdicts: the best "fits" when every other model is rejected or coincides with it; else the best is
+"indistinguishable". Every model not rejected but the best is "indistinguishable", with what would separate it (a
+coinciding one names the best in ``coincides_with``). A record flagged as not stationary gets no mechanism.
 """
 from __future__ import annotations
 
@@ -28,6 +38,7 @@ from scipy import stats
 
 import reduced_models
 
+from . import null_tables
 from .families import FAMILIES, MARGIN, Family
 from .family_fit import FamilyFit, Grouped, cell_of, fit_family, record_for, sampled_spectrum
 
@@ -57,6 +68,10 @@ class Mechanism:
     bic : float
         Its information criterion (lower is better).
     fit : FamilyFit
+    coincides_with : str or None
+        The best model, where this one's family is the best's on the record's band (module docstring).
+    nested_test : str
+        How a coinciding or nesting model's gain over the best was judged ("" where it does not nest the best).
     """
 
     model: str
@@ -66,6 +81,8 @@ class Mechanism:
     separate: str
     bic: float
     fit: FamilyFit
+    coincides_with: str | None = None
+    nested_test: str = ""
 
     def to_dict(self) -> dict:
         """summary.json's form of this standing.
@@ -73,11 +90,13 @@ class Mechanism:
         Returns
         -------
         dict
-            ``model``, ``verdict``, ``p_value``, ``parameters``, ``separate``, ``bic``, ``band_rad_s`` (rad/s),
-            ``floor_m2s`` (m^2 s) and ``cannot_separate`` (the model's parameters the family lumps together).
+            ``model``, ``verdict``, ``p_value``, ``parameters``, ``separate``, ``coincides_with`` (the best, or
+            None), ``nested_test``, ``bic``, ``band_rad_s`` (rad/s), ``floor_m2s`` (m^2 s) and ``cannot_separate``
+            (the model's parameters the family lumps together).
         """
         return {"model": self.model, "verdict": self.verdict, "p_value": float(self.p_value),
-                "parameters": self.parameters, "separate": self.separate, "bic": float(self.bic),
+                "parameters": self.parameters, "separate": self.separate, "coincides_with": self.coincides_with,
+                "nested_test": self.nested_test, "bic": float(self.bic),
                 "band_rad_s": [float(b) for b in self.fit.band], "floor_m2s": float(self.fit.floor),
                 "cannot_separate": FAMILIES[self.model].cannot_separate}
 
@@ -129,23 +148,38 @@ def vuong(l_best: np.ndarray, l_other: np.ndarray) -> tuple[float, float]:
     return z, float(stats.norm.sf(z))
 
 
-def _coincides(best: str, other: str, fits: dict, level: float) -> bool:
-    """Whether ``other``'s fitted family is ``best``'s on this record: the same family, or one that extends it by
-    features the record does not identify (held neutral or without interval) or that do not raise the likelihood
-    significantly (2 (nll_best - nll_other) below the chi^2 quantile ``level`` of the extra parameters: a likelihood
-    ratio test of nested families, conservative where the extra features vanish at a bound)."""
+def _extra(best: str, other: str) -> list:
+    """The parameters of ``other``'s family that ``best``'s lacks."""
+    names = {p.name for p in FAMILIES[best].params}
+    return [p.name for p in FAMILIES[other].params if p.name not in names]
+
+
+def _nests(best: str, other: str, fits: dict) -> bool:
+    """Whether ``other``'s family extends ``best``'s on this record: it carries every parameter of ``best`` the
+    record identifies (model I's contacts' inertia above the band is not one; the ageing family, whose miniblocks
+    are massless, lacks it) and adds a feature with a neutral value, where it is ``best``'s family."""
     fam_b, fam_o = FAMILIES[best], FAMILIES[other]
     if fam_b.shape is fam_o.shape:
-        return True
-    # the best's parameters this record identifies (model I's contacts' inertia above the band is not one, and the
-    # ageing family, whose miniblocks are massless, has none)
-    base = {p.name for p in fam_b.params if fits[best].intervals.get(p.name) is not None}
-    if not base <= {p.name for p in fam_o.params}:
         return False
-    extra = [p.name for p in fam_o.params if p.name not in {q.name for q in fam_b.params}]
-    if all(fits[other].intervals.get(n) is None for n in extra):
-        return True
-    return 2 * (fits[best].nll - fits[other].nll) < float(stats.chi2.ppf(level, len(extra)))
+    seen = {p.name for p in fam_b.params if fits[best].intervals.get(p.name) is not None}
+    extra = set(_extra(best, other))
+    return seen <= {p.name for p in fam_o.params} and any(p.neutral is not None for p in fam_o.params
+                                                           if p.name in extra)
+
+
+def _nested_p(best: str, other: str, fits: dict, n_samples: int, dt: float) -> tuple:
+    """The p-value of ``other``'s gain over ``best`` (it nests it, :func:`_nests`) and how it was judged: 1 where the
+    fit held its extra features neutral; the pair's simulated null table where one applies
+    (:mod:`compare.analysis.null_tables`); chi^2 with the identified extra parameters' count otherwise."""
+    fit_o = fits[other]
+    seen = [n for n in _extra(best, other) if fit_o.intervals.get(n) is not None]
+    if not seen:
+        return 1.0, "its extra features held neutral (not seen)"
+    t = null_tables.statistic(fits[best].nll, fit_o.nll)
+    table = null_tables.lookup(best, other, n_samples, dt)
+    if table is not None:
+        return table.p_value(t), f"T = {t:.3g} against the simulated null ({table.n} records of {best})"
+    return float(stats.chi2.sf(max(t, 0.0), len(seen))), f"T = {t:.3g} against chi^2({len(seen)}) (no null table)"
 
 
 def _separate(best: str, other: str, fits: dict, v: float) -> str:
@@ -157,7 +191,7 @@ def _separate(best: str, other: str, fits: dict, v: float) -> str:
             bits.append("the vibration's line (and its harmonics) in the raw spectrum, or a record without the "
                         "substrate's vibration")
         return "; ".join(bits)
-    bits = []
+    bits, unseen = [], {}  # what would show a feature -> the parameters placing it
     lo, hi = fit_o.band
     feats = fam_o.features(fit_o.theta, v)
     shared_names = {p.name for p in FAMILIES[best].params}
@@ -173,7 +207,8 @@ def _separate(best: str, other: str, fits: dict, v: float) -> str:
             where = f"a faster sampling or a quieter sensor (its feature near {f:.3g} rad/s lies above the band)"
         else:
             where = f"a longer record or a quieter sensor (its feature near {f:.3g} rad/s is too faint to place)"
-        bits.append(f"{other}'s {p.name}: {where}")
+        unseen.setdefault(where, []).append(p.name)
+    bits += [f"{other}'s {', '.join(names)}: {where}" for where, names in unseen.items()]
     r_b, r_o = reduced_models.MODELS[best].RESPONSE, reduced_models.MODELS[other].RESPONSE
     if r_b != r_o:
         bits.append(f"an independent force record (the x-F phase differs between the {r_b} and {r_o} responses)")
@@ -301,14 +336,28 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
     raw = [vuong(ll[best], ll[n])[1] for n in ranked[1:]]
     adj = holm(raw) if raw else np.array([])
     rejected = {n: bool(p < alpha) for n, p in zip(ranked[1:], adj)}
-    alone = all(rejected[n] or _coincides(best, n, fits, 1 - alpha) for n in ranked[1:])
+    # the models nesting the best: their gains tested, Holm-adjusted among themselves
+    nesting = [n for n in ranked[1:] if _nests(best, n, fits)]
+    tested = {n: _nested_p(best, n, fits, len(x), dt) for n in nesting}
+    adj_nested = dict(zip(nesting, holm([tested[n][0] for n in nesting]))) if nesting else {}
+    coincides = {n: FAMILIES[n].shape is FAMILIES[best].shape or (n in adj_nested and adj_nested[n] >= alpha)
+                 for n in ranked[1:]}
+    for n in ranked[1:]:
+        if coincides[n] and n in adj_nested:
+            # its extra features add nothing the record shows: not identified
+            fits[n] = replace(fits[n], intervals={**fits[n].intervals, **{e: None for e in _extra(best, n)}})
+    alone = all(rejected[n] or coincides[n] for n in ranked[1:])
     out = []
     for i, n in enumerate(ranked):
+        test = ""
         if i == 0:
             verdict, p, sep = ("fits" if alone else "indistinguishable"), 1.0, ""
         else:
-            verdict = "rejected" if rejected[n] else "indistinguishable"
+            verdict = "rejected" if rejected[n] and not coincides[n] else "indistinguishable"
             p = float(adj[i - 1])
-            sep = "" if rejected[n] else _separate(best, n, fits, v)
-        out.append(Mechanism(n, verdict, p, fits[n].parameters(FAMILIES[n]), sep, bic[n], fits[n]))
+            sep = "" if verdict == "rejected" else _separate(best, n, fits, v)
+            if n in tested:
+                test = f"{tested[n][1]}; Holm-adjusted p = {adj_nested[n]:.2g}"
+        out.append(Mechanism(n, verdict, p, fits[n].parameters(FAMILIES[n]), sep, bic[n], fits[n],
+                             best if i > 0 and coincides[n] else None, test))
     return out

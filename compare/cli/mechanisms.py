@@ -48,22 +48,35 @@ def mechanisms_of(data, v: float, flags=()) -> dict:
 
 
 def _value(p) -> str:
-    if isinstance(p, str):
-        return p
     value, half, unit = p
     return f"{value:.3g} +- {half:.2g}" + (f" {unit}" if unit else "")
 
 
+def _params(m: dict) -> str:
+    """The identified parameters as value +- 95 % half-width, then the names of those not identified."""
+    shown = [f"{k} = {_value(v)}" for k, v in m["parameters"].items() if not isinstance(v, str)]
+    unseen = [k for k, v in m["parameters"].items() if isinstance(v, str)]
+    return "; ".join(([", ".join(shown)] if shown else []) + ([f"not identified: {', '.join(unseen)}"] if unseen else []))
+
+
 def ranking_lines(summary: dict) -> list:
-    """The ranking as the terminal shows it, best first: model, verdict, p-value, identified parameters, and what
-    would separate an indistinguishable one."""
+    """The ranking as the terminal shows it, best first: model, verdict, p-value, parameters (identified ones as
+    value +- 95 % half-width, then those not identified); the models coinciding with the best on the record's band
+    under it as one family, with what would separate each; then the others, with what would separate an
+    indistinguishable one."""
     mechs = summary.get("mechanisms") or []
     if not mechs:
         return [f"mechanism: {summary.get('mechanisms_note') or 'none named'}"]
-    lines = ["mechanisms (best first; p: Holm-adjusted, against the best):"]
-    for m in mechs:
-        params = ", ".join(f"{k} = {_value(v)}" for k, v in m["parameters"].items() if not isinstance(v, str))
+    lines = ["mechanisms (best first; p: Holm-adjusted, against the best; +-: 95 % half-width):"]
+    best = mechs[0]["model"]
+    same = [m for m in mechs[1:] if m.get("coincides_with") == best]
+    for m in [mechs[0]] + [m for m in mechs[1:] if m not in same]:
+        params = _params(m)
         lines.append(f"  {m['model']:13s} {m['verdict']:17s} p = {m['p_value']:.2g}" + (f"; {params}" if params else ""))
-        if m["separate"]:
+        if m is mechs[0] and same:
+            lines.append(f"      {', '.join(c['model'] for c in same)} coincide with it on this band (one family "
+                         "here); to separate them:")
+            lines.extend(f"        {c['model']}: {c['separate']}" for c in same)
+        elif m["separate"]:
             lines.append(f"      to separate: {m['separate']}")
     return lines
