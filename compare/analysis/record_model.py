@@ -33,10 +33,10 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy import stats
 
-from .power_floor import PowerFloorProfile, bend_p, interval, keep_band, level_cov, minimum
+from .power_floor import PowerFloorProfile, _above_rounding, bend_p, interval, keep_band, level_cov, minimum
 from .whittle import MAX_ORDER, WhittleRecord, order_for
 
-__all__ = ["RecordFit", "fit_record", "split_p", "TEST_LEVEL", "SCREEN_LEVEL", "GAMMA_MIN", "check_record"]
+__all__ = ["RecordFit", "fit_record", "expected_gamma", "split_p", "TEST_LEVEL", "SCREEN_LEVEL", "GAMMA_MIN", "check_record"]
 
 TEST_LEVEL = 0.01  # the bend, split and split-half tests flag a record (or cut a band) below it
 SCREEN_LEVEL = 0.1  # below it the bend test (a score test: no refit) hands the band to the split test (refits)
@@ -352,3 +352,35 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
                      n_samples=len(x), nll=nll, stationarity_p=p, bend_p=bend, quantity=quantity,
                      flags=tuple(flags), notes=tuple(notes), band_auto=auto, n_points=prof.m,
                      level_cov=level_cov(prof, g, t))
+
+
+def expected_gamma(spectrum, fit: RecordFit, dt: float, band=None, floor: bool = True) -> float:
+    """The exponent :func:`fit_record` converges to on records of ``spectrum``: the same fit (order, floor term,
+    band, length) to the expected periodogram instead of a measured one. A closed form that is not a power law over
+    the band (a window's zeros, a corner near it) has no single exponent; the one to compare a fit with is the one
+    the same estimator reads off the closed form without noise, since the debiased Whittle likelihood weights
+    every Fourier ordinate alike where a straight line through log bins weights every decade alike.
+
+    Parameters
+    ----------
+    spectrum : callable
+        omega (Units: rad/s) -> the sampled record's spectrum C^(s)(omega), folded at Nyquist (the record's unit^2 s).
+    fit : RecordFit
+        The fit of a record of it, whose ``order`` and ``n_samples`` are used.
+    dt : float
+        Sampling step (Units: s).
+    band : tuple of float, optional
+        The band the fit was given (Units: rad/s); default every ordinate.
+    floor : bool, optional
+        Whether the fit had its floor term (:func:`fit_record`'s default).
+
+    Returns
+    -------
+    float
+        gamma of the noise-free fit.
+    """
+    k = fit.order
+    rec = WhittleRecord(np.random.default_rng(0).standard_normal(fit.n_samples), dt, k)
+    rec.periodogram = _above_rounding(rec.expected_from_grid(np.asarray(spectrum(rec.grid_omega), dtype=float)))
+    prof = PowerFloorProfile([rec], floor, keep_band(rec, band))
+    return minimum(prof, max(GAMMA_MIN, 2 * k - 3.0), 2 * k + _HEADROOM, fit.gamma)[0]
