@@ -354,7 +354,7 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
                      level_cov=level_cov(prof, g, t))
 
 
-def expected_gamma(spectrum, fit: RecordFit, dt: float, band=None, floor: bool = True) -> float:
+def expected_gamma(spectrum, fit: RecordFit, dt: float, band=None, floor: bool = True, sampled: bool = True) -> float:
     """The exponent :func:`fit_record` converges to on records of ``spectrum``: the same fit (order, floor term,
     band, length) to the expected periodogram instead of a measured one. A closed form that is not a power law over
     the band (a window's zeros, a corner near it) has no single exponent; the one to compare a fit with is the one
@@ -373,6 +373,10 @@ def expected_gamma(spectrum, fit: RecordFit, dt: float, band=None, floor: bool =
         The band the fit was given (Units: rad/s); default every ordinate.
     floor : bool, optional
         Whether the fit had its floor term (:func:`fit_record`'s default).
+    sampled : bool, optional
+        ``spectrum`` is already the sampled record's (default); False folds a continuous one at Nyquist by its 8
+        nearest images on each side (omega^-2 leaves about 1/(2 pi^2 8) of its Nyquist level out, a few percent
+        near Nyquist and nothing a band far below it feels beyond leakage).
 
     Returns
     -------
@@ -381,6 +385,12 @@ def expected_gamma(spectrum, fit: RecordFit, dt: float, band=None, floor: bool =
     """
     k = fit.order
     rec = WhittleRecord(np.random.default_rng(0).standard_normal(fit.n_samples), dt, k)
-    rec.periodogram = _above_rounding(rec.expected_from_grid(np.asarray(spectrum(rec.grid_omega), dtype=float)))
+    w = rec.grid_omega
+    if sampled:
+        values = np.asarray(spectrum(w), dtype=float)
+    else:
+        ws = 2.0 * math.pi / dt
+        values = sum(np.asarray(spectrum(np.abs(w + m * ws)), dtype=float) for m in range(-8, 9))
+    rec.periodogram = _above_rounding(rec.expected_from_grid(values))
     prof = PowerFloorProfile([rec], floor, keep_band(rec, band))
     return minimum(prof, max(GAMMA_MIN, 2 * k - 3.0), 2 * k + _HEADROOM, fit.gamma)[0]
