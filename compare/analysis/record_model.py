@@ -36,7 +36,7 @@ from scipy import stats
 from .power_floor import PowerFloorProfile, _above_rounding, bend_p, interval, keep_band, level_cov, minimum
 from .whittle import MAX_ORDER, WhittleRecord, order_for
 
-__all__ = ["RecordFit", "fit_record", "expected_gamma", "split_p", "TEST_LEVEL", "SCREEN_LEVEL", "GAMMA_MIN", "check_record"]
+__all__ = ["RecordFit", "fit_record", "fit_series", "expected_gamma", "split_p", "TEST_LEVEL", "SCREEN_LEVEL", "GAMMA_MIN", "check_record"]
 
 TEST_LEVEL = 0.01  # the bend, split and split-half tests flag a record (or cut a band) below it
 SCREEN_LEVEL = 0.1  # below it the bend test (a score test: no refit) hands the band to the split test (refits)
@@ -394,3 +394,37 @@ def expected_gamma(spectrum, fit: RecordFit, dt: float, band=None, floor: bool =
     rec.periodogram = _above_rounding(rec.expected_from_grid(values))
     prof = PowerFloorProfile([rec], floor, keep_band(rec, band))
     return minimum(prof, max(GAMMA_MIN, 2 * k - 3.0), 2 * k + _HEADROOM, fit.gamma)[0]
+
+
+def fit_series(t, y, *, band=None, quantity: str = "x", stationarity: bool = True,
+               integrate: bool = False) -> RecordFit:
+    """:func:`fit_record` of a record given with its sample times: the exponent every report, ``compare`` and sweep
+    quotes of a time record (a scene's x(t) or F(t), a simulator's output).
+
+    Parameters
+    ----------
+    t, y : array_like
+        Sample times (Units: s, uniform) and the record (its own unit).
+    band : tuple of float, optional
+        (low, high) (Units: rad/s): the Fourier ordinates fitted; default the record model's own band search.
+    quantity : str, optional
+        ``"x"``, ``"F"``, ...: what the record is of.
+    stationarity : bool, optional
+        Run the split-half test (three more fits): off only for an exact simulator, stationary by construction.
+    integrate : bool, optional
+        Fit the running sum of y dt and return the exponent of y (gamma - 2): for a spectrum flatter than
+        omega^-1.05 (a 1/f force), which the record model cannot represent. The sum's transfer
+        dt^2 / (4 sin^2(omega dt / 2)) is omega^-2 to (omega dt)^2 / 12 of it.
+
+    Returns
+    -------
+    RecordFit
+    """
+    t = np.asarray(t, dtype=float)
+    dt = float(t[1] - t[0])
+    y = np.asarray(y, dtype=float)
+    if not integrate:
+        return fit_record(y, dt, band=band, quantity=quantity, stationarity=stationarity)
+    check_record(y, quantity)  # a flat channel is refused as such, not as its (linear) running sum
+    z = np.cumsum(y - y.mean()) * dt
+    return fit_record(z, dt, band=band, quantity=quantity, stationarity=stationarity).derived(2.0, 1.0, quantity)

@@ -59,28 +59,11 @@ def _mean_forces(tr) -> dict:
             "mean_F_drag": float(tr.F_drag.mean())}
 
 
-def _record_fit(fit_record, t, y, band, series) -> dict:
-    """The record model's fit of one task's record (JSON-ready): gamma by the debiased Whittle likelihood of the
-    differenced record over ``band`` (its own band search when None). A force's running sum is fitted and its
-    exponent less 2 returned, so a force flatter than the model's omega^-1.05 (model II's 1/f) is fitted too."""
-    import numpy as np
-
-    t = np.asarray(t, dtype=float)
-    dt = float(t[1] - t[0])
-    y = np.asarray(y, dtype=float)
-    if y.ndim > 1:
-        y = y.sum(axis=1)
-    if series == "x":
-        return fit_record(y, dt, band=band).to_dict()
-    z = np.cumsum(y - y.mean()) * dt
-    return fit_record(z, dt, band=band, quantity="F").derived(2.0, 1.0, "F").to_dict()
-
-
 def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
     """Run one grid point; return its log-binned spectrum (C_x, or C_F for a model whose ``SWEEP_SERIES`` is
     "force"), fit and timings (JSON-ready). Never raises: an error is returned as {"error": ...} with the
     parameters, so one failure loses nothing else."""
-    from ..analysis.record_model import fit_record
+    from ..analysis.record_model import fit_series
     from ..analysis.spectra import displacement_spectrum, force_series_spectrum, log_bin
 
     t0 = time.perf_counter()
@@ -101,7 +84,12 @@ def run_task(spec: SweepSpec, params: dict, seed: int) -> dict:
         if band is not None and band[1] < 2 * band[0]:
             band = None  # the model's own band has closed (e.g. v/a near omega_c): use the automatic one
         try:
-            fit = _record_fit(fit_record, tr.t, tr.x if series == "x" else getattr(tr, series), band, series)
+            y = tr.x if series == "x" else getattr(tr, series)
+            y = y.sum(axis=1) if y.ndim > 1 else y
+            # the record model on the record; a force through its running sum (model II's 1/f is flatter than the
+            # model's omega^-1.05)
+            fit = fit_series(tr.t, y, band=band, quantity="x" if series == "x" else "F",
+                             integrate=series != "x").to_dict()
         except ValueError as e:
             fit = {"error": str(e)}
         lb = log_bin(spec_x, 20)

@@ -10,13 +10,14 @@ from compare.analysis.record_model import fit_record
 from compare.report.studies._common import record_fit
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-REPORT_FILES = sorted((ROOT / "compare" / "report" / "studies").glob("*.py")) + [ROOT / "compare" / "sweep" / "tasks.py"]
+REPORT_FILES = sorted((ROOT / "compare" / "report" / "studies").glob("*.py")) + [
+    ROOT / "compare" / "sweep" / "tasks.py", ROOT / "compare" / "analysis" / "wear_study.py"]
 DT = 1e-3
 
 
 @pytest.mark.parametrize("path", REPORT_FILES, ids=lambda p: p.name)
 def test_no_report_study_fits_a_welch_spectrum(path):
-    # fit_power_law is named nowhere in the report's studies or the sweep's task (imported, called or reached as an
+    # fit_power_law is named nowhere in the report's studies, the sweep's task or the wear study's statistics (imported, called or reached as an
     # attribute): every exponent they quote is fitted to a record by the record model.
     names = {n.id for n in ast.walk(ast.parse(path.read_text())) if isinstance(n, ast.Name)}
     names |= {n.attr for n in ast.walk(ast.parse(path.read_text())) if isinstance(n, ast.Attribute)}
@@ -55,3 +56,12 @@ def test_integrated_force_fit_reads_the_force_exponent():
     t = np.arange(len(f)) * DT
     fit = record_fit(t, f, band=(1.0, 300.0), quantity="F", stationarity=False, integrate=True)
     assert fit.quantity == "F" and abs(fit.gamma - 1.0) < 0.1
+
+
+def test_a_flat_force_is_refused_as_flat_not_as_its_running_sum():
+    # The running sum of a constant channel is a straight line (a record with a spectrum); the record itself is
+    # refused, in one line naming the channel.
+    t = np.arange(4096) * DT
+    with pytest.raises(ValueError, match="F") as e:
+        record_fit(t, np.full(t.size, 2.5), band=(1.0, 300.0), quantity="F", integrate=True)
+    assert "\n" not in str(e.value)

@@ -39,40 +39,12 @@ def require_band(spec, band, T: float, dt_out: float, nominal_low: float | None 
 
 
 def record_fit(t, x, band=None, quantity: str = "x", stationarity: bool = True, integrate: bool = False):
-    """The exponent of a uniformly sampled time record by the record model
-    (:func:`compare.analysis.record_model.fit_record`: C = A omega^-gamma + B by the debiased Whittle likelihood of
-    the differenced record, a 95 % profile interval, the bend and split-half tests in ``flags``). Every exponent the
-    report quotes from a record (a scene's x(t) or F(t), a simulator's output) comes from here, not from a straight
-    line through a Welch spectrum.
+    """The exponent of a time record, as every study quotes it: the record model
+    (:func:`compare.analysis.record_model.fit_series`, whose parameters these are), not a straight line through a
+    Welch spectrum."""
+    from ...analysis.record_model import fit_series
 
-    Parameters
-    ----------
-    t, x : array_like
-        Sample times (Units: s, uniform) and the record (its own unit).
-    band : tuple of float, optional
-        (low, high) (Units: rad/s): where the study's claim is about a stated band, the likelihood over the Fourier
-        ordinates inside it only; default the record model's own band search.
-    quantity : str, optional
-        ``"x"``, ``"F"``, ...: what the record is of (a force's exponent is shown as a slope).
-    stationarity : bool, optional
-        Run the split-half test (three more fits): off only for an exact simulator, stationary by construction.
-    integrate : bool, optional
-        Fit the running sum x dt instead and return the exponent of x (gamma - 2): for a spectrum flatter than
-        omega^-1.05 (a 1/f force), which the record model cannot represent; the sum's transfer
-        dt^2 / (4 sin^2(omega dt / 2)) is omega^-2 to (omega dt)^2 / 12.
-
-    Returns
-    -------
-    RecordFit
-    """
-    from ...analysis.record_model import fit_record
-
-    t = np.asarray(t, dtype=float)
-    dt = float(t[1] - t[0])
-    if integrate:
-        y = np.cumsum(np.asarray(x, dtype=float) - np.mean(x)) * dt
-        return fit_record(y, dt, band=band, quantity=quantity, stationarity=stationarity).derived(2.0, 1.0, quantity)
-    return fit_record(x, dt, band=band, quantity=quantity, stationarity=stationarity)
+    return fit_series(t, x, band=band, quantity=quantity, stationarity=stationarity, integrate=integrate)
 
 
 def band_ratios(spec, theory_values, edges) -> list:
