@@ -118,4 +118,6 @@ def run(quick: bool, seed: int) -> list:
     return [_reference(p, seed), _variations(p, quick, seed)]
 
 
-STUDY = Study("model_I", "model I", run, cost=3.3, quick_cost=2.4)  # CPU s (benchmarks/bench_report.py)
+# CPU s (benchmarks/bench_report.py); quick: 137 s measured at load 8-15 with the record model's six fits of
+# 300-900 s records (full: at least that, not re-measured)
+STUDY = Study("model_I", "model I", run, cost=137.0, quick_cost=137.0)
