@@ -118,6 +118,6 @@ def run(quick: bool, seed: int) -> list:
     return [_reference(p, seed), _variations(p, quick, seed)]
 
 
-# CPU s (benchmarks/bench_report.py); quick: 137 s measured at load 8-15 with the record model's six fits of
+# CPU s (benchmarks/bench_report.py); quick: 126 s measured at load 8-15 with the record model's six fits of
 # 300-900 s records (full: at least that, not re-measured)
-STUDY = Study("model_I", "model I", run, cost=137.0, quick_cost=137.0)
+STUDY = Study("model_I", "model I", run, cost=126.0, quick_cost=126.0)

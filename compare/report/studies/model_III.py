@@ -69,6 +69,6 @@ def run(quick: bool, seed: int) -> list:
             StudyResult("model_III_N300", "", numbers["model_III_N300"])]
 
 
-# CPU s (benchmarks/bench_report.py); quick: 42 s measured at load 8-15 with the record model and the closed form
+# CPU s (benchmarks/bench_report.py); quick: 32 s measured at load 8-15 with the record model and the closed form
 # read by the same fit (full: at least that, not re-measured)
-STUDY = Study("model_III", "model III", run, cost=42.0, quick_cost=42.0)
+STUDY = Study("model_III", "model III", run, cost=32.0, quick_cost=32.0)
