@@ -107,6 +107,10 @@ def test_non_editable_install_quick_report_holds_the_models_and_the_headline_sce
     # every exponent the report quotes is the record model's (compare.analysis.record_model), fitted to the record
     fits = dict(_fits(summary))
     assert len(fits) >= 20 and {p for p, f in fits.items() if f.get("method") != "record"} == set()
+    # and docs/results/report_exponents.md quotes each of them as this report reads it (seed 0, bit for bit)
+    page = (ROOT / "docs" / "results" / "report_exponents.md").read_text()
+    missing = [p for p, f in fits.items() if f"{f['gamma']:.3f} ± {f['gamma_err']:.3f}" not in page]
+    assert not missing, missing
     print(f"quick report from the installed package: {wall:.1f} s, scenes {headline}")
 
 
