@@ -33,7 +33,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy import stats
 
-from .power_floor import PowerFloorProfile, _above_rounding, bend_p, interval, keep_band, level_cov, minimum
+from .power_floor import PowerFloorProfile, above_rounding, bend_p, interval, keep_band, level_cov, minimum
 from .whittle import MAX_ORDER, WhittleRecord, order_for
 
 __all__ = ["RecordFit", "fit_record", "fit_series", "expected_gamma", "split_p", "TEST_LEVEL", "SCREEN_LEVEL", "GAMMA_MIN", "check_record"]
@@ -391,7 +391,7 @@ def expected_gamma(spectrum, fit: RecordFit, dt: float, band=None, floor: bool =
     else:
         ws = 2.0 * math.pi / dt
         values = sum(np.asarray(spectrum(np.abs(w + m * ws)), dtype=float) for m in range(-8, 9))
-    rec.periodogram = _above_rounding(rec.expected_from_grid(values))
+    rec.periodogram = above_rounding(rec.expected_from_grid(values))
     prof = PowerFloorProfile([rec], floor, keep_band(rec, band))
     return minimum(prof, max(GAMMA_MIN, 2 * k - 3.0), 2 * k + _HEADROOM, fit.gamma)[0]
 
