@@ -16,7 +16,7 @@ from scipy import optimize, stats
 
 from .whittle import WhittleRecord
 
-__all__ = ["PowerFloorProfile", "minimum", "interval", "bend_p", "level_cov", "keep_band"]
+__all__ = ["PowerFloorProfile", "minimum", "interval", "bend_p", "level_cov", "keep_band", "above_rounding"]
 
 _CHI2_95 = float(stats.chi2.ppf(0.95, 1))
 _RATIO_RANGE = (-100.0, 100.0)  # ln of the floor's share of the mean expected periodogram: a floor that meets an
@@ -31,7 +31,7 @@ def _hurwitz_tail(q: np.ndarray, gamma: float) -> np.ndarray:
             - gamma * (gamma + 1.0) * (gamma + 2.0) / 720.0 * q ** (-gamma - 3.0))
 
 
-def _above_rounding(e: np.ndarray) -> np.ndarray:
+def above_rounding(e: np.ndarray) -> np.ndarray:
     """An expected periodogram with ordinates below the FFT's rounding (1e-13 of its largest: a differenced floor's
     omega^2k at the lowest frequencies of a long record) raised to that level, so that none is zero or negative."""
     return np.maximum(e, 1e-13 * float(np.max(e)))
@@ -82,7 +82,7 @@ class PowerFloorProfile:
         if hit is None:
             full = self.rec.memo.get(("power", gamma))
             if full is None:
-                full = _above_rounding(self.rec.expected_from_grid(self.fold(gamma)))
+                full = above_rounding(self.rec.expected_from_grid(self.fold(gamma)))
                 if len(self.rec.memo) * full.size > 2**23:  # 64 MB of kept vectors at most
                     self.rec.memo.clear()
                 self.rec.memo[("power", gamma)] = full

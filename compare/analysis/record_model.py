@@ -33,10 +33,10 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy import stats
 
-from .power_floor import PowerFloorProfile, bend_p, interval, keep_band, level_cov, minimum
+from .power_floor import PowerFloorProfile, above_rounding, bend_p, interval, keep_band, level_cov, minimum
 from .whittle import MAX_ORDER, WhittleRecord, order_for
 
-__all__ = ["RecordFit", "fit_record", "split_p", "TEST_LEVEL", "SCREEN_LEVEL", "GAMMA_MIN", "check_record"]
+__all__ = ["RecordFit", "fit_record", "fit_series", "expected_gamma", "split_p", "TEST_LEVEL", "SCREEN_LEVEL", "GAMMA_MIN", "check_record"]
 
 TEST_LEVEL = 0.01  # the bend, split and split-half tests flag a record (or cut a band) below it
 SCREEN_LEVEL = 0.1  # below it the bend test (a score test: no refit) hands the band to the split test (refits)
@@ -352,3 +352,79 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
                      n_samples=len(x), nll=nll, stationarity_p=p, bend_p=bend, quantity=quantity,
                      flags=tuple(flags), notes=tuple(notes), band_auto=auto, n_points=prof.m,
                      level_cov=level_cov(prof, g, t))
+
+
+def expected_gamma(spectrum, fit: RecordFit, dt: float, band=None, floor: bool = True, sampled: bool = True) -> float:
+    """The exponent :func:`fit_record` converges to on records of ``spectrum``: the same fit (order, floor term,
+    band, length) to the expected periodogram instead of a measured one. A closed form that is not a power law over
+    the band (a window's zeros, a corner near it) has no single exponent; the one to compare a fit with is the one
+    the same estimator reads off the closed form without noise, since the debiased Whittle likelihood weights
+    every Fourier ordinate alike where a straight line through log bins weights every decade alike.
+
+    Parameters
+    ----------
+    spectrum : callable
+        omega (Units: rad/s) -> the sampled record's spectrum C^(s)(omega), folded at Nyquist (the record's unit^2 s).
+    fit : RecordFit
+        The fit of a record of it, whose ``order`` and ``n_samples`` are used.
+    dt : float
+        Sampling step (Units: s).
+    band : tuple of float, optional
+        The band the fit was given (Units: rad/s); default every ordinate.
+    floor : bool, optional
+        Whether the fit had its floor term (:func:`fit_record`'s default).
+    sampled : bool, optional
+        ``spectrum`` is already the sampled record's (default); False folds a continuous one at Nyquist by its 8
+        nearest images on each side (omega^-2 leaves about 1/(2 pi^2 8) of its Nyquist level out, a few percent
+        near Nyquist and nothing a band far below it feels beyond leakage).
+
+    Returns
+    -------
+    float
+        gamma of the noise-free fit.
+    """
+    k = fit.order
+    rec = WhittleRecord(np.random.default_rng(0).standard_normal(fit.n_samples), dt, k)
+    w = rec.grid_omega
+    if sampled:
+        values = np.asarray(spectrum(w), dtype=float)
+    else:
+        ws = 2.0 * math.pi / dt
+        values = sum(np.asarray(spectrum(np.abs(w + m * ws)), dtype=float) for m in range(-8, 9))
+    rec.periodogram = above_rounding(rec.expected_from_grid(values))
+    prof = PowerFloorProfile([rec], floor, keep_band(rec, band))
+    return minimum(prof, max(GAMMA_MIN, 2 * k - 3.0), 2 * k + _HEADROOM, fit.gamma)[0]
+
+
+def fit_series(t, y, *, band=None, quantity: str = "x", stationarity: bool = True,
+               integrate: bool = False) -> RecordFit:
+    """:func:`fit_record` of a record given with its sample times: the exponent every report, ``compare`` and sweep
+    quotes of a time record (a scene's x(t) or F(t), a simulator's output).
+
+    Parameters
+    ----------
+    t, y : array_like
+        Sample times (Units: s, uniform) and the record (its own unit).
+    band : tuple of float, optional
+        (low, high) (Units: rad/s): the Fourier ordinates fitted; default the record model's own band search.
+    quantity : str, optional
+        ``"x"``, ``"F"``, ...: what the record is of.
+    stationarity : bool, optional
+        Run the split-half test (three more fits): off only for an exact simulator, stationary by construction.
+    integrate : bool, optional
+        Fit the running sum of y dt and return the exponent of y (gamma - 2): for a spectrum flatter than
+        omega^-1.05 (a 1/f force), which the record model cannot represent. The sum's transfer
+        dt^2 / (4 sin^2(omega dt / 2)) is omega^-2 to (omega dt)^2 / 12 of it.
+
+    Returns
+    -------
+    RecordFit
+    """
+    t = np.asarray(t, dtype=float)
+    dt = float(t[1] - t[0])
+    y = np.asarray(y, dtype=float)
+    if not integrate:
+        return fit_record(y, dt, band=band, quantity=quantity, stationarity=stationarity)
+    check_record(y, quantity)  # a flat channel is refused as such, not as its (linear) running sum
+    z = np.cumsum(y - y.mean()) * dt
+    return fit_record(z, dt, band=band, quantity=quantity, stationarity=stationarity).derived(2.0, 1.0, quantity)

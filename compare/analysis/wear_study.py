@@ -59,10 +59,11 @@ def expand_factors(model: dict) -> dict:
     return out
 
 
-def _fit(spec, band):
-    from .fits import fit_power_law
+def _fit(t, y, band, force: bool):
+    """The record model's gamma of one record over ``band`` (a force through its running sum), or the error."""
+    from .record_model import fit_series
     try:
-        f = fit_power_law(spec, band=band)
+        f = fit_series(t, y, band=band, quantity="F" if force else "x", integrate=force)
         return {"gamma": f.gamma, "gamma_err": f.gamma_err, "power_law": f.power_law}
     except ValueError as e:
         return {"error": str(e)}
@@ -70,8 +71,8 @@ def _fit(spec, band):
 
 def _nperseg(n: int) -> int:
     """Welch segment length: the pipeline's default, raised to 2^floor(log2(n / 2)) up to 2048 samples, so a short
-    run (3 s at 1 ms) resolves the band's bottom (3 v/a = 15 rad/s needs segments of 0.42 s or more). The gamma fit
-    itself is Whittle's, on the raw periodogram, whatever the segment length."""
+    run (3 s at 1 ms) resolves the band's bottom (3 v/a = 15 rad/s needs segments of 0.42 s or more) in the band
+    levels. The exponents are the record model's, on the record itself, whatever the segment length."""
     from .estimators import default_nperseg
     return max(default_nperseg(n), min(2048, 2 ** int(math.floor(math.log2(max(n, 2) / 2)))))
 
@@ -86,12 +87,11 @@ def task_stats(tr, sc, band) -> dict:
     edges = np.logspace(np.log10(band[0]), np.log10(band[1]), N_BANDS + 1)
     nper = _nperseg(tr.t.size)
     sx = displacement_spectrum(tr.t, tr.x, nperseg=nper)
-    sf = force_series_spectrum(tr.t, tr.F_t, nperseg=nper)
     bal = balances(tr)
     gs = tr.metadata["scene"].get("grain_step", {})
     w = sc.wear
-    out = {"edges": edges.tolist(), "Cx_bands": band_average(sx, edges).tolist(), "fit_x": _fit(sx, band),
-           "nperseg": nper, "fit_CF_friction": _fit(sf, band),
+    out = {"edges": edges.tolist(), "Cx_bands": band_average(sx, edges).tolist(), "fit_x": _fit(tr.t, tr.x, band, False),
+           "nperseg": nper, "fit_CF_friction": _fit(tr.t, tr.F_t, band, True),
            "energy_balance_rel": bal["energy_balance_rel"], "energy_flag": bool(abs(bal["energy_balance_rel"]) > 0.01),
            "force_balance_rel": bal["force_balance_rel"], "count": int(w.count), "grain_step": gs,
            "wall_per_sim_s": float(tr.metadata["wall_s"]) / (sc.run.duration + sc.run.warmup)}
@@ -106,7 +106,7 @@ def task_stats(tr, sc, band) -> dict:
     from engine_sim.wear import wedge_regime
     regimes = [wedge_regime(r, sc.pads.radius, w.mu_pad, w.mu_track)[0] for r in radii]
     out.update({
-        "fit_CF_grains": _fit(sg, band), "CFg_bands": band_average(sg, edges).tolist(),
+        "fit_CF_grains": _fit(tr.t, Fg, band, True), "CFg_bands": band_average(sg, edges).tolist(),
         "B2_bands": band_average(sg, edges, pred).tolist(), "F_g_mean": float(Fg.mean()),
         # the grains' force split by their state: in the light limit only the trapped part survives (a pushed or wedged
         # grain's force falls with its mass; python -m compare.studies.wear_light_limit)

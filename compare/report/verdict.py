@@ -34,7 +34,8 @@ def fit_text(fit, digits: int = 2, slope: bool = False) -> str:
 
 def _short(flags) -> str:
     """The flags in a few words: "band under a decade", "curved"."""
-    words = {"band spans": "band under a decade", "log-log residuals curve": "curved"}
+    words = {"band spans": "band under a decade", "log-log residuals curve": "curved", "not stationary": "not stationary",
+             "the spectrum bends": "bends", "no band of a decade": "no decade of one power law"}
     return ", ".join(dict.fromkeys(next((w for k, w in words.items() if f.startswith(k)), f) for f in flags))
 
 

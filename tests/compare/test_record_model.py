@@ -7,7 +7,7 @@ import pytest
 from scipy import special, stats
 
 from compare.analysis.power_floor import PowerFloorProfile
-from compare.analysis.record_model import check_record, fit_record
+from compare.analysis.record_model import check_record, expected_gamma, fit_record
 from compare.analysis.synthetic import power_law_record
 from compare.analysis.whittle import WhittleRecord
 
@@ -137,3 +137,38 @@ def test_spectrum_record_of_a_power_law_is_power_law_record():
     a = spectrum_record(2048, DT, lambda w: w**-4.0, 2, seed=3)
     b = power_law_record(2048, DT, 4.0, seed=3)
     assert np.max(np.abs(a - b)) < 1e-3 * np.std(b)
+
+
+def _folded(omega, gamma, dt=DT):
+    """A omega^-gamma (A = 1) folded at Nyquist: the sampled record's spectrum, by Hurwitz zeta sums."""
+    u = np.asarray(omega) * dt / (2 * math.pi)
+    return (2 * math.pi / dt) ** -gamma * (special.zeta(gamma, u) + special.zeta(gamma, 1 - u))
+
+
+@pytest.mark.parametrize("gamma, band", [(4.0, None), (4.0, (10.0, 300.0)), (2.5, (3.0, 100.0))])
+def test_expected_gamma_of_a_power_law_is_its_exponent(gamma, band):
+    # Fitted to its own expected periodogram, a power law's exponent comes back to the optimiser's tolerance (1e-5
+    # in gamma, xatol of the Brent step), well inside 1e-3: the reference a closed form gives the report is exact.
+    fit = fit_record(power_law_record(4096, DT, gamma, seed=0), DT, band=band, stationarity=False)
+    assert abs(expected_gamma(lambda w: _folded(w, gamma), fit, DT, band) - gamma) < 1e-3
+
+
+def test_expected_gamma_weights_every_ordinate_not_every_decade():
+    # omega^-4 below 100 rad/s and omega^-6 above (continuous at the corner), over 10-1000 rad/s: half the band's
+    # decades are at each exponent, so a line through log bins reads 5, but 90 % of the Fourier ordinates lie
+    # above the corner; the same fit without noise reads nearer 6 than 5, and it is what records of it converge to.
+    def spectrum(w):
+        w = np.asarray(w)
+        return np.where(w < 100.0, w ** -4.0, 1e4 * w ** -6.0)
+    x = power_law_record(2**14, DT, 5.0, seed=1)
+    fit = fit_record(x, DT, band=(10.0, 1000.0), stationarity=False)
+    g = expected_gamma(spectrum, fit, DT, (10.0, 1000.0))
+    assert 5.5 < g < 6.0
+
+
+def test_expected_gamma_folds_a_continuous_closed_form():
+    # A continuous omega^-4 folded by 8 images each side leaves out about 17^-3 / 3 of its Nyquist level: over
+    # 10-300 rad/s the noise-free fit still reads 4 within 1e-3.
+    band = (10.0, 300.0)
+    fit = fit_record(power_law_record(4096, DT, 4.0, seed=0), DT, band=band, stationarity=False)
+    assert abs(expected_gamma(lambda w: np.asarray(w) ** -4.0, fit, DT, band, sampled=False) - 4.0) < 1e-3

@@ -73,6 +73,18 @@ def _sections_hold_figures(html: str, names) -> None:
         assert f"href='#{anchor}'" in html, f"{name} not in the contents"
 
 
+def _fits(node, path=""):
+    """(path, fit) of every exponent fit in a summary.json: a dict with "gamma" and "gamma_err"."""
+    if isinstance(node, dict):
+        if "gamma" in node and "gamma_err" in node:
+            yield path, node
+        for k, v in node.items():
+            yield from _fits(v, f"{path}/{k}")
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            yield from _fits(v, f"{path}[{i}]")
+
+
 # the README's main job: about 30 s on 2 idle cores with a warm numba cache, once per session
 def test_non_editable_install_quick_report_holds_the_models_and_the_headline_scenes(installed, installed_quick_report):
     """`frictionnoise report --quick` (the README's first command) from another folder holds the models and the
@@ -92,6 +104,13 @@ def test_non_editable_install_quick_report_holds_the_models_and_the_headline_sce
     html = (rep / "index.html").read_text()
     _sections_hold_figures(html, headline)
     assert "--quick --all-scenes" in html  # where the other scenes are
+    # every exponent the report quotes is the record model's (compare.analysis.record_model), fitted to the record
+    fits = dict(_fits(summary))
+    assert len(fits) >= 20 and {p for p, f in fits.items() if f.get("method") != "record"} == set()
+    # and docs/results/report_exponents.md quotes each of them as this report reads it (seed 0, bit for bit)
+    page = (ROOT / "docs" / "results" / "report_exponents.md").read_text()
+    missing = [p for p, f in fits.items() if f"{f['gamma']:.3f} ± {f['gamma_err']:.3f}" not in page]
+    assert not missing, missing
     print(f"quick report from the installed package: {wall:.1f} s, scenes {headline}")
 
 

@@ -1,4 +1,4 @@
-"""Small helpers shared by the studies: per-band ratios, timings, balances."""
+"""Small helpers shared by the studies: per-band ratios, timings, balances, the exponent of a time record."""
 from __future__ import annotations
 
 import math
@@ -11,7 +11,7 @@ from ...analysis.balances import SAMPLES_PER_PERIOD, balances  # noqa: F401  (ba
 from ...analysis.spectra import band_average
 
 __all__ = ["energy_text", "segment_samples", "band_ratios", "ratio_rows", "log_err", "param_rows", "timed", "timing", "balances", "ratio_range",
-           "require_band", "whole_run", "run_scene"]
+           "require_band", "whole_run", "run_scene", "record_fit"]
 
 
 def segment_samples(n: int, dt_out: float, quick: bool) -> int:
@@ -36,6 +36,15 @@ def require_band(spec, band, T: float, dt_out: float, nominal_low: float | None 
     n_need = 1 << math.ceil(math.log2(2 * math.pi / (low * dt_out)))
     raise ValueError(f"a {T:g} s run is too short for {what} = ({band[0]:.3g}, {band[1]:.3g}) rad/s: it needs at "
                      f"least {math.ceil(3 * n_need * dt_out):.0f} s (--duration)")
+
+
+def record_fit(t, x, band=None, quantity: str = "x", stationarity: bool = True, integrate: bool = False):
+    """The exponent of a time record, as every study quotes it: the record model
+    (:func:`compare.analysis.record_model.fit_series`, whose parameters these are), not a straight line through a
+    Welch spectrum."""
+    from ...analysis.record_model import fit_series
+
+    return fit_series(t, x, band=band, quantity=quantity, stationarity=stationarity, integrate=integrate)
 
 
 def band_ratios(spec, theory_values, edges) -> list:

@@ -11,13 +11,12 @@ import math
 
 import numpy as np
 
-from ...analysis.fits import fit_power_law
 from ...analysis.spectra import displacement_spectrum
 from ..html import esc, paragraphs, span, table
 from ..verdict import fit_text, ratio_verdict
 from ...analysis.fits import flag_mark
 from ..study import Figure, StudyResult
-from ._common import band_ratios, log_err, ratio_range, ratio_rows, timed, timing
+from ._common import band_ratios, log_err, ratio_range, ratio_rows, record_fit, timed, timing
 
 __all__ = ["model_result", "N_BANDS"]
 
@@ -52,7 +51,7 @@ def model_result(name: str, seed: int = 0, duration: float | None = None, params
     band = model.fit_band(p, dt_out)
     if band is not None and not band[1] >= 2 * band[0]:
         band = None  # the model's band has closed: the automatic one
-    fit = fit_power_law(spec, band=band)
+    fit = record_fit(tr.t, tr.x, band=band, stationarity=False)  # exact simulator: stationary by construction
     edges = _ratio_edges(spec, band)
     ratios = band_ratios(spec, model.theory_spectrum(p, spec.omega), edges)
     worst = max(abs(math.log(b["ratio"])) for b in ratios)

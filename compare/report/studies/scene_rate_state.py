@@ -15,12 +15,11 @@ import math
 
 import numpy as np
 
-from ...analysis.fits import fit_power_law
 from ...analysis.spectra import displacement_spectrum
 from ..html import esc, paragraphs, span, table
 from ..study import Figure, StudyResult
 from ..verdict import Verdict, fit_text, ratio_verdict
-from ._common import segment_samples, balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, require_band, run_scene, timing
+from ._common import segment_samples, balances, band_ratios, log_err, param_rows, ratio_range, ratio_rows, record_fit, require_band, run_scene, timing
 
 __all__ = ["ageing_params", "ageing_result", "slider_result"]
 
@@ -57,10 +56,10 @@ def ageing_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
     w0 = p.v / p.a
     band = (3 * w0, 30 * w0)
     require_band(spec, band, T, dt_out, 3 * sc.steady_velocity / sc.substrate.a)
-    fit = fit_power_law(spec, band=band)
+    fit = record_fit(tr.t, tr.x, band=band)  # the record model over the renewal band
     sim = ageing.simulate(p, T, dt_out, seed=seed)
     s_sim = displacement_spectrum(sim.t, sim.x, nperseg=nper)
-    fit_sim = fit_power_law(s_sim, band=band)
+    fit_sim = record_fit(sim.t, sim.x, band=band, stationarity=False)  # exact simulator
     top = min(2000.0, math.pi / dt_out / 2)
     edges = np.logspace(np.log10(max(2.0, 4 * spec.omega_min)), np.log10(top), 7 if quick else 9)
     ratios = band_ratios(spec, ageing.theory_spectrum(p, spec.omega), edges)
@@ -140,7 +139,7 @@ def slider_result(name, sc, quick, seed, trace, duration, progress) -> StudyResu
     spec = displacement_spectrum(t, tr.x, nperseg=1 << int(math.floor(math.log2(len(t) / 3))))
     w_on = 2 * math.pi / period0
     band = (2 * w_on, 20 * w_on)  # the harmonics of stick-slip above the onset frequency
-    fit = fit_power_law(spec, band=band)
+    fit = record_fit(t, tr.x, band=band)  # the record model over the stick-slip harmonics
     d = {**fit.to_dict(), "k": k, "k_c": kc, "k_over_k_c": k / kc, "onset_period": period0, "stick_slip_period": period,
          "sticks": stick, "v_min_over_V": float(np.min(v[half]) / V), "v_max_over_V": float(np.max(v[half]) / V),
          "wall_s": wall, "duration_s": T, "us_per_step": tr.metadata["us_per_step"],

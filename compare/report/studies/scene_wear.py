@@ -8,12 +8,12 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ...analysis.fits import fit_power_law, flag_mark
+from ...analysis.fits import flag_mark
 from ..html import esc, paragraphs, pct, span, table
 from ...analysis.spectra import band_average, displacement_spectrum, force_series_spectrum
 from ..study import Figure, StudyResult
 from ..verdict import fit_text, flags_of, interval_verdict
-from ._common import segment_samples, balances, require_band, timed, timing, whole_run
+from ._common import segment_samples, balances, record_fit, require_band, timed, timing, whole_run
 
 
 def _paired(name, sc, quick, seed, trace, duration, progress) -> SimpleNamespace:
@@ -38,7 +38,7 @@ def _paired(name, sc, quick, seed, trace, duration, progress) -> SimpleNamespace
     vw = float(tw.x[-1] / tw.t[-1])
     band = (3 * v0 / sc.substrate.a, 30 * v0 / sc.substrate.a)
     require_band(specs["with"], band, T, float(tw.t[1] - tw.t[0]), 3 * sc.steady_velocity / sc.substrate.a)
-    fits = {k: fit_power_law(s, band=band) for k, s in specs.items()}
+    fits = {k: record_fit(tr.t, tr.x, band=band) for k, tr in runs.items()}  # the record model over 3-30 v/a
     dg = fits["with"].gamma - fits["without"].gamma
     dg_err = math.hypot(fits["with"].gamma_err, fits["without"].gamma_err)
     edges = np.logspace(np.log10(max(2.0, 4 * specs["with"].omega_min)), np.log10(min(1000.0, 0.25 * specs["with"].omega_max)),
@@ -51,7 +51,8 @@ def _paired(name, sc, quick, seed, trace, duration, progress) -> SimpleNamespace
     sp = force_series_spectrum(tw.t, tw.p_force.sum(axis=1), nperseg=nper)
     pred = model_II_from_episodes(ep, float(tw.t[-1]), sp.omega)
     r_b2 = band_average(sp, edges) / band_average(sp, edges, pred)
-    fit_p = fit_power_law(sp, band=band)
+    # the particles' force, near 1/f (flatter than the record model's omega^-1.05): its running sum is fitted
+    fit_p = record_fit(tw.t, tw.p_force.sum(axis=1), band=band, quantity="F", integrate=True)
     # the change in the friction force's spectrum, against the particles' own force and its B2 prediction
     dCF = band_average(fspec["with"], edges) - band_average(fspec["without"], edges)
     r_dCF = dCF / band_average(sp, edges, pred)
