@@ -5,7 +5,7 @@ registered model's family (target: 15 s of wall time on the 2-core machine).
     python -m pytest benchmarks/bench_identify.py      # the harness's entry (test_identify_400s)
 
 The record is model I's reference case with a white sensor floor of 1e-24 m^2 s; --smoke (and --bench-smoke) use
-40 s. Both time one call after a warm-up on a short record (numba's kernels compiled or loaded) and state, in the
+10 s. Both time one call after a warm-up on a short record (numba's kernels compiled or loaded) and state, in the
 same run, the CPU time of the compiled family shapes against the same equations as array operations on the
 frequencies one evaluation of model I's family takes (every ordinate group and aliasing image of the record).
 """
@@ -55,10 +55,10 @@ def shape_ratio(repeat: int = 200) -> float:
 
 
 def test_identify_400s(benchmark, ratio, smoke):
-    """The harness's entry: one identification of a 400 s record at 1 kHz (40 s under --bench-smoke), every
+    """The harness's entry: one identification of a 400 s record at 1 kHz (10 s under --bench-smoke), every
     registered model's family; the compiled shapes' speed-up over array operations stated in the same run."""
-    x, v = record(40.0 if smoke else 400.0)
-    identify(x[:8192], DT, v)  # warm-up: numba's kernels
+    x, v = record(10.0 if smoke else 400.0)
+    identify(x[:4096], DT, v)  # warm-up: numba's kernels
     ranking = benchmark.pedantic(identify, args=(x, DT, v), rounds=1 if not smoke else 2, iterations=1)
     assert ranking[0].model == "model_I"  # only that it ran: the confusion study measures what it names
     ratio("model I's family, array operations / compiled (CPU)", shape_ratio())
@@ -68,7 +68,7 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--smoke", action="store_true")
     a = ap.parse_args(argv)
-    T = 40.0 if a.smoke else 400.0
+    T = 10.0 if a.smoke else 400.0
     x, v = record(T)
     identify(x[:8192], DT, v)  # warm-up
     w0, c0 = time.perf_counter(), time.process_time()
