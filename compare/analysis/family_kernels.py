@@ -5,7 +5,9 @@ the equations are documented in :mod:`compare.analysis.families`.
 A fit evaluates a shape thousands of times on a few thousand frequencies (every aliasing image, and for model III
 every sub-point of every ordinate's cell: 4e5 frequencies for a 400 s record at 1 kHz); the same expressions written
 as array operations pass over the frequencies a dozen times with a temporary array each, which cost 3-8 times as
-much on a 400 s record (measured by ``benchmarks/bench_identify.py``'s ratio).
+much on a 400 s record (measured by ``benchmarks/bench_identify.py``'s ratio). A division by zero gives inf or nan,
+as in numpy (numba's ``error_model="numpy"``): a fit's trial point may reach omega = 0 (a sub-point of the lowest
+ordinate's cell) and its likelihood is then infinite, not an error.
 """
 from __future__ import annotations
 
@@ -17,7 +19,7 @@ import numpy as np
 __all__ = ["contact_spectrum", "window_spectrum"]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _renewal(x):
     """1 - cos(x) sinc^2(x / 2), the renewal factor R of model I's family, sinc(u) = sin(u) / u."""
     h = 0.5 * x
@@ -25,7 +27,7 @@ def _renewal(x):
     return 1.0 - math.cos(x) * s * s
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _contact_loop(w, L, a_v, L2, a2_v, omega3, omega_c, Q, omega_0, inv_omega_1, b, dc_v, out):
     # in real arithmetic (compiled complex division is the robust, slower one): with y = omega D_c / v,
     # c / c_inf = 1 - b / (1 + i y) = sr + i si; with u = omega / omega_0 the spring 1 - r^2 / (1 + i u) = pr + i pi_;
@@ -70,7 +72,7 @@ def contact_spectrum(w, *, L, a_v, omega_c, Q, omega_0, inv_omega_1=0.0, L2=0.0,
     return out.reshape(w.shape)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _window_loop(w, L, width, two_pi_v, out):
     for i in range(w.shape[0]):
         wi = w[i]

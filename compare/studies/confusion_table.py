@@ -15,8 +15,9 @@ import argparse
 import json
 import os
 import sys
-import time
 from pathlib import Path
+
+import numpy as np
 
 from compare.analysis.confusion import CELLS, FLOOR, HALF_DECADE, QUICK_CELLS, SMOKE_CELLS, binomial_interval, run_cell
 
@@ -166,19 +167,28 @@ def write_page(text: str, path: Path = PAGE) -> None:
     path.write_text(new)
 
 
-def _remaining(rows, target: int = 100) -> str:
-    """The compute left to bring every cell to ``target`` seeds, from this run's CPU seconds per record per cell."""
-    total = 0.0
-    missing = 0
-    for _, r in rows:
-        left = max(0, target - r["n"])
-        missing += left
-        total += left * r["cpu_s"] / max(r["n"], 1)
+def _remaining(rows, cells=CELLS, target: int = 100) -> str:
+    """The compute left to bring every cell of ``cells`` to ``target`` seeds: this run's CPU seconds per record per
+    cell, and for a cell not run the mean over the run cells of its model."""
+    run = {_key(c): r for c, r in rows}
+    per_model = {}
+    for c, r in rows:
+        if r["n"]:
+            per_model.setdefault(c.model, []).append(r["cpu_s"] / r["n"])
+    every = [x for xs in per_model.values() for x in xs]
+    total, missing, unrun = 0.0, 0, 0
+    for c in cells:
+        r = run.get(_key(c))
+        n = r["n"] if r else 0
+        unrun += r is None
+        cost = r["cpu_s"] / n if r and n else float(np.mean(per_model.get(c.model) or every or [0.0]))
+        missing += max(0, target - n)
+        total += max(0, target - n) * cost
     if not missing:
         return ""
-    return (f"Left to reach {target} seeds in every cell: {missing} records, about {total / 3600:.1f} h of CPU at "
-            f"this run's cost per record and cell (one process per core; measured under load, so an upper "
-            f"estimate for a quiet machine).")
+    return (f"Left to reach {target} seeds in every cell of the grid ({unrun} cells not run here): {missing} records, "
+            f"about {total / 3600:.1f} h of CPU at this run's cost per record (one process per core; measured under "
+            f"load 10-16, so an upper estimate for a quiet machine).")
 
 
 def main(argv=None):
@@ -234,7 +244,7 @@ def main(argv=None):
     if a.part:
         print(f"wrote {PARTS / (a.part + '.json')}")
         return 0
-    text = table(rows, cpu, command, "" if a.quick or a.smoke else _remaining(rows))
+    text = table(rows, cpu, command, "" if a.quick or a.smoke else _remaining(rows, cells))
     if out:
         write_page(text, Path(out))
         print(f"wrote {out}")
