@@ -228,7 +228,8 @@ class SampledSpectrum:
 
     ``cell`` (rad/s, the ordinates' spacing 2 pi / (n dt)): the family is averaged over each ordinate's cell at
     :data:`_SUB` points, a first account of the finite record's leakage for a family with exact zeros (model III's
-    window): without it an ordinate at a zero, which leakage fills, reads thousands of times its mean.
+    window): without it an ordinate at a zero, which leakage fills, reads thousands of times its mean. An ordinate
+    below one cell's width gets a cell as wide as its own frequency.
 
     A family proportional to its level (L or S: every family but model Ib, whose micro level adds; checked on the
     first call) is evaluated once per value of its other parameters: the last :data:`_KEPT` evaluations are kept
@@ -242,7 +243,8 @@ class SampledSpectrum:
         self.fam, self.v = fam, v
         self._shifts = np.array([0.0] + [m * step for m in range(1, _IMAGES + 1) for _ in (0, 1)])
         self._signs = np.array([1.0] + [s for _ in range(_IMAGES) for s in (1.0, -1.0)])
-        self._offsets = np.zeros(1) if cell is None else cell * ((np.arange(_SUB) + 0.5) / _SUB - 0.5)
+        self._cell = cell
+        self._offsets = np.zeros(1) if cell is None else (np.arange(_SUB) + 0.5) / _SUB - 0.5  # in cells
         self.level = next((i for i, p in enumerate(fam.params) if p.name in ("L", "S")), None)
         self.proportional = None  # decided on the first call
         self._kept = {}
@@ -250,7 +252,10 @@ class SampledSpectrum:
     def part(self, w, q) -> np.ndarray:
         """The folded family alone (no floor) at ``w`` (rad/s) and fitted-scale parameters ``q`` (Units: m^2 s)."""
         w = np.asarray(w, dtype=float)
-        wo = (w[None, :] + self._offsets[:, None]).ravel()
+        # an ordinate's cell never reaches zero frequency, where the family is infinite: below one cell's width the
+        # cell narrows to the ordinate's own frequency (the lowest ordinates, each a group of its own)
+        width = 0.0 if self._cell is None else np.minimum(self._cell, w)
+        wo = (w[None, :] + self._offsets[:, None] * width).ravel()
         ws = np.abs(self._shifts[:, None] + self._signs[:, None] * wo[None, :])
         vals = self.fam.shape(_to_theta(self.fam, q), ws.ravel(), self.v).reshape(ws.shape).sum(axis=0)
         return vals.reshape(len(self._offsets), len(w)).mean(axis=0)

@@ -46,3 +46,14 @@ def test_a_family_not_proportional_to_its_level_is_evaluated_every_time():
     w = np.geomspace(0.1, 3000.0, 200)
     s(w, _q(fam, th, 1e-24))
     assert s.proportional is False
+
+
+def test_an_ordinate_below_one_cell_gets_a_cell_that_stays_above_zero_frequency():
+    # a 300 s record at 1 kHz groups 8 ordinates per cell; the lowest ordinates are single and their cells used to
+    # reach omega = 0 exactly (the family infinite there, the whole likelihood infinite, no start found)
+    fam = FAMILIES["model_III"]
+    dw = 2 * math.pi / 300.0
+    s = sampled_spectrum(fam, 0.1, 1e-3, cell=8 * dw)
+    w = dw * np.arange(1, 20)
+    vals = s(w, _q(fam, {"L": 2e-9, "w": 1e-2}, 1e-24))
+    assert np.all(np.isfinite(vals)) and np.all(vals > 0)
