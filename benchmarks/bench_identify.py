@@ -60,7 +60,8 @@ def test_identify_400s(benchmark, ratio, smoke):
     x, v = record(10.0 if smoke else 400.0)
     identify(x[:4096], DT, v)  # warm-up: numba's kernels
     ranking = benchmark.pedantic(identify, args=(x, DT, v), rounds=1 if not smoke else 2, iterations=1)
-    assert ranking[0].model == "model_I"  # only that it ran: the confusion study measures what it names
+    # only that it ran and did not reject the record's own model: the confusion study measures what it names
+    assert any(m.model == "model_I" and m.verdict != "rejected" for m in ranking)
     ratio("model I's family, array operations / compiled (CPU)", shape_ratio())
 
 
