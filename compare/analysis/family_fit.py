@@ -35,7 +35,8 @@ from . import family_intervals
 from .families import Family, identified
 from .whittle import WhittleFit, WhittleRecord, maximum_likelihood
 
-__all__ = ["FamilyFit", "Grouped", "fit_family", "record_for", "sampled_spectrum", "SampledSpectrum", "cell_of", "ORDER", "EXACT_N"]
+__all__ = ["FamilyFit", "Grouped", "fit_family", "record_for", "sampled_spectrum", "SampledSpectrum", "cell_of", "ORDER",
+           "EXACT_N"]
 
 ORDER = 2  # differences: every family's omega^-4 range flat, the floor rising as omega^4
 EXACT_N = 2**15  # records up to this many samples get the debiased likelihood's maximum
