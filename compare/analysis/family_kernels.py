@@ -58,9 +58,10 @@ def _contact_loop(w, L, a_v, L2, a2_v, omega3, omega_c, Q, omega_0, inv_omega_1,
 def contact_spectrum(w, *, L, a_v, omega_c, Q, omega_0, inv_omega_1=0.0, L2=0.0, a2_v=0.0, omega3=1.0, b=0.0,
                      dc_v=0.0) -> np.ndarray:
     """C_x of model I's kind (Units: m^2 s) at angular frequencies ``w`` (rad/s, any shape):
-    [L R(omega a / v) + L2 R(omega a2 / v) / (1 + (omega / omega3)^2)] G(omega) / (|c(omega) / c|^2 omega^4), with
+    [L R(omega a / v) + L2 R(omega a2 / v) / (1 + (omega / omega3)^2)] G(omega) / (s(omega) omega^4), with
     R the renewal factor, G the block's response (both in :mod:`compare.analysis.families`) at the contacts' slope
-    c(omega) / c = 1 - b / (1 + i omega D_c / v), the contacts' inertia 1 / omega_1 (0: massless miniblocks).
+    c(omega) / c = 1 - b / (1 + i omega D_c / v) and s(omega) that slope's squared modulus, the contacts' inertia
+    1 / omega_1 (0: massless miniblocks).
 
     Keyword parameters in the families' units: ``a_v`` = a / v and ``a2_v`` = a2 / v (s), ``dc_v`` = D_c / v (s),
     ``inv_omega_1`` (s); ``L2 = 0`` leaves the micro level out, ``b = 0`` the slope constant."""

@@ -183,7 +183,7 @@ class WhittleRecord:
 
     @functools.cached_property
     def gain(self) -> np.ndarray:
-        """The differencing gain |2 sin(omega dt / 2) / dt|^(2k) on the fine grid."""
+        """The differencing gain (2 sin(omega dt / 2) / dt)^(2k) on the fine grid."""
         return np.abs(2.0 * np.sin(math.pi * self.grid_u) / self.dt) ** (2 * self.order)
 
     @functools.cached_property
