@@ -42,6 +42,8 @@ import numpy as np
 import reduced_models
 from reduced_models import ageing, asperity_force, multiscale, spring_block, vibrating_block, wear_particle
 
+from .family_kernels import contact_spectrum, window_spectrum
+
 __all__ = ["Param", "Family", "FAMILIES", "MARGIN", "family_of", "identified"]
 
 MARGIN = 10**0.25  # a feature counts as inside a band when it lies a quarter decade inside either end
@@ -128,39 +130,24 @@ def identified(feature, band) -> bool:
 
 
 # ----------------------------------------------------------------------------- shapes
-def _renewal(x):
-    """1 - <cos omega tau> of eq. (A8), x = omega a / v, over the interval tau = (a / v)(1 + r - r'), r and r'
-    uniform: <exp(i omega tau)> = exp(i x) |<exp(i x r)>|^2 = exp(i x) sinc^2(x / 2), real apart from exp(i x)."""
-    return 1.0 - np.cos(x) * np.sinc(x / (2.0 * np.pi)) ** 2
-
-
-def _block(w, th, slope=1.0):
-    """|Z|^2 (c omega)^2 of eq. (A5), c the contacts' friction slope at high frequency; ``slope`` = c(omega) / c.
-
-    S / (N K i omega c) of (A5), K = k0 (1 + i omega / omega_0), reduces to
-    (1 - r^2 / (1 + i omega / omega_0))(1 + i m omega / c(omega)) + i r / Q(omega), m / c = 1 / omega_1."""
-    r = w / th["omega_c"]
-    spring = 1.0 - r * r / (1.0 + 1j * w / th["omega_0"])
-    inertia = 1j * w / (th["omega_1"] * slope) if "omega_1" in th else 0.0  # massless miniblocks: none
-    return 1.0 / np.abs(spring * (1.0 + inertia) + 1j * r / (th["Q"] * slope)) ** 2
-
-
 def _model_I(th, w, v):
-    return th["L"] * _renewal(w * th["a"] / v) * _block(w, th) / w**4
+    return contact_spectrum(w, L=th["L"], a_v=th["a"] / v, omega_c=th["omega_c"], Q=th["Q"], omega_0=th["omega_0"],
+                            inv_omega_1=1.0 / th["omega_1"])
 
 
 def _model_Ib(th, w, v):
-    micro = th["L2"] * _renewal(w * th["a2"] / v) / (1.0 + (w / th["omega3"]) ** 2)
-    return (th["L"] * _renewal(w * th["a"] / v) + micro) * _block(w, th) / w**4
+    return contact_spectrum(w, L=th["L"], a_v=th["a"] / v, omega_c=th["omega_c"], Q=th["Q"], omega_0=th["omega_0"],
+                            inv_omega_1=1.0 / th["omega_1"], L2=th["L2"], a2_v=th["a2"] / v, omega3=th["omega3"])
 
 
 def _ageing(th, w, v):
-    slope = 1.0 - th["b"] / (1.0 + 1j * w * th["D_c"] / v)
-    return th["L"] * _renewal(w * th["a"] / v) * _block(w, th, slope) / (np.abs(slope) ** 2 * w**4)
+    # massless miniblocks: no inertia term
+    return contact_spectrum(w, L=th["L"], a_v=th["a"] / v, omega_c=th["omega_c"], Q=th["Q"], omega_0=th["omega_0"],
+                            b=th["b"], dc_v=th["D_c"] / v)
 
 
 def _model_III(th, w, v):
-    return th["L"] * np.sinc(w * th["w"] / (2 * np.pi * v)) ** 2 / w**4
+    return window_spectrum(w, L=th["L"], width=th["w"], v=v)
 
 
 _N_NODES = 384  # log-spaced nodes of model II's closed form; interpolated in log-log between them

@@ -33,6 +33,7 @@ measures that.
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -164,18 +165,41 @@ class WhittleRecord:
         self.taper = float(taper)
         self.omega = 2.0 * math.pi / (n * dt) * np.arange(1, m + 1)
         self.L = 2 * oversample * n
-        u = np.arange(1, self.L // 2 + 1) / self.L  # omega dt / (2 pi) on the fine grid, (0, 1/2]
-        self.grid_u = u
-        self.grid_omega = 2.0 * math.pi * u / dt
-        self.gain = np.abs(2.0 * np.sin(math.pi * u) / dt) ** (2 * order)
-        H = sp_fft.rfft(h, 2 * n)
-        self._lag_weight = sp_fft.irfft(H.real**2 + H.imag**2, 2 * n)[:n]  # sum_t h_t h_{t+tau}: 1 - tau/n untapered
-        v = [np.concatenate([h, np.zeros(order)])]  # backward differences of the zero-padded taper, (B - 1)^m h
-        for _ in range(order):
+        self._h = h
+        self.memo = {}  # expected periodograms by key, shared by every fit of this record (power_floor's profiles)
+
+    # The fine grid of the expected periodogram (:meth:`expected_from_grid`) and the taper's lag weights and Gram
+    # matrix are computed when first asked for and kept: the grouped fits of compare.analysis.family_fit use the
+    # periodogram only, and the grid's arrays and FFT are four times the record's length.
+    @functools.cached_property
+    def grid_u(self) -> np.ndarray:
+        """omega dt / (2 pi) on the fine grid, (0, 1/2]."""
+        return np.arange(1, self.L // 2 + 1) / self.L
+
+    @functools.cached_property
+    def grid_omega(self) -> np.ndarray:
+        """The fine grid's angular frequencies (Units: rad/s)."""
+        return 2.0 * math.pi * self.grid_u / self.dt
+
+    @functools.cached_property
+    def gain(self) -> np.ndarray:
+        """The differencing gain (2 sin(omega dt / 2) / dt)^(2k) on the fine grid."""
+        return np.abs(2.0 * np.sin(math.pi * self.grid_u) / self.dt) ** (2 * self.order)
+
+    @functools.cached_property
+    def _lag_weight(self) -> np.ndarray:
+        """sum_t h_t h_{t+tau} (1 - tau/n untapered)."""
+        H = sp_fft.rfft(self._h, 2 * self.n)
+        return sp_fft.irfft(H.real**2 + H.imag**2, 2 * self.n)[: self.n]
+
+    @functools.cached_property
+    def _taper_gram(self) -> np.ndarray:
+        """G_mm' of :meth:`white_expected`: the Gram matrix of the taper's backward differences (B - 1)^m h."""
+        v = [np.concatenate([self._h, np.zeros(self.order)])]  # the zero-padded taper
+        for _ in range(self.order):
             v.append(np.concatenate([[0.0], v[-1][:-1]]) - v[-1])
         V = np.array(v)
-        self._taper_gram = V @ V.T
-        self.memo = {}  # expected periodograms by key, shared by every fit of this record (power_floor's profiles)
+        return V @ V.T
 
     def expected_from_grid(self, values: np.ndarray) -> np.ndarray:
         """Ibar_j from the sampled record's (undifferenced) spectrum on :attr:`grid_omega` (eq. 8 of Sykulski et

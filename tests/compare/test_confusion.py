@@ -35,3 +35,40 @@ def test_binomial_interval_is_clopper_pearson():
     lo, hi = binomial_interval(90, 100)
     assert abs(lo - 0.8238) < 1e-3 and abs(hi - 0.9510) < 1e-3
     assert binomial_interval(0, 10)[0] == 0.0 and binomial_interval(10, 10)[1] == 1.0
+
+
+def test_a_criterion_is_read_against_the_clopper_pearson_interval():
+    from compare.studies.confusion_table import judge
+
+    # 100 of 100: interval (0.964, 1) lies above 0.90: met; 5 of 5: (0.478, 1) straddles it: not contradicted;
+    # 2 of 10: (0.025, 0.556) lies below: contradicted. "At most 5 %": 0 of 100, interval (0, 0.036): met;
+    # 3 of 10: (0.067, 0.652) lies above 5 %: contradicted
+    assert judge(100, 100, ">=", 0.90) == "met"
+    assert judge(5, 5, ">=", 0.90) == "not contradicted"
+    assert judge(2, 10, ">=", 0.90) == "contradicted"
+    assert judge(0, 100, "<=", 0.05) == "met"
+    assert judge(0, 5, "<=", 0.05) == "not contradicted"
+    assert judge(3, 10, "<=", 0.05) == "contradicted"
+
+
+def test_the_page_keeps_what_lies_outside_its_generated_part(tmp_path):
+    from compare.studies.confusion_table import BEGIN, END, write_page
+
+    page = tmp_path / "page.md"
+    page.write_text(f"# Title\n\nintro\n\n{BEGIN}\n\nold table\n\n{END}\n\n## Scenes\n\nkept text\n")
+    write_page("new table", page)
+    text = page.read_text()
+    assert "old table" not in text and "new table" in text
+    assert text.startswith("# Title\n\nintro\n\n") and text.endswith("## Scenes\n\nkept text\n")
+
+
+def test_parts_of_one_cell_add_up():
+    from compare.studies.confusion_table import _add
+
+    a = {"n": 2, "alone": 1, "best": {"model_I": 2}, "by_parameter": {"L": [1, 2]}, "seeds": [0, 1], "cpu_s": 1.0}
+    b = {"n": 3, "alone": 3, "best": {"model_I": 1, "model_Ib": 2}, "by_parameter": {"L": [2, 3], "a": [1, 1]},
+         "seeds": [2, 3, 4], "cpu_s": 2.0}
+    s = _add(a, b)
+    assert s["n"] == 5 and s["alone"] == 4 and s["cpu_s"] == 3.0 and s["seeds"] == [0, 1, 2, 3, 4]
+    assert s["best"] == {"model_I": 3, "model_Ib": 2}
+    assert s["by_parameter"] == {"L": [3, 5], "a": [1, 1]}

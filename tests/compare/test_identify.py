@@ -148,8 +148,12 @@ def test_the_explanation_page_example():
     truth, _ = FAMILIES["model_I"].from_model(p)
     value, half, _ = ranking[0].parameters["L"]
     assert abs(value - truth["L"]) <= half
-    # v / a = 0.5 rad/s at the bottom of the band (its lowest ordinate 0.1 rad/s): bounded from below only
-    assert ranking[0].parameters["a"] == "not identified"
+    # v / a = 0.5 rad/s near the bottom of the band (its lowest ordinate 0.1 rad/s): the likelihood is nearly flat
+    # in a there, and where a quasi-Newton fit stops along it decides whether the profile bounds a on both sides
+    # (rounding-level changes of the sums move it): either not identified, or an interval holding the built 1 mm
+    # and wider than +-30 %
+    a = ranking[0].parameters["a"]
+    assert a == "not identified" or (abs(a[0] - truth["a"]) <= a[1] and a[1] > 0.3 * truth["a"])
 
 
 # ----------------------------------------------------------------------------- coinciding families, exact cases

@@ -1,0 +1,59 @@
+"""The sampled family of a fit (compare/analysis/family_fit.py): an evaluation kept and scaled to a new level equals
+the family evaluated there."""
+import math
+
+import numpy as np
+
+from compare.analysis.families import FAMILIES
+from compare.analysis.family_fit import sampled_spectrum
+
+
+def _q(fam, theta, floor):
+    return np.array([math.log10(theta[p.name]) if p.log else theta[p.name] for p in fam.params] + [math.log10(floor)])
+
+
+def test_a_level_step_reuses_the_kept_evaluation_and_equals_a_fresh_one():
+    fam = FAMILIES["model_III"]
+    w = np.linspace(0.1, 3000.0, 5000)
+    q = _q(fam, {"L": 2e-9, "w": 1e-2}, 1e-24)
+    kept = sampled_spectrum(fam, 0.1, 1e-3, cell=0.1)
+    kept(w, q)
+    calls = []
+    shape = fam.shape
+    object.__setattr__(fam, "shape", lambda *a: calls.append(1) or shape(*a))
+    try:
+        up = q.copy()
+        up[0] += 0.37  # the level only
+        up[-1] -= 1.0  # and the floor
+        got = kept(w, up)
+        assert calls == []  # scaled, not evaluated
+        fresh = sampled_spectrum(fam, 0.1, 1e-3, cell=0.1)
+        fresh.proportional = False  # evaluate every time
+        want = fresh(w, up)
+        assert len(calls) == 1
+    finally:
+        object.__setattr__(fam, "shape", shape)
+    # rounding only: 10^0.37 applied to the kept values against the level inside the shape (a few 1e-16)
+    assert np.max(np.abs(got / want - 1)) < 1e-13
+
+
+def test_a_family_not_proportional_to_its_level_is_evaluated_every_time():
+    # model Ib's micro level adds to L's term: ten times L is not ten times the family
+    fam = FAMILIES["model_Ib"]
+    th = {"L": 1.1e-10, "a": 1e-3, "omega_c": 548.0, "Q": 16.0, "omega_0": 1e5, "omega_1": 1e7, "L2": 1e-11,
+          "a2": 1e-5, "omega3": 500.0}
+    s = sampled_spectrum(fam, 5e-4, 1e-3)
+    w = np.geomspace(0.1, 3000.0, 200)
+    s(w, _q(fam, th, 1e-24))
+    assert s.proportional is False
+
+
+def test_an_ordinate_below_one_cell_gets_a_cell_that_stays_above_zero_frequency():
+    # a 300 s record at 1 kHz groups 8 ordinates per cell; the lowest ordinates are single and their cells used to
+    # reach omega = 0 exactly (the family infinite there, the whole likelihood infinite, no start found)
+    fam = FAMILIES["model_III"]
+    dw = 2 * math.pi / 300.0
+    s = sampled_spectrum(fam, 0.1, 1e-3, cell=8 * dw)
+    w = dw * np.arange(1, 20)
+    vals = s(w, _q(fam, {"L": 2e-9, "w": 1e-2}, 1e-24))
+    assert np.all(np.isfinite(vals)) and np.all(vals > 0)
