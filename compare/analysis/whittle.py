@@ -20,7 +20,7 @@ C_x(omega) (Units: m^2 s for a displacement) enters through the *expected* perio
 where C_x^{(s)} is the spectrum of the *sampled* record (the continuous one folded at the Nyquist frequency,
 :func:`folded`). The expectation is exact for a finite record: the window's leakage and aliasing are in the model,
 not in the data, so steep spectra need no band cut. c_y is computed by
-an inverse FFT of the differenced model on a grid ``oversample`` times finer than the Fourier frequencies (a
+an inverse FFT of the differenced model on a grid at least ``oversample`` times finer than the Fourier frequencies (a
 periodic trapezoid rule, exact for trigonometric polynomials such as a differenced white floor); its zero-frequency
 ordinate is taken from its neighbour. An error there changes c_y by a constant: that moves no Fourier ordinate j >= 1
 without a taper, and with the Tukey taper only the lowest few, by that constant times the taper's spectral window.
@@ -47,7 +47,9 @@ __all__ = ["WhittleRecord", "WhittleFit", "negloglik", "maximum_likelihood", "pr
            "order_for", "MAX_ORDER", "TAPER"]
 
 MAX_ORDER = 6  # differences beyond six leave a record dominated by rounding of its steepest ordinates
-_OVERSAMPLE = 2  # autocovariance grid of 2 * oversample * n points: lag aliasing at lags >= 4n, beyond the record
+_OVERSAMPLE = 2  # autocovariance grid of at least 2 * oversample * n points: lag aliasing at lags >= 3n, beyond the
+# record; the grid is the next length the FFT transforms fast (a record of 2 * 11^2 * 3719 samples would otherwise
+# make every expected periodogram ten times dearer)
 # Tukey taper: a cosine over 5 % of the record at each end. It cuts the rectangular window's far sidelobes (power
 # falling as 1/distance^2), through which the rising spectrum of a differenced white floor swamps the lowest ordinates
 # (by about n / 25 when the floor meets an omega^-4 law mid-band), while neighbouring ordinates stay nearly
@@ -164,7 +166,7 @@ class WhittleRecord:
         self.periodogram = (Y.real[1:m + 1] ** 2 + Y.imag[1:m + 1] ** 2) * (dt / (2.0 * math.pi))
         self.taper = float(taper)
         self.omega = 2.0 * math.pi / (n * dt) * np.arange(1, m + 1)
-        self.L = 2 * oversample * n
+        self.L = sp_fft.next_fast_len(2 * oversample * n, real=True)
         self._h = h
         self.memo = {}  # expected periodograms by key, shared by every fit of this record (power_floor's profiles)
 
