@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.polynomial import chebyshev
 from scipy import optimize, stats
 
 from .whittle import WhittleRecord
@@ -19,16 +20,32 @@ from .whittle import WhittleRecord
 __all__ = ["PowerFloorProfile", "minimum", "interval", "bend_p", "level_cov", "keep_band", "above_rounding"]
 
 _CHI2_95 = float(stats.chi2.ppf(0.95, 1))
+INTERPOLATE_FROM = 2**14  # samples from which minimum() and interval() search on an interpolant in gamma
+INTERPOLATION_TOL = 1e-3  # nll units: an interpolant this far off moves gamma and its ends by < 1e-3 of the half-width
+# (an error e in the nll shifts an end by e / slope, the slope there being about 3.84 / half-width)
 _RATIO_RANGE = (-100.0, 100.0)  # ln of the floor's share of the mean expected periodogram: a floor that meets an
 # omega^-gamma law mid-band has a share of about (n / 2)^(gamma / 2) (e^30 at gamma 6 and 2^16 samples)
 
 
-def _hurwitz_tail(q: np.ndarray, gamma: float) -> np.ndarray:
+def _hurwitz_tail(q: np.ndarray, log_q: np.ndarray, gamma: float) -> np.ndarray:
     """zeta(gamma, q) for q >= 3 by Euler-Maclaurin, to the q^(-gamma-3) term; the next term, below
     gamma (gamma + 1) ... (gamma + 4) q^(-gamma-5) / 30240, is under 1e-6 of the folded sum (>= 2^gamma) for
-    1 < gamma <= 13."""
-    return (q ** (1.0 - gamma) / (gamma - 1.0) + 0.5 * q**-gamma + gamma / 12.0 * q ** (-gamma - 1.0)
-            - gamma * (gamma + 1.0) * (gamma + 2.0) / 720.0 * q ** (-gamma - 3.0))
+    1 < gamma <= 13. ``log_q`` is ln q: one exponential per call."""
+    c3 = gamma * (gamma + 1.0) * (gamma + 2.0) / 720.0
+    inv_q = 1.0 / q
+    return np.exp(-gamma * log_q) * (q / (gamma - 1.0) + 0.5 + inv_q * (gamma / 12.0 - c3 * inv_q * inv_q))
+
+
+def _fold_table(rec: WhittleRecord) -> tuple:
+    """The logarithms of u, 1 - u, 1 + u, 2 - u, 2 + u, 3 - u and of the Hurwitz tails' q = 3 + u, 4 - u on the
+    record's fine grid: computed once per record and kept on it."""
+    table = rec.__dict__.get("_power_fold_table")
+    if table is None:
+        u = rec.grid_u
+        logs = [np.log(u), np.log(1.0 - u), np.log(1.0 + u), np.log(2.0 - u), np.log(2.0 + u), np.log(3.0 - u)]
+        tails = [np.log(3.0 + u), np.log(4.0 - u)]
+        table = rec.__dict__["_power_fold_table"] = (logs, tails)
+    return table
 
 
 def above_rounding(e: np.ndarray) -> np.ndarray:
@@ -62,19 +79,18 @@ class PowerFloorProfile:
         self.omega = rec.omega[self.keep]
         self.P = np.mean([r.periodogram for r in records], axis=0)[self.keep]
         self.m = len(self.P)
-        u = rec.grid_u
-        self._logs = [np.log(u), np.log(1.0 - u), np.log(1.0 + u), np.log(2.0 - u), np.log(2.0 + u),
-                      np.log(3.0 - u)]
-        self._tails = (3.0 + u, 4.0 - u)
+        self._logs, self._tails = _fold_table(rec)
         b = rec.white_expected()[self.keep]  # closed form: exact where the differenced floor is tiny
         self.b_mean = float(b.mean())
         self.b = b / self.b_mean
         self._cache = {}
+        self._local = None
 
     def fold(self, gamma: float) -> np.ndarray:
         """sum_m abs(u + m)^-gamma over all integers m, u in (0, 1/2] (the power law folded at Nyquist)."""
         s = sum(np.exp(-gamma * lg) for lg in self._logs)
-        return s + _hurwitz_tail(self._tails[0], gamma) + _hurwitz_tail(self._tails[1], gamma)
+        u = self.rec.grid_u
+        return s + _hurwitz_tail(3.0 + u, self._tails[0], gamma) + _hurwitz_tail(4.0 - u, self._tails[1], gamma)
 
     def unit(self, gamma: float):
         """(a / mean(a), mean(a)): the expected periodogram of omega^-gamma with A = (2 pi / dt)^gamma."""
@@ -94,13 +110,59 @@ class PowerFloorProfile:
             self._cache[gamma] = hit
         return hit
 
+    def interpolate(self, lo: float, hi: float, nodes: int) -> None:
+        """From now on take ``unit(gamma)`` for gamma in [lo, hi] from a Chebyshev interpolant of ln a_j through
+        ``nodes`` exact evaluations (Chebyshev points of [lo, hi]); ``interpolate(0, 0, 0)`` ends it. ln a_j is an
+        analytic function of gamma on a window away from gamma = 1 (the folded sum's pole), so the interpolant
+        converges geometrically with the nodes; :func:`minimum` and :func:`interval` check it against exact
+        evaluations at their results."""
+        if nodes <= 0:
+            self._local = None
+            return
+        x = np.cos(math.pi * (np.arange(nodes) + 0.5) / nodes)
+        mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        vals = []
+        for g in mid + half * x:
+            a, am = self.unit(float(g))
+            vals.append(np.log(a) + math.log(am))
+        self._local = (lo, hi, mid, half, chebyshev.chebfit(x, np.array(vals), nodes - 1))
+
+    def interpolate_through(self, nodes) -> None:
+        """:meth:`interpolate` through given gammas (sorted, distinct; exact values of :meth:`unit` kept from a
+        scan cost nothing)."""
+        nodes = np.asarray(nodes, dtype=float)
+        lo, hi = float(nodes[0]), float(nodes[-1])
+        mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        vals = []
+        for g in nodes:
+            a, am = self.unit(float(g))
+            vals.append(np.log(a) + math.log(am))
+        self._local = (lo, hi, mid, half, chebyshev.chebfit((nodes - mid) / half, np.array(vals), len(nodes) - 1))
+
+    def _unit_at(self, gamma: float):
+        """:meth:`unit`, or its interpolant inside the window of :meth:`interpolate`."""
+        w = self._local
+        if w is None or not w[0] <= gamma <= w[1]:
+            return self.unit(gamma)
+        a = np.exp(chebyshev.chebval((gamma - w[2]) / w[3], w[4]))
+        am = float(a.mean())
+        return a / am, am
+
+    def exact_at(self, gamma: float):
+        """:meth:`at` with the exact expected periodogram (no interpolant)."""
+        w, self._local = self._local, None
+        try:
+            return self.at(gamma)
+        finally:
+            self._local = w
+
     def _nll_ratio(self, a, t):
         S = a + (math.exp(t) * self.b if t is not None else 0.0)
         return self.m * math.log(float(np.mean(self.P / S))) + float(np.sum(np.log(S)))
 
     def at(self, gamma: float):
         """(nll, ln ratio or None): the negative log-likelihood with A and the floor at their best for ``gamma``."""
-        a, _ = self.unit(gamma)
+        a, _ = self._unit_at(gamma)
         best = (self._nll_ratio(a, None), None)
         if self.floor:
             grid = np.linspace(*_RATIO_RANGE, 41)
@@ -124,14 +186,42 @@ class PowerFloorProfile:
         return A, B
 
 
+def _interpolating(prof: PowerFloorProfile) -> bool:
+    """Whether :func:`minimum` and :func:`interval` search on an interpolant (:meth:`PowerFloorProfile.interpolate`):
+    for records of at least :data:`INTERPOLATE_FROM` samples, where an exact expected periodogram (two FFTs of the
+    record's length and four times it) costs more than the profile's floor search."""
+    return prof.rec.n >= INTERPOLATE_FROM
+
+
+def _chebyshev_window(prof: PowerFloorProfile, lo: float, hi: float) -> None:
+    """An interpolant on [lo, hi] with one node per 0.15 in gamma, at least five (the nll of an interpolant through
+    five nodes over 0.66 is within 1e-7 of the exact one on a long record)."""
+    prof.interpolate(lo, hi, max(5, int(math.ceil((hi - lo) / 0.15))))
+
+
 def minimum(prof: PowerFloorProfile, lo: float, hi: float, start: float | None):
-    """(gamma, nll, ln ratio) at the profile's minimum on [lo, hi]: a coarse scan, then Brent around its best."""
+    """(gamma, nll, ln ratio) at the profile's minimum on [lo, hi]: a coarse scan, then Brent around its best.
+
+    For a long record (:func:`_interpolating`) Brent runs on an interpolant of the expected periodogram over the
+    bracket, through the scan's three points and two more; the nll returned is the exact one at the result, and when
+    it differs from the interpolant's by more than :data:`INTERPOLATION_TOL` the search is repeated exactly. The
+    interpolant is left on the profile for :func:`interval`, which ends it."""
     grid = np.linspace(lo, hi, 13)
     if start is not None and lo < start < hi:
         grid = np.sort(np.append(grid, start))
-    vals = [prof.at(g)[0] for g in grid]
+    vals = [prof.exact_at(g)[0] for g in grid]
     i = int(np.argmin(vals))
     a, b = grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]
+    if _interpolating(prof):
+        m = float(grid[i]) if 0 < i < len(grid) - 1 else 0.5 * (a + b)
+        prof.interpolate_through([a, 0.5 * (a + m), m, 0.5 * (m + b), b])
+        r = optimize.minimize_scalar(lambda g: prof.at(g)[0], bounds=(a, b), method="bounded",
+                                     options={"xatol": 1e-5})
+        g = float(r.x) if r.fun <= vals[i] else float(grid[i])
+        nll, t = prof.exact_at(g)
+        if abs(nll - prof.at(g)[0]) <= INTERPOLATION_TOL:
+            return g, nll, t  # the interpolant stays for interval()
+        prof.interpolate(0.0, 0.0, 0)
     r = optimize.minimize_scalar(lambda g: prof.at(g)[0], bounds=(a, b), method="bounded", options={"xatol": 1e-5})
     g = float(r.x) if r.fun <= vals[i] else float(grid[i])
     nll, t = prof.at(g)
@@ -139,15 +229,41 @@ def minimum(prof: PowerFloorProfile, lo: float, hi: float, start: float | None):
 
 
 def interval(prof: PowerFloorProfile, g: float, nll: float, lo: float, hi: float) -> tuple[float, float, bool, bool]:
-    """The 95 % profile interval around g on [lo, hi]: (low, high, low reached the wall, high reached the wall)."""
+    """The 95 % profile interval around g on [lo, hi]: (low, high, low reached the wall, high reached the wall).
+
+    For a long record (:func:`_interpolating`) the ends are found on an interpolant over g +- 2.5 times the
+    curvature's half-width (:func:`minimum`'s when it covers that, else :func:`_chebyshev_window`) and checked
+    exactly: when the exact profile at either end is off the cut by more than :data:`INTERPOLATION_TOL`, the ends
+    are searched again exactly."""
+    h = 1e-2
+    w = prof._local if _interpolating(prof) else None
+    # the curvature sets the first step only; inside minimum()'s interpolant it costs no exact evaluation
+    at = prof.at if w is not None and w[0] <= g - h and g + h <= w[1] else prof.exact_at
+    curv = (at(min(g + h, hi))[0] - 2 * nll + at(max(g - h, lo))[0]) / h**2
+    step = 2.0 / math.sqrt(curv) if curv > 0 else 0.5
+    try:
+        if _interpolating(prof):
+            low, high = max(lo, g - 2.5 * step), min(hi, g + 2.5 * step)
+            if w is None or not (w[0] <= low and high <= w[1]):
+                _chebyshev_window(prof, low, high)
+            ends = _ends(prof, g, nll, lo, hi, step)
+            cut = nll + 0.5 * _CHI2_95
+            if all(wall or abs(prof.exact_at(e)[0] - cut) <= INTERPOLATION_TOL for e, wall in ends):
+                return ends[0][0], ends[1][0], ends[0][1], ends[1][1]
+    finally:
+        prof.interpolate(0.0, 0.0, 0)
+    ends = _ends(prof, g, nll, lo, hi, step)
+    return ends[0][0], ends[1][0], ends[0][1], ends[1][1]
+
+
+def _ends(prof: PowerFloorProfile, g: float, nll: float, lo: float, hi: float, step: float) -> list:
+    """[(low end, at the wall), (high end, at the wall)]: steps doubling from ``step`` until the profile rises
+    chi2_1(0.95) / 2 above ``nll`` or reaches the wall, then brentq."""
     cut = nll + 0.5 * _CHI2_95
 
     def excess(x):
         return prof.at(x)[0] - cut
 
-    h = 1e-2
-    curv = (prof.at(min(g + h, hi))[0] - 2 * nll + prof.at(max(g - h, lo))[0]) / h**2
-    step = 2.0 / math.sqrt(curv) if curv > 0 else 0.5
     out = []
     for sign, wall in ((-1.0, lo), (1.0, hi)):
         inner, s = g, step
@@ -161,7 +277,7 @@ def interval(prof: PowerFloorProfile, g: float, nll: float, lo: float, hi: float
                 out.append((wall, True))
                 break
             inner, s = trial, 2.0 * s
-    return out[0][0], out[1][0], out[0][1], out[1][1]
+    return out
 
 
 def bend_p(prof: PowerFloorProfile, gamma: float, t) -> float:

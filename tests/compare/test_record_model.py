@@ -172,3 +172,46 @@ def test_expected_gamma_folds_a_continuous_closed_form():
     band = (10.0, 300.0)
     fit = fit_record(power_law_record(4096, DT, 4.0, seed=0), DT, band=band, stationarity=False)
     assert abs(expected_gamma(lambda w: np.asarray(w) ** -4.0, fit, DT, band, sampled=False) - 4.0) < 1e-3
+
+
+@pytest.mark.parametrize("floor_rms", [0.0, 3e-9])
+def test_interpolated_search_finds_the_exact_fit(monkeypatch, floor_rms):
+    # A record of 2^15 samples is searched on an interpolant of the expected periodogram in gamma; the same search
+    # with every evaluation exact (INTERPOLATE_FROM above the length) must give gamma and both interval ends within
+    # 1e-3 of the half-width: the interpolant is checked to INTERPOLATION_TOL = 1e-3 in the nll at each result,
+    # which moves an end by at most 1e-3 / (3.84 / half-width), a quarter of that.
+    from compare.analysis import power_floor
+    from compare.analysis.power_floor import interval, minimum
+
+    x = power_law_record(2**15, DT, 4.0, floor_rms=floor_rms, seed=3)
+
+    def fit():
+        prof = PowerFloorProfile([WhittleRecord(x, DT, 2)], True)
+        g, nll, _ = minimum(prof, 1.05, 4.95, None)
+        return (g, *interval(prof, g, nll, 1.05, 4.95)[:2]), nll
+
+    (g, lo, hi), nll = fit()
+    monkeypatch.setattr(power_floor, "INTERPOLATE_FROM", 2**40)
+    (g0, lo0, hi0), nll0 = fit()
+    half = 0.5 * (hi0 - lo0)
+    assert max(abs(g - g0), abs(lo - lo0), abs(hi - hi0)) < 1e-3 * half
+    assert nll == pytest.approx(nll0, abs=1e-3)
+
+
+def test_an_interpolant_off_the_exact_profile_is_not_used(monkeypatch):
+    # With a tolerance no interpolant meets, minimum() and interval() fall back to exact evaluations everywhere and
+    # must return the exact search's result to the last digit.
+    from compare.analysis import power_floor
+    from compare.analysis.power_floor import interval, minimum
+
+    x = power_law_record(2**15, DT, 4.0, seed=4)
+
+    def fit():
+        prof = PowerFloorProfile([WhittleRecord(x, DT, 2)], True)
+        g, nll, _ = minimum(prof, 1.05, 4.95, None)
+        return (g, nll, *interval(prof, g, nll, 1.05, 4.95))
+
+    monkeypatch.setattr(power_floor, "INTERPOLATION_TOL", -1.0)
+    fallback = fit()
+    monkeypatch.setattr(power_floor, "INTERPOLATE_FROM", 2**40)
+    assert fallback == fit()
