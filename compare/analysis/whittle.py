@@ -190,9 +190,11 @@ class WhittleRecord:
 
     @functools.cached_property
     def _lag_weight(self) -> np.ndarray:
-        """sum_t h_t h_{t+tau} (1 - tau/n untapered)."""
-        H = sp_fft.rfft(self._h, 2 * self.n)
-        return sp_fft.irfft(H.real**2 + H.imag**2, 2 * self.n)[: self.n]
+        """sum_t h_t h_{t+tau} (1 - tau/n untapered): any transform length >= 2n - 1 leaves no circular wrap, so the
+        next fast one is taken."""
+        size = sp_fft.next_fast_len(2 * self.n, real=True)
+        H = sp_fft.rfft(self._h, size)
+        return sp_fft.irfft(H.real**2 + H.imag**2, size)[: self.n]
 
     @functools.cached_property
     def _taper_gram(self) -> np.ndarray:
