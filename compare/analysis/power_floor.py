@@ -79,7 +79,6 @@ class PowerFloorProfile:
         self.omega = rec.omega[self.keep]
         self.P = np.mean([r.periodogram for r in records], axis=0)[self.keep]
         self.m = len(self.P)
-        self._logs, self._tails = _fold_table(rec)
         b = rec.white_expected()[self.keep]  # closed form: exact where the differenced floor is tiny
         self.b_mean = float(b.mean())
         self.b = b / self.b_mean
@@ -88,9 +87,10 @@ class PowerFloorProfile:
 
     def fold(self, gamma: float) -> np.ndarray:
         """sum_m abs(u + m)^-gamma over all integers m, u in (0, 1/2] (the power law folded at Nyquist)."""
-        s = sum(np.exp(-gamma * lg) for lg in self._logs)
+        logs, tails = _fold_table(self.rec)
+        s = sum(np.exp(-gamma * lg) for lg in logs)
         u = self.rec.grid_u
-        return s + _hurwitz_tail(3.0 + u, self._tails[0], gamma) + _hurwitz_tail(4.0 - u, self._tails[1], gamma)
+        return s + _hurwitz_tail(3.0 + u, tails[0], gamma) + _hurwitz_tail(4.0 - u, tails[1], gamma)
 
     def unit(self, gamma: float):
         """(a / mean(a), mean(a)): the expected periodogram of omega^-gamma with A = (2 pi / dt)^gamma."""

@@ -162,6 +162,7 @@ def _split_half_p(x, dt, k, floor, g0, band) -> float:
     """p-value of the split-half likelihood-ratio test of stationarity (module docstring)."""
     h = len(x) // 2
     halves = [WhittleRecord(x[:h], dt, k), WhittleRecord(x[h:2 * h], dt, k)]
+    halves[1].memo = halves[0].memo  # equally long records (same n, dt, order, taper): the same expected periodograms
     keep = keep_band(halves[0], band) if band is not None else None
     lo, hi = max(GAMMA_MIN, 2 * k - 3.0), 2 * k + _HEADROOM
     apart = sum(minimum(PowerFloorProfile([r], floor, keep), lo, hi, g0)[1] for r in halves)
