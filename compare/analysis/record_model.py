@@ -238,7 +238,7 @@ def _narrowed(x, dt, k, floor, omega, bend):
     return rec, prof, res, bend_p(prof, res[0], res[2]), band
 
 
-def check_record(x, name: str = "x", unit: str = "") -> None:
+def check_record(x, name: str = "x", unit: str = "", *, resolution: bool = True) -> None:
     """ValueError, in one line saying what would help, for a record no spectrum can be fitted to: too few samples,
     a constant channel, or one that changes in fewer than half its steps (written at the file's resolution).
 
@@ -248,6 +248,9 @@ def check_record(x, name: str = "x", unit: str = "") -> None:
         The record.
     name, unit : str
         How the message names the channel and its unit.
+    resolution : bool, optional
+        Refuse a record that stays the same in more than half its steps (default). Off for a simulator's
+        piecewise-constant output (model III's force holds between contact events), which no file rounded.
     """
     n = len(x)
     if n < 32:
@@ -257,7 +260,7 @@ def check_record(x, name: str = "x", unit: str = "") -> None:
         raise ValueError(f"{name} is constant ({x[0]:.6g} {unit}) over all {n} samples: a saturated or disconnected "
                          "sensor has no spectrum (check the channel)".replace(" )", ")"))
     still = float(np.mean(steps == 0))
-    if still > 0.5:
+    if resolution and still > 0.5:
         q = float(np.min(np.abs(steps[steps != 0])))
         raise ValueError(f"{name} stays the same in {100 * still:.0f} % of its {n - 1} steps (smallest change "
                          f"{q:.3g} {unit}): the record is at the file's resolution and its spectrum is the rounding's; "
@@ -426,6 +429,8 @@ def fit_series(t, y, *, band=None, quantity: str = "x", stationarity: bool = Tru
     y = np.asarray(y, dtype=float)
     if not integrate:
         return fit_record(y, dt, band=band, quantity=quantity, stationarity=stationarity)
-    check_record(y, quantity)  # a flat channel is refused as such, not as its (linear) running sum
+    # a flat channel is refused as such, not as its (linear) running sum; a force that holds between events (an exact
+    # simulator's) is not a rounded file
+    check_record(y, quantity, resolution=False)
     z = np.cumsum(y - y.mean()) * dt
     return fit_record(z, dt, band=band, quantity=quantity, stationarity=stationarity).derived(2.0, 1.0, quantity)
