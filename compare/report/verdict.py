@@ -77,9 +77,12 @@ class Verdict:
         return f"as expected: {self.expected}" if self.expected and self.agree is False else ""
 
     def to_dict(self) -> dict:
-        return {"study": self.study, "what": self.what, "measured": self.measured, "reference": self.reference,
-                "agree": self.agree, "verdict": self.word, "by": self.by, "flags": list(self.flags),
-                "expected": self.expected}
+        """The verdict for summary.json: its texts in plain Unicode (the HTML's &plusmn; written as the sign)."""
+        def plain(text: str) -> str:
+            return text.replace("&plusmn;", "\u00b1")
+        return {"study": self.study, "what": plain(self.what), "measured": plain(self.measured),
+                "reference": plain(self.reference), "agree": self.agree, "verdict": self.word, "by": plain(self.by),
+                "flags": list(self.flags), "expected": plain(self.expected)}
 
 
 def gamma_verdict(study: str, what: str, fit, expected: float, reference: str, slope: bool = False,
