@@ -45,7 +45,7 @@ def build_parser() -> argparse.ArgumentParser:
                      help="output folder for index.html, summary.json and figures/ (default: %(default)s)")
     rep.add_argument("--quick", action="store_true",
                      help="the models and three scenes (pads_friction_patches, pads_with_wear, asperity_field) in "
-                          "shorter runs: about 30 s on 2 cores; the full report runs every scene (about 3 min)")
+                          "shorter runs: about 2 min on 2 cores; the full report runs every scene (about 3 min)")
     rep.add_argument("--all-scenes", action="store_true",
                      help="with --quick: every shipped scene at its quick length (about 70 s on 2 cores)")
     rep.add_argument("--seed", type=int, default=0,
