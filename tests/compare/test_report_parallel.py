@@ -42,7 +42,7 @@ def test_studies_in_workers_match_one_process():
             # seeded studies: equal up to the last bits of a floating-point sum (wall times excluded)
             for k in a:
                 if "wall" not in k:
-                    assert b[k] == pytest.approx(a[k], rel=1e-9, abs=1e-300), k
+                    assert b[k] == pytest.approx(a[k], rel=1e-9, abs=1e-300, nan_ok=True), k  # nan: a test not run
 
 
 @pytest.mark.slow  # report stages in worker processes

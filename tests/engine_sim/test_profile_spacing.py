@@ -2,6 +2,7 @@
 rounded positions), the Dektak header's units, CR CR LF line numbers as grep -n counts them, and the profile's
 checksum and resampling in a run's metadata."""
 import hashlib
+import math
 from pathlib import Path
 import subprocess
 
@@ -73,4 +74,7 @@ def test_run_records_the_profile_and_compare_takes_a_band(tmp_path, capsys):
     assert meta["resampling"].startswith("synthetic_scan_um.csv: profile kept at its spacing 20 um")
     assert main(["compare", str(r / "trace.npz"), "--band", "30", "300", "-o", str(c)]) == 0
     s = json.loads((c / "summary.json").read_text())["scenarios"]["line_scan_example"]
-    assert s["band"] == [30.0, 300.0]
+    # the band quoted is the fitted one: the record's Fourier ordinates inside the band given, within one ordinate
+    # spacing (2 pi / T) of its ends
+    lo, hi = s["band"]
+    assert 30.0 <= lo < 30.0 + 2 * math.pi / 2.0 and 300.0 - 2 * math.pi / 2.0 < hi <= 300.0
