@@ -135,7 +135,9 @@ def _paired_rise(track, seed=0):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("track", ["smooth", "cavities"])
+@pytest.mark.parametrize("track", ["smooth", pytest.param("cavities", marks=pytest.mark.xfail(
+    strict=True, reason="measured with the band fit: the record model reads +0.148 +- 0.489 on this cell, which no "
+    "longer excludes zero; the wear study's claims are to be re-measured with it (docs/results/wear.md)"))])
 def test_cell_with_particles_against_its_twin(track):
     d, err, ratio, cell, twin = _paired_rise(track)
     print(f"\n25 narrow grains, {track} track, seed 0, {_CELL_T:g} s: gamma {cell['wear']['fit_x']['gamma']:.3f} +- "
