@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["esc", "num", "pct", "span", "rst_inline", "paragraphs", "table", "page", "verdict_table", "summary_of", "write_report", "json_text"]
+__all__ = ["esc", "num", "fixed", "pct", "span", "rst_inline", "paragraphs", "table", "page", "verdict_table", "summary_of", "write_report", "json_text"]
 
 esc = html.escape
 
@@ -42,6 +42,13 @@ def num(x, digits: int = 3) -> str:
         text = f"{x:.{max(0, digits - 1 - math.floor(math.log10(abs(x))))}f}"
         return "0" if float(text) == 0 else text
     return f"{x:.{max(0, digits - 1)}e}"
+
+
+def fixed(x: float, digits: int = 2, sign: bool = False) -> str:
+    """``x`` with ``digits`` decimals ("+0.16" with ``sign``); a value that rounds to zero reads "0.00", never
+    "-0.00" or "+0.00"."""
+    text = f"{x:{'+' if sign else ''}.{digits}f}"
+    return text.lstrip("+-") if float(text) == 0 else text
 
 
 def pct(fraction, decimals: int = 3) -> str:

@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass
 
 from ..analysis.fits import flag_mark
-from .html import num, span
+from .html import fixed, num, span
 
 __all__ = ["Verdict", "fit_text", "flags_of", "gamma_verdict", "interval_verdict", "ratio_verdict", "summary_lines", "prose_flag_problems",
            "NOT_A_POWER_LAW"]
@@ -29,7 +29,7 @@ def fit_text(fit, digits: int = 2, slope: bool = False) -> str:
     ``slope``: the spectrum's log-log slope, -gamma (a force spectrum's exponent)."""
     g = fit["gamma"] if isinstance(fit, dict) else fit.gamma
     e = fit["gamma_err"] if isinstance(fit, dict) else fit.gamma_err
-    return f"{-g if slope else g:.{digits}f} &plusmn; {e:.{digits}f}{flag_mark(fit)}"
+    return f"{fixed(-g if slope else g, digits)} &plusmn; {e:.{digits}f}{flag_mark(fit)}"
 
 
 def _short(flags) -> str:
@@ -96,24 +96,24 @@ def gamma_verdict(study: str, what: str, fit, expected: float, reference: str, s
     d = value - expected
     if flags:
         return Verdict(study, what, fit_text(fit, slope=slope), reference, None,
-                       f"{d:+.2f}; {NOT_A_POWER_LAW} ({_short(flags)})", flags)
+                       f"{fixed(d, 2, sign=True)}; {NOT_A_POWER_LAW} ({_short(flags)})", flags)
     ok = abs(d) <= e + tolerance
     return Verdict(study, what, fit_text(fit, slope=slope), reference, ok,
-                   f"{d:+.2f} ({abs(d) / e:.1f} half-widths{f', tolerance {tolerance:g}' if tolerance else ''})")
+                   f"{fixed(d, 2, sign=True)} ({abs(d) / e:.1f} half-widths{f', tolerance {tolerance:g}' if tolerance else ''})")
 
 
 def interval_verdict(study: str, what: str, value: float, err: float, expected: float, reference: str,
                      digits: int = 2, flags: tuple = (), direction: str = "equal") -> Verdict:
     """A number with its 95 % half-width against a reference value. ``direction``: "equal" (the interval holds
     it), "above" (the interval lies above it: a target met beyond the uncertainty)."""
-    shown = f"{value:+.{digits}f} &plusmn; {err:.{digits}f}" if direction == "above" else f"{value:.{digits}f} &plusmn; {err:.{digits}f}"
+    shown = f"{fixed(value, digits, sign=direction == 'above')} &plusmn; {err:.{digits}f}"
     d = value - expected
     if flags:
         return Verdict(study, what, shown + f" ({NOT_A_POWER_LAW})", reference, None,
-                       f"{d:+.{digits}f}; fits {NOT_A_POWER_LAW} ({_short(flags)})", tuple(flags))
+                       f"{fixed(d, digits, sign=True)}; fits {NOT_A_POWER_LAW} ({_short(flags)})", tuple(flags))
     ok = (value - err >= expected) if direction == "above" else abs(d) <= err
-    return Verdict(study, what, shown, reference, ok, f"{d:+.{digits}f} ({abs(d) / err:.1f} half-widths)"
-                   if err > 0 else f"{d:+.{digits}f}")
+    return Verdict(study, what, shown, reference, ok, f"{fixed(d, digits, sign=True)} ({abs(d) / err:.1f} half-widths)"
+                   if err > 0 else f"{fixed(d, digits, sign=True)}")
 
 
 def ratio_verdict(study: str, what: str, ratios, factor: float, reference: str, expected: str = "") -> Verdict:

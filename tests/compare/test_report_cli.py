@@ -61,12 +61,17 @@ def test_summary_holds_every_shipped_scenario(quick_report):
             assert abs(sc["force_balance_rel"]) < 0.02 and abs(sc["energy_balance_rel"]) < 0.02
         assert set(["gamma", "gamma_err", "band"]) <= set(sc) and sc["gamma_err"] > 0
         if name == "pads_with_wear":
-            # Paired runs, 4 s each (quick). Measured (seeds 0, 1, 2): gamma 4.17 +- 0.41, 4.28 +- 0.43, 3.76 +- 0.42
-            # with particles (curved: no verdict), a rise of 1.04 +- 0.52, 1.44 +- 0.56, 0.81 +- 0.54 (so the rise
-            # clears its 95 % interval by 0.27-0.88); C_x 3.4-34x higher per band; eq. (B2) from the measured
-            # episodes within a factor 0.53-6.7 of the particles' force spectrum; 328-371 recyclings, 404-483 trapped
-            # and 252-277 moving episodes; energy 0.08-0.18 %.
-            assert sc["delta_gamma"] - sc["delta_gamma_err"] > 0, (sc["delta_gamma"], sc["delta_gamma_err"])
+            # Paired runs, 4 s each (quick). The record model reads the whole record with its uncertainty: measured
+            # (seed 0) gamma 4.18 +- 0.47 with particles (the spectrum bends within the band: no verdict) and 4.02 +-
+            # 0.83 without over 15.7-149 rad/s, a change of +0.16 +- 0.95. The quick run does not resolve the rise
+            # (the band fit had read 0.81-1.44 +- 0.52-0.56 on seeds 0-2, its interval the band's scatter only); what
+            # it shows is the noise's level: C_x 3.4-34x higher per band; eq. (B2) from the measured episodes within
+            # a factor 0.53-6.7 of the particles' force spectrum; 328-371 recyclings, 404-483 trapped and 252-277
+            # moving episodes; energy 0.08-0.18 %. The target's verdict is given only on two unflagged fits.
+            flagged = bool(sc["flags"] or sc["without_particles"]["flags"])
+            assert 0 < sc["delta_gamma_err"] < 2, sc["delta_gamma_err"]
+            met = sc["delta_gamma"] - sc["delta_gamma_err"] >= 0.4
+            assert sc["target_delta_gamma_0p4_met"] == (None if flagged else met), (flagged, sc["delta_gamma"])
             assert all(b["C_x_ratio"] > 1.5 for b in sc["bands"])
             assert all(0.1 < b["particle_force_over_B2"] < 10 for b in sc["bands"])
             assert sc["wear"]["left_interface"] == 0 and sc["wear"]["recycled"] > 50
