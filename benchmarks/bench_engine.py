@@ -11,6 +11,10 @@ per-scene table.
     python -m pytest benchmarks/bench_engine.py       # the harness's entry, one per shipped scene
 """
 import argparse
+import json
+import math
+import os
+import sys
 import time
 
 import numpy as np
@@ -83,14 +87,117 @@ def test_loop_against_bare_step(benchmark, ratio, smoke, name):
     benchmark.pedantic(loop.run, args=(MAINTAIN_EVERY,), rounds=rounds, warmup_rounds=1)
 
 
+_WORKER = r"""
+import json, sys
+import benchmarks.bench_engine as be
+from engine_sim import load_scenario, shipped_scenarios
+names, capacity = sys.argv[1].split(","), int(sys.argv[2])
+loops = {}
+for n in names:
+    scene = be.Scene(load_scenario(shipped_scenarios()[n]))
+    scene.advance(2000)
+    rec = be.Recorder(scene, capacity * be.MAINTAIN_EVERY + 1)
+    rec.sample()
+    loops[n] = (scene, be.Loop(scene, rec))
+print("ready", flush=True)
+for n in sys.stdin:
+    scene, loop = loops[n.strip()]
+    t0 = be.clock()
+    loop.run(be.MAINTAIN_EVERY)
+    print(json.dumps((be.clock() - t0) / (be.MAINTAIN_EVERY * scene.n_sub) * 1e6), flush=True)
+"""
+
+
+def against(base_tree, names, pairs: int = 4, turns: int = 10, chunks: int = 10, core: int = 0, log=print):
+    """This tree's loop cost over ``base_tree``'s, per scene, measured in lockstep.
+
+    Each process pair (one worker per tree, pinned to ``core``, each importing its own tree's engine_sim and
+    benchmarks) builds every scene, advances it 2000 steps, then takes ``turns`` turns; in a turn each scene runs
+    ``chunks`` loop chunks per tree (MAINTAIN_EVERY output steps each, CPU clock), the trees alternating chunk by
+    chunk. A turn's statistic is the median over its chunk pairs of new / base; the result is the mean over all
+    turns with its Student t 95 % interval, and the mean over each pair's turns (a pair's own memory layout is a
+    constant factor within it: the interval over the pair means is the conservative one). Both trees run the same
+    pymunk, so this ratio is the ratio of their loop / bare-step costs; no bare chunks are run, because stepping a
+    scene without its law's per-step forces (rate-and-state) takes it out of its physical state.
+
+    Returns {scene: {"turns": [...], "pairs": [...], "mean", "lo", "hi", "pair_mean", "pair_lo", "pair_hi",
+    "us_base", "us_new"}} (us: median microseconds per pymunk step).
+    """
+    import statistics
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from scipy.stats import t as student
+
+    def start(tree):
+        p = subprocess.Popen(["taskset", "-c", str(core), sys.executable, "-c", _WORKER, ",".join(names),
+                              str(turns * chunks + 2)], cwd=tree, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                             text=True)
+        if p.stdout.readline().strip() != "ready":
+            raise RuntimeError(f"the worker in {tree} did not start (does it have benchmarks/bench_engine.py?)")
+        return p
+
+    def ask(p, name):
+        p.stdin.write(name + "\n")
+        p.stdin.flush()
+        return json.loads(p.stdout.readline())
+
+    def interval(q):
+        m = statistics.mean(q)
+        h = student.ppf(0.975, len(q) - 1) * statistics.stdev(q) / len(q) ** 0.5 if len(q) > 1 else math.nan
+        return m, m - h, m + h
+
+    here = str(Path(__file__).resolve().parents[1])
+    per = {n: {"turns": [], "pair_of": [], "base": [], "new": []} for n in names}
+    for pair in range(pairs):
+        workers = {"base": start(base_tree), "new": start(here)}
+        for turn in range(turns):
+            for n in names:
+                got = {"base": [], "new": []}
+                for i in range(chunks):
+                    for lb in (("base", "new") if (i + turn + pair) % 2 == 0 else ("new", "base")):
+                        got[lb].append(ask(workers[lb], n))
+                per[n]["turns"].append(statistics.median(a / b for a, b in zip(got["new"], got["base"])))
+                per[n]["pair_of"].append(pair)
+                per[n]["base"] += got["base"]
+                per[n]["new"] += got["new"]
+            log(f"pair {pair + 1}/{pairs}, turn {turn + 1}/{turns} (load {os.getloadavg()[0]:.1f})")
+        for p in workers.values():
+            p.stdin.close()
+            p.wait()
+    out = {}
+    for n, d in per.items():
+        pm = [statistics.mean(q for q, pr in zip(d["turns"], d["pair_of"]) if pr == k) for k in range(pairs)]
+        m, lo, hi = interval(d["turns"])
+        pmm, plo, phi = interval(pm)
+        out[n] = {"turns": d["turns"], "pairs": pm, "mean": m, "lo": lo, "hi": hi, "pair_mean": pmm, "pair_lo": plo,
+                  "pair_hi": phi, "us_base": statistics.median(d["base"]), "us_new": statistics.median(d["new"])}
+    return out
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--steps", type=int, default=50_000)
     ap.add_argument("--smoke", action="store_true")
     ap.add_argument("--clock", choices=tuple(CLOCK), default="cpu")
     ap.add_argument("--table-only", action="store_true")
+    ap.add_argument("--against", metavar="BASE_TREE", help="compare this tree's loop with BASE_TREE's in lockstep")
+    ap.add_argument("--pairs", type=int, default=4, help="with --against: worker process pairs")
+    ap.add_argument("--turns", type=int, default=10, help="with --against: turns per pair")
+    ap.add_argument("--chunks", type=int, default=10, help="with --against: chunk pairs per scene and turn")
     ap.add_argument("names", nargs="*", help="scenarios of the table (default: every shipped one)")
     a = ap.parse_args(argv)
+    if a.against:
+        names = a.names or list(shipped_scenarios())
+        res = against(a.against, names, a.pairs, a.turns, a.chunks, log=lambda m: print(m, file=sys.stderr, flush=True))
+        print(f"| scenario | us/step base / new (loop, median) | new / base over {a.pairs * a.turns} turns: mean [95 %] "
+              f"| over {a.pairs} pair means [95 %] |")
+        print("|---|---|---|---|")
+        for n, r in res.items():
+            print(f"| {n} | {r['us_base']:.1f} / {r['us_new']:.1f} | {r['mean']:.4f} [{r['lo']:.4f}, {r['hi']:.4f}] "
+                  f"| {r['pair_mean']:.4f} [{r['pair_lo']:.4f}, {r['pair_hi']:.4f}] |")
+        return
     global clock
     clock = CLOCK[a.clock]
     steps = 3000 if a.smoke else a.steps
