@@ -3,6 +3,7 @@ pads_friction_patches and constant_velocity without and with each kind of vibrat
 alternating chunks on the two scenes, minimum and median. Target: at most 5 % (one run; say the load).
 
     python -m benchmarks.bench_vibration [--chunks N] [--before-after] [--engine [--rounds R]]
+    python -m pytest benchmarks/bench_vibration.py   # the harness's entry, one per scene
 
 ``--engine``: bench_engine's measure (its ``loop_ratio``: the project's loop against a bare ``space.step`` loop on
 the same scene, chunk by chunk, the thread's CPU clock) on each scene without and with the vibration, the scenes
@@ -18,6 +19,7 @@ import tomllib
 import numba
 import numpy as np
 import pymunk
+import pytest
 
 from engine_sim import Scene, scenario_from_dict, shipped_scenarios
 from engine_sim.record import Recorder
@@ -238,6 +240,28 @@ def engine(rounds: int, steps: int = 50_000):
             r = float(np.median(ratios[label]))
             rows.append((name, label, r0, r, r - r0))
     return rows
+
+
+@pytest.mark.parametrize("name", ("pads_friction_patches", "constant_velocity"))
+def test_shaken_against_unshaken(benchmark, ratio, smoke, name):
+    """The harness's entry: one chunk of the loop (a maintenance, 16 output steps and their samples) on the scene
+    shaken along the sliding direction (10 Hz, 0.2 mm) timed by the harness, and in the same run the shaken loop's
+    cost per step over the unshaken one's (``paired``: chunks in turns, the ratio of the minima; 10 chunks at smoke
+    size, 200 at full size; the target: at most 1.05)."""
+    vib, chunk = VIBRATIONS["substrate parallel"], 16
+    (b, _), (f, _) = paired(scenario(name, None), scenario(name, vib), 10 if smoke else 200, chunk)
+    ratio("shaken / unshaken loop per step", f / b)
+    rounds = 5 if smoke else 50
+    scene = Scene(scenario(name, vib))
+    scene.advance(2000)
+    rec = Recorder(scene, (rounds + 2) * chunk + 1)
+
+    def one_chunk():
+        scene.maintain()
+        for _ in range(chunk):
+            scene.advance(scene.n_sub)
+            rec.sample()
+    benchmark.pedantic(one_chunk, rounds=rounds, warmup_rounds=1)
 
 
 def main(argv=None):
