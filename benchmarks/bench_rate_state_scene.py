@@ -12,8 +12,6 @@ import os
 import time
 from dataclasses import replace
 
-import pytest
-
 from engine_sim import Scene, load_scenario
 from engine_sim.laws import FrictionSpec
 from engine_sim.record import Recorder
