@@ -29,7 +29,8 @@ PACKAGES = ("engine_sim", "reduced_models", "compare", "frictionnoise")
 BENCH_KEEP = {"__init__", "conftest", "trace_identity"}
 REPLACED = {"interleave_commits", "bench_vs_ref", "summary_causes", "recorder_cost", "maintain_cost"}  # the harness's --benchmark-compare does this
 PROJECT = {"test_readme", "test_install", "test_lean_install", "test_citation", "test_code_shape", "test_docs_cells",
-           "test_docs_browser", "test_docstrings", "test_backend", "test_release", "test_bench_harness", "test_benchmarks_layout", "test_study_pages"}
+           "test_docs_browser", "test_docstrings", "test_backend", "test_release", "test_bench_harness", "test_benchmarks_layout", "test_study_pages",
+           "test_results_pages"}
 TEXT = (".py", ".md", ".toml", ".cff", ".txt", ".cfg", ".yml", ".yaml")
 # a study's tables and figures go to study-results/ (not tracked) in the folder it runs from; a moved study sits one
 # folder deeper
