@@ -280,8 +280,8 @@ def test_gamma_of_x_without_a_mass_covers_the_truth_over_seeds(method):
 
 def test_a_mass_adds_C_F_and_changes_nothing_else():
     # eq. (3): C_F = M^2 omega^4 C_x, so the force exponent is gamma - 4 exactly; gamma, C_x and C_mu are the
-    # same numbers, bit for bit, with or without the mass (at any length: 2^12 samples, two record-model fits of
-    # about a second each where 2^15 took 4 s each).
+    # same numbers, bit for bit, with or without the mass, at any length: 2^12 samples (the test's two record-model
+    # fits take 1.5 s of CPU, 10 s at 2^15).
     from compare.analysis.displacement import analyze_displacement
     from compare.analysis.spectra import rms_from_spectrum
 
