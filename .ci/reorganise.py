@@ -29,7 +29,8 @@ PACKAGES = ("engine_sim", "reduced_models", "compare", "frictionnoise")
 BENCH_KEEP = {"__init__", "conftest", "trace_identity"}
 REPLACED = {"interleave_commits", "bench_vs_ref", "summary_causes", "recorder_cost", "maintain_cost"}  # the harness's --benchmark-compare does this
 PROJECT = {"test_readme", "test_install", "test_lean_install", "test_citation", "test_code_shape", "test_docs_cells",
-           "test_docs_browser", "test_docstrings", "test_backend", "test_release", "test_bench_harness", "test_benchmarks_layout", "test_study_pages"}
+           "test_docs_browser", "test_docstrings", "test_backend", "test_release", "test_bench_harness", "test_benchmarks_layout", "test_study_pages",
+           "test_results_pages"}
 TEXT = (".py", ".md", ".toml", ".cff", ".txt", ".cfg", ".yml", ".yaml")
 # a study's tables and figures go to study-results/ (not tracked) in the folder it runs from; a moved study sits one
 # folder deeper
@@ -108,8 +109,14 @@ def plan() -> tuple:
     return moves, removals
 
 
+# the references rewrite() follows, found by one scan of each file: a module path (benchmarks.NAME, tests.test_X) or a
+# file path (benchmarks/NAME.py, tests/test_X.py); the name it holds is looked up in a table (one alternation of every
+# name, tried at each character, made the dry run cost 30 s of CPU)
+REFERENCE = re.compile(r"(?<![\w/])tests/test_\w+\.py|\btests\.test_\w+\b|\bbenchmarks\.\w+\b|\bbenchmarks/\w+\.py")
+
+
 def rewrite(moves: dict, dry: bool):
-    subs = []
+    subs = {}  # a reference as written -> what it becomes
     # every study and every test in its folder, not only those moved now: a file merged later may name one moved before
     placed = dict(moves)
     for f in tracked("compare/studies", "tests"):
@@ -120,21 +127,19 @@ def rewrite(moves: dict, dry: bool):
             placed.setdefault(Path("tests") / rel.name, rel)
     for old, new in placed.items():
         if old.parts[0] == "benchmarks":
-            subs.append((rf"\bbenchmarks\.{old.stem}\b", f"compare.studies.{old.stem}"))
-            subs.append((rf"\bbenchmarks/{old.name}", f"compare/studies/{old.name}"))
+            subs[f"benchmarks.{old.stem}"] = f"compare.studies.{old.stem}"
+            subs[f"benchmarks/{old.name}"] = f"compare/studies/{old.name}"
         else:
-            subs.append((rf"(?<![\w/])tests/{old.name}", str(new)))
-            subs.append((rf"\btests\.{old.stem}\b", ".".join(new.with_suffix("").parts)))
-    pattern = re.compile("|".join(f"(?:{s})" for s, _ in subs)) if subs else None
+            subs[f"tests/{old.name}"] = str(new)
+            subs[f"tests.{old.stem}"] = ".".join(new.with_suffix("").parts)
     moved = set(moves.values())
     for f in tracked():
         if f.suffix not in TEXT and f.name != "run" or f.name == "CHANGELOG.md" or f.parts[-2:] == (".ci", "reorganise.py"):
             continue
         text = f.read_text()
         out = text
-        if pattern and pattern.search(text):
-            for s, r in subs:
-                out = re.sub(s, r, out)
+        if subs:
+            out = REFERENCE.sub(lambda m: subs.get(m.group(0), m.group(0)), out)
         rel = f.relative_to(ROOT)
         if rel in moved and rel.parts[0] == "compare":  # a study moved in this run
             for s, r in STUDY_PATHS:

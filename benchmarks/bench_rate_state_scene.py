@@ -5,6 +5,7 @@ substrate maintenance), with the log law's twin for reference, interleaved so dr
 (os.getloadavg) is printed beside the timings.
 
     python -m benchmarks.bench_rate_state_scene [--steps N] [--repeat R]
+    python -m pytest benchmarks/bench_rate_state_scene.py   # the harness's entry (test_rate_state_against_linear_law)
 """
 import argparse
 import os
@@ -51,6 +52,22 @@ def loop_cost(scenes, n_steps: int, repeat: int):
             loop.run(n_out)
             best[j] = min(best[j], (time.perf_counter() - t0) / (n_out * loop.scene.n_sub) * 1e6)
     return best
+
+
+def test_rate_state_against_linear_law(benchmark, ratio, smoke):
+    """The harness's entry: one output step of pads_rate_state's loop timed by the harness, and in the same run its
+    cost per step over its linear and log twins' (``loop_cost``, interleaved; 400 steps best of 1 at smoke size,
+    20000 best of 3 at full size)."""
+    sc = load_scenario("pads_rate_state")
+    rs_us, lin_us, log_us = loop_cost([sc, linear_twin(sc), log_twin(sc)], 400 if smoke else 20_000,
+                                      1 if smoke else 3)
+    ratio("rate_state / linear law, loop per step", rs_us / lin_us)
+    ratio("rate_state / log law, loop per step", rs_us / log_us)
+    rounds = 3 if smoke else 20
+    scene = Scene(sc)
+    scene.advance(200)
+    loop = Loop(scene, Recorder(scene, rounds + 2))
+    benchmark.pedantic(loop.run, args=(1,), rounds=rounds, warmup_rounds=1)
 
 
 def main(argv=None):

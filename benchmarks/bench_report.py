@@ -2,6 +2,7 @@
 machine's load (``uptime``) before and after, and the whole report's wall and CPU time with its worker pool.
 
     python -m benchmarks.bench_report [--quick [--all-scenes]] [--full] [--workers N] [--only KEY ...] [--json out.json]
+    python -m pytest benchmarks/bench_report.py   # the harness's entry (test_a_study_against_its_stated_cost)
 
 Each study is seeded on its own, so its time alone is what it costs inside the report; the pool's total is bounded
 below by the longest study and by the sum over the cores. The whole report runs as a user runs it: `frictionnoise
@@ -95,6 +96,29 @@ def schedule(costs: list, workers: int) -> float:
     for c in sorted(costs, reverse=True):
         ends[ends.index(min(ends))] += c
     return max(ends)
+
+
+HARNESS_STUDY = "models/model_ageing"  # the quick report's cheapest model study (a 300 s record and its fits)
+
+
+def test_a_study_against_its_stated_cost(benchmark, ratio, smoke):
+    """The harness's entry: one study of the quick report (model I with ageing contacts) run in this process, timed
+    by the harness after a warm-up (numba's kernels compiled or loaded), and in the same run its CPU time (the
+    least over the runs) over the cost its registry entry states, the figure the report's pool schedules by: a
+    ratio far from 1 says the entry's cost is stale. One run at smoke size (no warm-up: a cold cache's compilation
+    counts), three at full size."""
+    from compare.report import studies
+    from compare.report.build import run_studies
+
+    study = next(s for s in studies.selected(True, True) if s.key == HARNESS_STUDY)
+    cpu = []
+
+    def once():
+        c0 = time.process_time()
+        run_studies([study], True, 0, workers=1)
+        cpu.append(time.process_time() - c0)
+    benchmark.pedantic(once, rounds=1 if smoke else 3, warmup_rounds=0 if smoke else 1)
+    ratio("CPU / the registry's quick cost", min(cpu) / study.cost_in(True))
 
 
 def main(argv=None) -> int:

@@ -3,6 +3,7 @@ pads_friction_patches and constant_velocity without and with each kind of vibrat
 alternating chunks on the two scenes, minimum and median. Target: at most 5 % (one run; say the load).
 
     python -m benchmarks.bench_vibration [--chunks N] [--before-after] [--engine [--rounds R]]
+    python -m pytest benchmarks/bench_vibration.py   # the harness's entry, one per scene
 
 ``--engine``: bench_engine's measure (its ``loop_ratio``: the project's loop against a bare ``space.step`` loop on
 the same scene, chunk by chunk, the thread's CPU clock) on each scene without and with the vibration, the scenes
@@ -238,6 +239,36 @@ def engine(rounds: int, steps: int = 50_000):
             r = float(np.median(ratios[label]))
             rows.append((name, label, r0, r, r - r0))
     return rows
+
+
+def shaken_against_unshaken(benchmark, ratio, smoke, name):
+    """The harness's entry on a scene: one chunk of the loop (a maintenance, 16 output steps and their samples) on the scene
+    shaken along the sliding direction (10 Hz, 0.2 mm) timed by the harness, and in the same run the shaken loop's
+    cost per step over the unshaken one's (``paired``: chunks in turns, the ratio of the minima; 10 chunks at smoke
+    size, 200 at full size; the target: at most 1.05)."""
+    vib, chunk = VIBRATIONS["substrate parallel"], 16
+    (b, _), (f, _) = paired(scenario(name, None), scenario(name, vib), 10 if smoke else 200, chunk)
+    ratio("shaken / unshaken loop per step", f / b)
+    rounds = 5 if smoke else 50
+    scene = Scene(scenario(name, vib))
+    scene.advance(2000)
+    rec = Recorder(scene, (rounds + 2) * chunk + 1)
+
+    def one_chunk():
+        scene.maintain()
+        for _ in range(chunk):
+            scene.advance(scene.n_sub)
+            rec.sample()
+    benchmark.pedantic(one_chunk, rounds=rounds, warmup_rounds=1)
+
+
+# one entry per scene, without pytest's parametrize: compare.studies.step_ledger imports this module
+def test_shaken_against_unshaken_patches(benchmark, ratio, smoke):
+    shaken_against_unshaken(benchmark, ratio, smoke, "pads_friction_patches")
+
+
+def test_shaken_against_unshaken_constant_velocity(benchmark, ratio, smoke):
+    shaken_against_unshaken(benchmark, ratio, smoke, "constant_velocity")
 
 
 def main(argv=None):

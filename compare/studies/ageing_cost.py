@@ -19,6 +19,7 @@ import numpy as np
 from compare.analysis.spectra import band_average, displacement_spectrum
 from reduced_models import ageing as ag
 from reduced_models import spring_block as sb
+from compare.studies.study_page import write_page
 
 OUT = Path("study-results") / "ageing_cost.md"
 
@@ -59,10 +60,7 @@ def main():
         e = band_average(displacement_spectrum(tr.t, tr.x), edges) / Cr - 1
         L.append(f"| {rtol:.0e} | {np.abs(z - zr).max() / zr.std():.1e} | {np.abs(e).max():.1e} | "
                  + " ".join(f"{x:+.0e}" for x in e) + f" | {el:.2f} | {tr.metadata['steps_accepted']} |")
-    L += ["", f"Load at the end: {os.getloadavg()[0]:.1f} (1-min average, 2 cores shared by several sessions).", ""]
-    OUT.parent.mkdir(exist_ok=True)
-    OUT.write_text("\n".join(L))
-    print("\n".join(L))
+    write_page(OUT, L)
 
 
 if __name__ == "__main__":

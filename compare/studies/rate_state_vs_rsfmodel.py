@@ -27,6 +27,7 @@ import numpy as np
 import scipy.integrate
 
 from reduced_models import rate_state as rs
+from compare.studies.study_page import write_page
 
 OUT = Path("study-results") / "rate_state_vs_rsfmodel.md"
 
@@ -91,10 +92,7 @@ def main():
     for name, r in rows:
         lines.append(f"| {name} | {r['dmu']:.2e} | {r['mu_range']:.4f} | {r['dV']:.2e} | {r['dtheta']:.2e} | "
                      f"{r['V_range'][0]:.3g}-{r['V_range'][1]:.3g} | {r['t_rsf']:.3f} | {r['t_ours']:.3f} |")
-    lines += ["", f"Machine load while measured (uptime): {os.getloadavg()[0]:.2f} (1-min average, 2 cores).", ""]
-    OUT.parent.mkdir(exist_ok=True)
-    OUT.write_text("\n".join(lines))
-    print("\n".join(lines))
+    write_page(OUT, lines)
 
 
 if __name__ == "__main__":

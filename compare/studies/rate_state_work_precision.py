@@ -13,7 +13,6 @@ relative error of the slip at the last sample (half a cycle after the 10th event
 from __future__ import annotations
 
 import math
-import os
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -22,6 +21,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from reduced_models import rate_state as rs
+from compare.studies.study_page import write_page
 
 OUT = Path("study-results") / "rate_state_work_precision.md"
 
@@ -94,10 +94,7 @@ def main():
         n_cyc = len(_events(tr.t, tr.slip))
         lines += ["", f"100 cycles at the default rtol 1e-8 ({n_cyc} slip events counted, 100 samples per cycle): "
                   f"{best:.3f} s wall (best of 3), {tr.metadata['steps_accepted']} steps.", ""]
-    lines += [f"Machine load while measured: {os.getloadavg()[0]:.2f} (1-min average, 2 cores shared).", ""]
-    OUT.parent.mkdir(exist_ok=True)
-    OUT.write_text("\n".join(lines))
-    print("\n".join(lines))
+    write_page(OUT, lines)
 
 
 if __name__ == "__main__":

@@ -38,6 +38,7 @@ from compare.analysis.spectra import band_average, displacement_spectrum
 from reduced_models import ageing as ag
 from reduced_models import rate_state as rs
 from reduced_models import spring_block as sb
+from compare.studies.study_page import write_page
 
 RES = Path("study-results")
 CACHE = RES / "velocity_scaling_runs.json"
@@ -256,9 +257,7 @@ def write(slope, slope_ci, table, rows, m1, a53, base, kc, w0, peaks, duration, 
           ", its height growing as (k - k_c)^-2.", "",
           f"Cost: ageing-model runs of {duration:.0f} s at 100 Hz took {np.median(cpu):.2f} s CPU (median; "
           f"{min(cpu):.2f}-{max(cpu):.2f}) under a load of 6-14 on 2 cores.", ""]
-    RES.mkdir(exist_ok=True)
-    (RES / "velocity_scaling.md").write_text("\n".join(L))
-    print("\n".join(L))
+    write_page(RES / "velocity_scaling.md", L, load=False)
 
 
 def figure(cache, cfg, duration, seeds, w, curves, w0):

@@ -249,11 +249,11 @@ def test_stroke_averaged_whittle_interval_covers_over_seeds():
 GAMMA, V, DT, N = 4.5, 5e-4, 1e-2, 2**15  # a gamma between the experiments' 4 and 5; 0.5 mm/s; 100 Hz for 328 s
 
 
-def _record(seed):
+def _record(seed, n=N):
     from tests.synthetic import power_law_record
 
-    t = np.arange(N) * DT
-    z = power_law_record(N, DT, GAMMA, seed)
+    t = np.arange(n) * DT
+    z = power_law_record(n, DT, GAMMA, seed)
     return t, V * t + 1e-6 * z / z.std()  # zeta of 1 um rms over the window
 
 
@@ -280,11 +280,12 @@ def test_gamma_of_x_without_a_mass_covers_the_truth_over_seeds(method):
 
 def test_a_mass_adds_C_F_and_changes_nothing_else():
     # eq. (3): C_F = M^2 omega^4 C_x, so the force exponent is gamma - 4 exactly; gamma, C_x and C_mu are the
-    # same numbers, bit for bit, with or without the mass.
+    # same numbers, bit for bit, with or without the mass, at any length: 2^12 samples (the test's two record-model
+    # fits take 1.5 s of CPU, 10 s at 2^15).
     from compare.analysis.displacement import analyze_displacement
     from compare.analysis.spectra import rms_from_spectrum
 
-    t, x = _record(0)
+    t, x = _record(0, n=2**12)
     bare, heavy = analyze_displacement(t, x), analyze_displacement(t, x, mass=2.0)
     assert heavy.fit == bare.fit and np.array_equal(heavy.C_x.C, bare.C_x.C) and np.array_equal(heavy.C_mu.C, bare.C_mu.C)
     assert heavy.zeta_rms == bare.zeta_rms and heavy.mu_rms == bare.mu_rms and heavy.notes == []

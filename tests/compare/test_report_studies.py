@@ -243,9 +243,11 @@ def test_process_pool_returns_results_and_ends_its_workers_on_an_interrupt():
 def test_each_shipped_scene_goes_to_the_study_of_its_layout(monkeypatch):
     # the parts name the model (compare.report.studies.scenes.fitting_part): wear particles -> the paired runs and
     # model II (scene_wear), sparse asperities -> model
-    # III (scene_asperity, 16 s quick runs), every other substrate -> model I. The studies' bodies run in the slow
-    # tier (quick report, install test): a wear or asperity scene costs 4-7 s of CPU even when too short to fit.
-    from compare.report.studies import scene_asperity, scene_wear, scenes
+    # III (scene_asperity, 16 s quick runs), the rate-and-state law -> the ageing model or the spring-slider
+    # (scene_rate_state), every other substrate -> model I. The studies' bodies run in the slow tier (quick report
+    # of every scene, install test): a wear or asperity scene costs 4-7 s of CPU even when too short to fit, the two
+    # rate-and-state scenes 19 s.
+    from compare.report.studies import scene_asperity, scene_rate_state, scene_wear, scenes
     from engine_sim import load_scenario, shipped_scenarios
 
     calls = []
@@ -255,11 +257,14 @@ def test_each_shipped_scene_goes_to_the_study_of_its_layout(monkeypatch):
     monkeypatch.setattr(scene_wear, "wear_result", stub("model II"))
     monkeypatch.setattr(scene_asperity, "asperity_result", stub("model III"))
     monkeypatch.setattr(scenes, "_model_I_result", stub("model I"))
+    monkeypatch.setattr(scene_rate_state, "ageing_result", stub("model ageing"))
+    monkeypatch.setattr(scene_rate_state, "slider_result", stub("spring slider"))
     for name, path in shipped_scenarios().items():
         scenes.scene_result(name, load_scenario(path), True, 0)
     kinds = {name: kind for name, kind, _ in calls}
     assert kinds["pads_with_wear"] == "model II" and kinds["asperity_field"] == "model III"
     assert kinds["pads_friction_patches"] == kinds["pads_rough_profile"] == kinds["line_scan_example"] == "model I"
+    assert kinds["pads_rate_state"] == "model ageing" and kinds["spring_slider_rate_state"] == "spring slider"
     assert dict((n, d) for n, _, d in calls)["asperity_field"] == 16.0
 
 

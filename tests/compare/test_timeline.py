@@ -148,7 +148,9 @@ def test_analyze_reports_segments_and_the_exponent(tmp_path, capsys):
 
 
 def test_resample_on_request(tmp_path, capsys):
-    t, x = _gamma4_record(2)
+    # 2^16 samples: 30 s at 1 kHz then 2.8 s at 2 kHz, steps a uniform grid must resample (the gap at 45 s is for
+    # the segment tests; a file of 2^17 costs this test twice the reading and the fit)
+    t, x = _gamma4_record(2, n=2**16)
     f = tmp_path / "rig.csv"
     _write(f, t, x)
     out = tmp_path / "out"

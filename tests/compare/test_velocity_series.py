@@ -20,18 +20,31 @@ def _records(beta, seed0=0):
             for i, v in enumerate(SPEEDS)]
 
 
+@pytest.fixture(scope="module")
+def analyses():
+    """The record-model analyses of ``_records(beta)`` by beta, each made once in the module (the exponent test and
+    the refusals read the same three records at beta = 3)."""
+    from compare.analysis.displacement import analyze_displacement
+
+    made = {}
+
+    def of(beta):
+        if beta not in made:
+            made[beta] = [analyze_displacement(t, x) for t, x in _records(beta)]
+        return made[beta]
+    return of
+
+
 @pytest.mark.parametrize("beta", [5 / 3, 3.0])
-def test_velocity_exponent_is_recovered_within_its_interval(beta):
+def test_velocity_exponent_is_recovered_within_its_interval(beta, analyses):
     # The exponent of C_x(omega*) against v is beta by construction; three records with independent noise, so the
     # truth must lie in the 95 % interval (a 5 % chance per case if the interval is honest; the band-averaging
     # error counts only half the Welch ordinates as independent, so it is conservative). Measured over 30 other seed
     # sets at beta = 5/3: mean 1.690, sd 0.065 against a per-record sigma of 0.084 (half-width 0.165); 30/30 covered;
     # 3/30 took the residual-scatter interval (chi-square p < 0.05).
-    from compare.analysis.displacement import analyze_displacement
     from compare.analysis.velocity_series import velocity_series
 
-    ans = [analyze_displacement(t, x) for t, x in _records(beta)]
-    s = velocity_series(ans)
+    s = velocity_series(analyses(beta))
     assert s.omega_auto and s.common_band[0] < s.omega < s.common_band[1]
     assert abs(s.exponent - beta) <= s.exponent_err, (s.exponent, s.exponent_err, s.exponent_err_source)
     assert s.exponent_err < 0.5  # a useful interval: the speeds span 0.8 of a decade
@@ -44,11 +57,11 @@ def test_velocity_exponent_is_recovered_within_its_interval(beta):
     assert (s.collapse["collapse_gain"] > 5) == (beta == 3.0), s.collapse
 
 
-def test_omega_given_and_bad_series_are_refused():
+def test_omega_given_and_bad_series_are_refused(analyses):
     from compare.analysis.displacement import analyze_displacement
     from compare.analysis.velocity_series import velocity_series
 
-    ans = [analyze_displacement(t, x) for t, x in _records(3.0)]
+    ans = analyses(3.0)
     s = velocity_series(ans, omega=10.0)
     assert s.omega == 10.0 and not s.omega_auto and abs(s.exponent - 3) <= s.exponent_err
     with pytest.raises(ValueError, match="two or more"):
