@@ -118,8 +118,9 @@ def test_substepped_grains_resume_bit_for_bit(tmp_path):
 # 1.84, 17.45, 12.50x per band); cavity track, rise +0.148 +- 0.489 (twin 3.365 +- 0.422, with grains 3.513 +- 0.247;
 # C_x 2.31, 9.91, 4.89x per band). What 12 s resolves: the grains add noise in every band, and on both tracks the
 # rise stays below +1, the steepening by one power (omega^-4 to omega^-5) of the paper's section 10. What it does
-# not: the rise's sign on either track (each interval contains 0: a paired run of 12 s is too short for a rise of a few tenths). The runs are
-# deterministic: these are the numbers the test recomputes; the assertions hold the verdicts, not the digits.
+# not: the rise's sign on either track (each interval contains 0: a paired run of 12 s is too short for a rise of a
+# few tenths). The runs are deterministic: these are the numbers the test recomputes; the assertions hold the
+# verdicts, not the digits.
 # Tolerance: each exponent's 95 % half-width is the record model's profile interval (pooled coverage 94.4 % on
 # synthetic power laws with a floor, docs/results/exponent_coverage.md); the rise's is the two added in quadrature,
 # as for independent records. The twin and the cell share their substrate, so their errors may be correlated: the
