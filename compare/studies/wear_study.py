@@ -165,11 +165,14 @@ def main(argv=None):
          f"Reproduce: `{command}` (S: the sweep's wall time, for the cost section). The tables hold no timing: the "
          "same commands write the same rows on any machine (seeded runs).", "",
          f"Sweep: `{a.sweep}`: {spec.description.replace(chr(10), ' ')}", "",
-         "gamma: Whittle fit of C_x over 3-30 v/a (v the law's speed, a = 1 mm: 15-150 rad/s), mean over seeds, +- the "
+         "gamma: the record model's exponent of x(t) over 3-30 v/a (v the law's speed, a = 1 mm: 15-150 rad/s; "
+         "compare.analysis.record_model.fit_series: C_x = A omega^-gamma + a white floor, debiased Whittle likelihood "
+         "of the whole record, profile 95 % interval), mean over seeds, +- the "
          "larger of the seed scatter's 95 % half-width (t quantile) and the per-seed 95 % intervals combined; rise: "
          "gamma minus the particle-free twin's (same track and seed), paired, with the same interval rule; C_x / twin: "
          "paired ratio per band (3 log bands over 15-150 rad/s), geometric mean over seeds; C_F exponents: C_F ~ "
-         "omega^-exponent over the same band (grains' summed force on the pads; the pads' whole friction force); "
+         "omega^-exponent over the same band by the same fit of the force's running sum (grains' summed force on "
+         "the pads; the pads' whole friction force); "
          "covered: grains' summed diameters over the tracks' grain windows (30 x 7 mm); B2: the grains' measured C_F over "
          "eq. (B2) built from the cell's own trap/move episodes, per band (1 = model II exact); F_g_trapped / F_g_moving: "
          "the grains' mean force on the pads while trapped / moving (N; only the trapped part has a light-grain limit, "

@@ -112,11 +112,19 @@ def test_substepped_grains_resume_bit_for_bit(tmp_path):
 
 
 # The slow check of the study's verdict: one cell with particles (25 narrow grains) against its particle-free twin
-# (same track, substrate and seed), through the sweep's own task (compare.sweep.run_task with the wear hook), 12 s each.
-# MEASURED (seed 0): smooth track, rise +0.117 +- 0.329 (95 %; twin 3.773, with grains 3.890; C_x 1.8-17x per band): not steeper (the quick study pooled -0.06 +- 0.28
-# over 12 paired runs); cavity track, rise +0.640 +- 0.311 (twin 2.850, with grains 3.490;
-# C_x 2.3-9.9x per band): steeper beyond the interval (quick study pooled +0.87 +- 0.21). The runs are deterministic: these are the numbers the test
-# recomputes; the assertions hold the verdicts (interval containing 0, or above it), not the digits.
+# (same track, substrate and seed), through the sweep's own task (compare.sweep.run_task with the wear hook), 12 s each,
+# every exponent by the record model (compare.analysis.record_model.fit_series over 15-150 rad/s).
+# MEASURED (seed 0): smooth track, rise -0.032 +- 0.405 (95 %; twin 3.895 +- 0.305, with grains 3.863 +- 0.266; C_x
+# 1.84, 17.45, 12.50x per band); cavity track, rise +0.148 +- 0.489 (twin 3.365 +- 0.422, with grains 3.513 +- 0.247;
+# C_x 2.31, 9.91, 4.89x per band). What 12 s resolves: the grains add noise in every band, and on both tracks the
+# rise stays below +1, the steepening by one power (omega^-4 to omega^-5) of the paper's section 10. What it does
+# not: the rise's sign on either track (each interval contains 0: a paired run of 12 s is too short for a rise of a
+# few tenths). The runs are deterministic: these are the numbers the test recomputes; the assertions hold the
+# verdicts, not the digits.
+# Tolerance: each exponent's 95 % half-width is the record model's profile interval (pooled coverage 94.4 % on
+# synthetic power laws with a floor, docs/results/exponent_coverage.md); the rise's is the two added in quadrature,
+# as for independent records. The twin and the cell share their substrate, so their errors may be correlated: the
+# quadrature then overstates the rise's width, which makes "below +1" conservative and "contains 0" lenient.
 _CELL = {"wear.count": 25, "study.size": "narrow"}
 _CELL_T = 12.0
 
@@ -135,9 +143,7 @@ def _paired_rise(track, seed=0):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("track", ["smooth", pytest.param("cavities", marks=pytest.mark.xfail(
-    strict=True, reason="measured with the band fit: the record model reads +0.148 +- 0.489 on this cell, which no "
-    "longer excludes zero; the wear study's claims are to be re-measured with it (docs/results/wear.md)"))])
+@pytest.mark.parametrize("track", ["smooth", "cavities"])
 def test_cell_with_particles_against_its_twin(track):
     d, err, ratio, cell, twin = _paired_rise(track)
     print(f"\n25 narrow grains, {track} track, seed 0, {_CELL_T:g} s: gamma {cell['wear']['fit_x']['gamma']:.3f} +- "
@@ -145,12 +151,13 @@ def test_cell_with_particles_against_its_twin(track):
           f"{twin['wear']['fit_x']['gamma_err']:.3f}: rise {d:+.3f} +- {err:.3f} (95 %); C_x / twin per band "
           f"{', '.join(f'{r:.2f}' for r in ratio)}; energy {100 * cell['wear']['energy_balance_rel']:+.3f} %")
     assert abs(cell["wear"]["energy_balance_rel"]) < 0.01 and cell["wear"]["left_interface"] == 0
-    assert np.all(ratio > 1)  # the grains add noise in every band (quick study: 3-49x)
+    assert np.all(ratio > 1)  # the grains add noise in every band (quick study: 2.7-31x per band)
     if track == "smooth":
-        assert 3.6 < twin["wear"]["fit_x"]["gamma"] < 4.4  # the base scene at omega^-4 (60 s x 3 seeds: 4.00 +- 0.05)
-        assert d - err < 0 < d + err, f"measured not steeper: +0.117 +- 0.329; now {d:+.3f} +- {err:.3f}"
-    else:
-        assert d - err > 0, f"measured steeper; now {d:+.3f} +- {err:.3f}"
+        # the base scene at omega^-4 (60 s x 3 seeds, band fit: 4.00 +- 0.05)
+        assert 3.6 < twin["wear"]["fit_x"]["gamma"] < 4.4
+    measured = {"smooth": "-0.032 +- 0.405", "cavities": "+0.148 +- 0.489"}[track]
+    assert d + err < 1, f"measured below +1 (not toward omega^-5): {measured}; now {d:+.3f} +- {err:.3f}"
+    assert d - err < 0 < d + err, f"measured without a resolved sign: {measured}; now {d:+.3f} +- {err:.3f}"
 
 
 def test_mass_sensitivity_pairs_seeds_and_widens_the_intervals():

@@ -4,7 +4,7 @@ timing):
 - one row of docs/results/exponent_coverage.md (records of 2^12 samples, gamma = 2, no floor: seeds 0-59, the page's
   run at 2^12) recomputed by compare.studies.exponent_coverage;
 - two rows of docs/results/wear_study_quick.md (the smooth track's particle-free twin and its 25 narrow grains, seeds
-  0 and 1: 4 of the page's 28 tasks) by the page's own sweep file with its grid cut to those cells, run by the
+  0 and 1: 4 of the page's 16 tasks) by the page's own sweep file with its grid cut to those cells, run by the
   sweep runner the page's command uses and tabled by compare.studies.wear_study.
 """
 from dataclasses import replace
@@ -31,8 +31,6 @@ def _table_rows(page: Path) -> list:
 
 
 @pytest.mark.slow  # 4 scene runs of 3.5 s, two of them with 25 wear grains (about a minute on an idle core)
-@pytest.mark.xfail(strict=True, reason="the page's rows were written with the band fit; the wear statistics now use "
-                   "the record model: rebuild the page by its two commands (docs/results/wear_study_quick.md)")
 def test_wear_quick_study_rows_rebuild(tmp_path):
     from compare.report.wear_study import cells
     from compare.studies import wear_study as ws
