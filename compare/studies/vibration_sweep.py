@@ -41,17 +41,19 @@ def markdown(rows: list, sc: VibratedScene) -> str:
     return "\n".join(out)
 
 
-def gamma_markdown(rows: list, sc: VibratedScene) -> str:
+def gamma_markdown(groups: dict) -> str:
     """gamma of each shaken cell and of its twin as their fits give them: the record model's fit of each task's
     record with its own 95 % profile interval (the mean of the seeds' half-widths when a cell holds several), for a
-    sweep run with fewer seeds than a Student-t interval over the seeds needs."""
+    sweep run with fewer seeds than a Student-t interval over the seeds needs. ``groups``: {drive name: rows}, the
+    drive named by the folders the rows came from (one seed's twins cannot show whether the drive force varied)."""
     out = ["| f (Hz) | drive | A (um) | xi | A / A_onset | gamma (its 95 % half-width) | twin's gamma | seeds |",
            "|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        out.append(
-            f"| {r['frequency']:g} | {'force' if r['constant_force'] else 'velocity'} | {r['amplitude'] * 1e6:.3g} | "
-            f"{r['xi']:.3g} | {r['amplitude'] / r['A_onset']:.2g} | {r['gamma']:.2f} +- {r['gamma_fit_err']:.2f} | "
-            f"{r['gamma_twin']:.2f} | {r['seeds']} |")
+    for drive, rows in groups.items():
+        for r in rows:
+            out.append(
+                f"| {r['frequency']:g} | {drive} | {r['amplitude'] * 1e6:.3g} | {r['xi']:.3g} | "
+                f"{r['amplitude'] / r['A_onset']:.2g} | {r['gamma']:.2f} +- {r['gamma_fit_err']:.2f} | "
+                f"{r['gamma_twin']:.2f} | {r['seeds']} |")
     return "\n".join(out)
 
 
@@ -64,10 +66,11 @@ def main(argv=None):
                     help="only gamma per cell with each fit's own interval (a run with one seed per cell)")
     a = ap.parse_args(argv)
     sc = VibratedScene()
-    rows = cells(load_tasks(a.force), sc) + cells(load_tasks(a.velocity), sc)
+    rows_force, rows_velocity = cells(load_tasks(a.force), sc), cells(load_tasks(a.velocity), sc)
     if a.gamma:
-        print(gamma_markdown(rows, sc))
+        print(gamma_markdown({"force": rows_force, "velocity": rows_velocity}))
         return
+    rows = rows_force + rows_velocity
     print(markdown(rows, sc))
     print()
     print(answer(rows, sc).replace("&plusmn;", "+-"))

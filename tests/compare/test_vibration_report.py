@@ -123,5 +123,5 @@ def test_one_seed_gamma_table_quotes_each_fits_own_interval():
     one = [t for t in _sweep() if t["seed"] == 1]
     (r,) = cells(one)
     assert r["seeds"] == 1 and math.isnan(r["gamma_ci"])
-    row = gamma_markdown([r], VibratedScene()).splitlines()[2]
-    assert "| 4.00 +- 0.10 | 4.00 | 1 |" in row and row.startswith("| 1000 | force | 10 |")
+    row = gamma_markdown({"velocity": [r]}).splitlines()[2]
+    assert "| 4.00 +- 0.10 | 4.00 | 1 |" in row and row.startswith("| 1000 | velocity | 10 |")
