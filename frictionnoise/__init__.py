@@ -6,7 +6,8 @@ rad/s; spectra in the two-sided angular convention of eq. (2) of Xu, Zhou & Pers
 
 - **spectra and fits**: :func:`displacement_spectrum`, :func:`force_series_spectrum`, :func:`force_spectrum`,
   :func:`friction_coefficient_spectrum`, :func:`rms_from_spectrum`, :func:`band_average`, :func:`log_bin`,
-  :class:`Spectrum`; :func:`fit_power_law` and :class:`PowerLawFit`; the test helpers
+  :class:`Spectrum`; :func:`fit_series` and :class:`RecordFit` (the record model: gamma of a time record, as the
+  report quotes it), :func:`fit_power_law` and :class:`PowerLawFit` (a band of a spectrum); the test helpers
   :func:`assert_spectral_slope` and :func:`assert_spectrum_matches`;
 - **the reduced models** I, Ib, II and III and their extensions: their parameters (:class:`SpringBlockParams`,
   :class:`MultiscaleParams`, :class:`WearParticleParams`, :class:`AsperityForceParams`, :class:`AgeingParams`
@@ -37,6 +38,7 @@ _LAZY = {
     "force_spectrum": "compare.spectra", "friction_coefficient_spectrum": "compare.spectra",
     "rms_from_spectrum": "compare.spectra", "band_average": "compare.spectra", "log_bin": "compare.spectra",
     "PowerLawFit": "compare.fits", "fit_power_law": "compare.fits",
+    "RecordFit": "compare.analysis.record_model", "fit_series": "compare.analysis.record_model",
     "assert_spectral_slope": "compare.testing", "assert_spectrum_matches": "compare.testing",
     # the reduced models
     "SpringBlockParams": "reduced_models", "MultiscaleParams": "reduced_models",

@@ -7,6 +7,9 @@ spectrum), written as markdown and a PNG.
     python -m compare.studies.vibration_sweep --force DIR/force_* --velocity DIR/velocity_* \\
         [--png study-results/vibration_sweep.png]
 
+``--gamma`` prints gamma alone per cell, each fit with its own 95 % interval: for a run of the sweep files with one
+seed (their grid's ``seed = [0]``), which re-measures the exponents without the hours of three seeds.
+
 The twins (amplitude 0) are in the 1000 Hz files; each drive's folders are read together.
 """
 import argparse
@@ -38,14 +41,36 @@ def markdown(rows: list, sc: VibratedScene) -> str:
     return "\n".join(out)
 
 
+def gamma_markdown(groups: dict) -> str:
+    """gamma of each shaken cell and of its twin as their fits give them: the record model's fit of each task's
+    record with its own 95 % profile interval (the mean of the seeds' half-widths when a cell holds several), for a
+    sweep run with fewer seeds than a Student-t interval over the seeds needs. ``groups``: {drive name: rows}, the
+    drive named by the folders the rows came from (one seed's twins cannot show whether the drive force varied)."""
+    out = ["| f (Hz) | drive | A (um) | xi | A / A_onset | gamma (its 95 % half-width) | twin's gamma | seeds |",
+           "|---|---|---|---|---|---|---|---|"]
+    for drive, rows in groups.items():
+        for r in rows:
+            out.append(
+                f"| {r['frequency']:g} | {drive} | {r['amplitude'] * 1e6:.3g} | {r['xi']:.3g} | "
+                f"{r['amplitude'] / r['A_onset']:.2g} | {r['gamma']:.2f} +- {r['gamma_fit_err']:.2f} | "
+                f"{r['gamma_twin']:.2f} | {r['seeds']} |")
+    return "\n".join(out)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--force", nargs="+", default=[], help="task folders of the constant force drive")
     ap.add_argument("--velocity", nargs="+", default=[], help="task folders of the constant velocity drive")
     ap.add_argument("--png", type=Path, help="write the figure here")
+    ap.add_argument("--gamma", action="store_true",
+                    help="only gamma per cell with each fit's own interval (a run with one seed per cell)")
     a = ap.parse_args(argv)
     sc = VibratedScene()
-    rows = cells(load_tasks(a.force), sc) + cells(load_tasks(a.velocity), sc)
+    rows_force, rows_velocity = cells(load_tasks(a.force), sc), cells(load_tasks(a.velocity), sc)
+    if a.gamma:
+        print(gamma_markdown({"force": rows_force, "velocity": rows_velocity}))
+        return
+    rows = rows_force + rows_velocity
     print(markdown(rows, sc))
     print()
     print(answer(rows, sc).replace("&plusmn;", "+-"))

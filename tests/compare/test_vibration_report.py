@@ -113,3 +113,15 @@ def test_the_answers_measured_numbers_are_the_tables(page):
     quoted = re.findall(r"\d[\d.e+-]* ± \d[\d.e+-]*\d", bullets)
     assert len(quoted) >= 40, quoted
     assert [q for q in quoted if q not in cells] == []
+
+
+def test_one_seed_gamma_table_quotes_each_fits_own_interval():
+    # a sweep run with one seed: no Student-t interval over seeds, so the gamma table gives the fit's own 95 %
+    # half-width (0.1 in every synthetic task) and the twin's gamma
+    from compare.studies.vibration_sweep import gamma_markdown
+
+    one = [t for t in _sweep() if t["seed"] == 1]
+    (r,) = cells(one)
+    assert r["seeds"] == 1 and math.isnan(r["gamma_ci"])
+    row = gamma_markdown({"velocity": [r]}).splitlines()[2]
+    assert "| 4.00 +- 0.10 | 4.00 | 1 |" in row and row.startswith("| 1000 | velocity | 10 |")
