@@ -40,7 +40,7 @@ import reduced_models
 
 from . import null_tables
 from .families import FAMILIES, MARGIN, Family
-from .family_fit import FamilyFit, Grouped, cell_of, fit_family, record_for, sampled_spectrum
+from .family_fit import FamilyFit, Grouped, cell_of, fit_family, record_for, sampled_spectrum, segments_of
 
 __all__ = ["Mechanism", "identify", "holm", "vuong", "stationarity"]
 
@@ -307,6 +307,7 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
         if n not in FAMILIES:
             raise ValueError(f"no spectral family for model {n!r}; families: {', '.join(FAMILIES)}")
     rec = record_for(x, dt)
+    segments = segments_of(x, dt)
     G = Grouped(rec)
     n_ord = len(rec.omega)
     fits, shared = {}, {}
@@ -316,7 +317,7 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
         key = id(fam.shape)
         if key not in shared:
             start = base.theta if base is not None and n in _EXTENDS_I else None
-            shared[key] = fit_family(rec, fam, v, start_theta=start)
+            shared[key] = fit_family(rec, fam, v, start_theta=start, segments=segments)
             if n in _BASE:
                 base = shared[key]
         f = shared[key]

@@ -79,3 +79,48 @@ def test_a_model_III_record_on_the_tenfold_grid_has_its_family_periodogram():
         sd = 1.1 * math.sqrt(np.sum(mu[b] ** 2)) / np.sum(mu[b])
         ratio = rec.periodogram[b].mean() / mu[b].mean()
         assert abs(ratio - 1) < 4.5 * sd, (rec.omega[b][0], sd, ratio)
+
+
+RENEWING = {
+    # model, parameters (alpha f_kin / (f_n A) = 0.21 for the ageing model: its linear response holds)
+    "model_I": rm.spring_block.SpringBlockParams.reference(),
+    "model_ageing": rm.ageing.AgeingParams(alpha=0.1),
+}
+
+
+@pytest.mark.parametrize("name", sorted(RENEWING))
+def test_a_renewing_model_record_has_its_family_periodogram_band_by_band(name):
+    # Four 60 s records' twice-differenced periodograms averaged, over 8 log bands from 1 rad/s to Nyquist, against
+    # the family at the model's parameters. Two sampling errors per band, added in quadrature: the ordinates'
+    # (exponential of mean mu_j: sqrt(sum mu_j^2) / sum mu_j per record, times 1.1 for the taper) and the level's
+    # own, common to every band above v / a: the renewal force's level is the mean squared jump of the
+    # N T v / a renewals a record holds, relative variance 1.8 / (N T v / a) (1.4 for one uniform jump's square,
+    # 0.2 covariance with each neighbour; family_fit's module docstring), 4.5 % per record here, measured 5-6 %
+    # over 8 seeds. Bound: 4 of the combined errors per band. The ageing model's state step at v / D_c = 5 rad/s lies
+    # inside (band 2), so the bands test its slope c(omega), not a constant.
+    p, seeds, T = RENEWING[name], range(4), 60.0
+    acc = None
+    for s in seeds:
+        rec = record_for(rm.MODELS[name].simulate(p, T, DT, seed=s).x, DT)
+        acc = rec.periodogram if acc is None else acc + rec.periodogram
+    mean = acc / len(seeds)
+    gain = np.abs(2 * np.sin(rec.omega * DT / 2) / DT) ** 4
+    mu = gain * _family_mean(name, p, rec.omega)
+    level = math.sqrt(1.8 / (p.N * T * p.v / p.a) / len(seeds))
+    for b in _bands(rec.omega, 1.0, 8):
+        sd = math.hypot(1.1 * math.sqrt(np.sum(mu[b] ** 2)) / np.sum(mu[b]) / math.sqrt(len(seeds)), level)
+        ratio = mean[b].mean() / mu[b].mean()
+        assert abs(ratio - 1) < 4 * sd, (rec.omega[b][0], sd, ratio)
+
+
+def test_the_ageing_reference_lies_outside_its_family():
+    # The ageing model's reference (alpha = 1: renewal forces alpha f_kin = 2.1 times the direct effect's scale
+    # f_n A) is far from its linear response: above the resonance its record stands twice the family (measured
+    # 2.0-2.6 over 300-3000 rad/s on a 30 s record, seed 3, against a sampling error under 7 %). The confusion
+    # study's ageing cell is set at alpha = 0.1, where the test above holds.
+    p = rm.ageing.AgeingParams.reference()
+    rec = record_for(rm.ageing.simulate(p, 10.0, DT, seed=3).x, DT)
+    gain = np.abs(2 * np.sin(rec.omega * DT / 2) / DT) ** 4
+    mu = gain * _family_mean("model_ageing", p, rec.omega)
+    top = rec.omega > 1000.0
+    assert rec.periodogram[top].mean() / mu[top].mean() > 1.5
