@@ -36,6 +36,7 @@ means) measures it without knowing N; the level's interval is the wider of the c
 """
 from __future__ import annotations
 
+import copy
 import itertools
 import math
 from dataclasses import dataclass, field
@@ -48,7 +49,7 @@ from .families import Family, identified
 from .whittle import WhittleFit, WhittleRecord, maximum_likelihood
 
 __all__ = ["FamilyFit", "Grouped", "fit_family", "record_for", "sampled_spectrum", "SampledSpectrum", "cell_of", "ORDER",
-           "EXACT_N", "SEGMENTS", "segments_of"]
+           "EXACT_N", "SEGMENTS", "segments_of", "without"]
 
 ORDER = 2  # differences: every family's omega^-4 range flat, the floor rising as omega^4
 EXACT_N = 2**15  # records up to this many samples get the debiased likelihood's maximum
@@ -72,6 +73,21 @@ def record_for(x, dt: float) -> WhittleRecord:
         Sampling step (Units: s).
     """
     return WhittleRecord(np.asarray(x, dtype=float), dt, ORDER)
+
+
+def without(record: WhittleRecord, spans) -> WhittleRecord:
+    """A copy of ``record`` whose ordinates inside the frequency ``spans`` ((low, high), rad/s: a line's skirt,
+    :func:`compare.analysis.lines.remove_lines`) are left out of the grouped likelihood; the record itself unchanged.
+    Its expected-periodogram machinery (``exact=True``) is not available on the copy."""
+    if not spans:
+        return record
+    keep = np.ones(len(record.omega), bool)
+    for lo, hi in spans:
+        keep &= ~((record.omega >= lo) & (record.omega <= hi))
+    out = copy.copy(record)
+    out.omega, out.periodogram, out.memo = record.omega[keep], record.periodogram[keep], {}
+    out.n = record.n  # the ordinates' spacing 2 pi / (n dt) is the record's
+    return out
 
 
 class Grouped:
@@ -464,6 +480,37 @@ def _identify(record: WhittleRecord, fam: Family, v: float, q):
     return q, [identified(feats[p.name], band) for p in fam.params], band
 
 
+_DESCENTS = 6  # L-BFGS-B restarted from its own end while it gains more than _GAIN
+
+
+def _descend(grouped, q0, bounds, per: float):
+    """L-BFGS-B from ``q0`` on the negative log-likelihood per ordinate (``per``: one over their number), restarted
+    from where it stops while a restart gains more than :data:`_GAIN` (at most :data:`_DESCENTS` runs). Returns
+    scipy's result with ``fun`` the likelihood itself.
+
+    Per ordinate: L-BFGS-B's first step goes to the minimum of a quadratic of unit curvature, a gradient's length
+    away; on the sum over 3e4 ordinates (a gradient of 1e4 per decade) that step reached the search box's ends,
+    where the family is not finite, and the run ended after one iteration where it began (measured on model_Iv's
+    60 s records: 1300 short of the maximum). Its memory of the curvature, built along a narrow valley (omega_c
+    against Q and the contacts' inertia), can also end a run early: hence the restarts."""
+    def f(q):
+        return grouped(q) * per
+
+    res = optimize.minimize(f, q0, method="L-BFGS-B", bounds=bounds, options=_STOP)
+    for _ in range(_DESCENTS - 1):
+        again = optimize.minimize(f, res.x, method="L-BFGS-B", bounds=bounds, options=_STOP)
+        gained = (res.fun - again.fun) / per
+        if again.fun < res.fun:
+            res = again
+        if not gained > _GAIN:
+            break
+    res.fun = grouped(res.x)
+    return res
+
+
+_GAIN = 1e-3  # a restart's gain below which a descent has stopped (the likelihood's units; a 95 % drop is 1.92)
+
+
 def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dict | None = None,
                exact: bool = False, segments=()) -> FamilyFit:
     """Maximum-likelihood fit of family ``fam`` plus a white floor to ``record``, with 95 % intervals.
@@ -498,14 +545,13 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         val = G.negloglik(spectrum, q)
         return val if math.isfinite(val) else 1e300
 
-    res = optimize.minimize(grouped, q0, method="L-BFGS-B", bounds=bounds, options=_STOP)
+    per = 1.0 / float(G.count.sum())
+    res = _descend(grouped, q0, bounds, per)
     for i, p in enumerate(fam.params):
         if p.name in _RESTARTS:
             q1 = res.x.copy()
             q1[i] = min(max(math.log10(_RESTARTS[p.name] * G.omega[-1]), bounds[i][0]), bounds[i][1])
-            # truncated Newton: L-BFGS-B's first projected step from here can leave the range where the spectrum
-            # is finite and stop there (measured on a scene's twin: one iteration, 19 short of this maximum)
-            again = optimize.minimize(grouped, q1, method="TNC", bounds=bounds)
+            again = _descend(grouped, q1, bounds, per)
             if again.fun < res.fun:
                 res = again
     q, ident, band = _identify(record, fam, v, res.x)
@@ -515,7 +561,7 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         if unseen:
             # a feature the record does not show: hold its amplitude at the neutral value, and the parameters that
             # share its feature (its corner) where they are, and fit the rest again
-            res, neutral = _hold(fam, v, grouped, res.x, bounds, unseen, neutral)
+            res, neutral = _hold(fam, v, grouped, res.x, bounds, unseen, neutral, per)
         if exact and record.n <= EXACT_N:
             fit = maximum_likelihood(record, spectrum, res.x, bounds=bounds, images=None)
         else:
@@ -543,7 +589,7 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
                      tuple(fam.params[i].name for i in neutral))
 
 
-def _hold(fam: Family, v: float, grouped, q, bounds, unseen, neutral):
+def _hold(fam: Family, v: float, grouped, q, bounds, unseen, neutral, per: float):
     """Hold the amplitudes ``unseen`` at their neutral values and the parameters sharing their features where they
     are (narrowing ``bounds`` in place), and fit the rest again from ``q``. Returns (result, held indices)."""
     q = np.array(q, dtype=float)
@@ -557,7 +603,6 @@ def _hold(fam: Family, v: float, grouped, q, bounds, unseen, neutral):
         if i in unseen:
             q[i] = math.log10(p.neutral) if p.log else p.neutral
         bounds[i] = (q[i], q[i])
-    res = optimize.minimize(grouped, np.clip(q, [b[0] for b in bounds], [b[1] for b in bounds]),
-                            method="L-BFGS-B", bounds=bounds, options=_STOP)
+    res = _descend(grouped, np.clip(q, [b[0] for b in bounds], [b[1] for b in bounds]), bounds, per)
     return res, sorted(held)
 

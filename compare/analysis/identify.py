@@ -2,6 +2,10 @@
 (:mod:`compare.analysis.family_fit`), ranked, and compared with the best by a likelihood-ratio test in both
 directions.
 
+Lines: the record's spectral lines (a drive's or the mains' frequency; model_Iv's vibration) are found, subtracted and
+their skirts left out before any family is fitted (:mod:`compare.analysis.lines`): a nuisance term every family
+carries alike, never a mechanism; model_Iv is model I's family, and its line is named in what would separate them.
+
 Ranking: by the Bayesian information criterion of the Whittle fit, nll + k ln(n) / 2 (n Fourier ordinates, k
 fitted parameters with the floor), so a family that only adds a feature the record does not show ranks below the
 one without it; criteria within 1 of the lowest count as a tie, won by the family with fewer parameters. Models
@@ -40,7 +44,9 @@ import reduced_models
 
 from . import null_tables
 from .families import FAMILIES, MARGIN, Family
-from .family_fit import FamilyFit, Grouped, cell_of, fit_family, record_for, sampled_spectrum, segments_of
+from . import lines as lines_mod
+from .family_fit import (FamilyFit, Grouped, cell_of, fit_family, record_for, sampled_spectrum, segments_of,
+                         without)
 
 __all__ = ["Mechanism", "identify", "holm", "vuong", "stationarity"]
 
@@ -72,6 +78,8 @@ class Mechanism:
         The best model, where this one's family is the best's on the record's band (module docstring).
     nested_test : str
         How a coinciding or nesting model's gain over the best was judged ("" where it does not nest the best).
+    lines : tuple of Line
+        The record's spectral lines, subtracted before every family was fitted (:mod:`compare.analysis.lines`).
     """
 
     model: str
@@ -83,6 +91,7 @@ class Mechanism:
     fit: FamilyFit
     coincides_with: str | None = None
     nested_test: str = ""
+    lines: tuple = ()
 
     def to_dict(self) -> dict:
         """summary.json's form of this standing.
@@ -91,14 +100,16 @@ class Mechanism:
         -------
         dict
             ``model``, ``verdict``, ``p_value``, ``parameters``, ``separate``, ``coincides_with`` (the best, or
-            None), ``nested_test``, ``bic``, ``band_rad_s`` (rad/s), ``floor_m2s`` (m^2 s) and ``cannot_separate``
-            (the model's parameters the family lumps together).
+            None), ``nested_test``, ``bic``, ``band_rad_s`` (rad/s), ``floor_m2s`` (m^2 s), ``cannot_separate``
+            (the model's parameters the family lumps together) and ``lines`` (the lines subtracted as nuisance
+            terms, each ``omega_rad_s``, ``amplitude_m``, ``excess``).
         """
         return {"model": self.model, "verdict": self.verdict, "p_value": float(self.p_value),
                 "parameters": self.parameters, "separate": self.separate, "coincides_with": self.coincides_with,
                 "nested_test": self.nested_test, "bic": float(self.bic),
                 "band_rad_s": [float(b) for b in self.fit.band], "floor_m2s": float(self.fit.floor),
-                "cannot_separate": FAMILIES[self.model].cannot_separate}
+                "cannot_separate": FAMILIES[self.model].cannot_separate,
+                "lines": [ln.to_dict() for ln in self.lines]}
 
 
 def holm(p) -> np.ndarray:
@@ -294,6 +305,12 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
     if dt is None or not (dt > 0 and math.isfinite(dt)):
         raise ValueError(f"the sampling step dt must be positive, in s (got {dt!r})")
     x = np.asarray(x, dtype=float)
+    if v is None and len(x) > 1:
+        v = float((x[-1] - x[0]) / (dt * (len(x) - 1)))
+    if len(x) > 4 * lines_mod.WINDOW:
+        x, found, skirts = lines_mod.remove_lines(x, dt)
+    else:
+        found, skirts = [], []
     if stationary is None:
         stationary = stationarity(x, dt)["stationary"]
     if not stationary:
@@ -306,7 +323,7 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
     for n in names:
         if n not in FAMILIES:
             raise ValueError(f"no spectral family for model {n!r}; families: {', '.join(FAMILIES)}")
-    rec = record_for(x, dt)
+    rec = without(record_for(x, dt), skirts)
     segments = segments_of(x, dt)
     G = Grouped(rec)
     n_ord = len(rec.omega)
@@ -359,6 +376,8 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
             sep = "" if verdict == "rejected" else _separate(best, n, fits, v)
             if n in tested:
                 test = f"{tested[n][1]}; Holm-adjusted p = {adj_nested[n]:.2g}"
+        if sep and found and (FAMILIES[n].line or FAMILIES[best].line):
+            sep += "; lines found and subtracted here: " + ", ".join(f"{ln.omega:.4g} rad/s" for ln in found)
         out.append(Mechanism(n, verdict, p, fits[n].parameters(FAMILIES[n]), sep, bic[n], fits[n],
-                             best if i > 0 and coincides[n] else None, test))
+                             best if i > 0 and coincides[n] else None, test, tuple(found)))
     return out
