@@ -35,6 +35,7 @@ coinciding one names the best in ``coincides_with``). A record flagged as not st
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -66,7 +67,8 @@ class Mechanism:
     verdict : str
         "fits", "indistinguishable" or "rejected".
     p_value : float
-        Holm-adjusted p-value of the test "as close to the record as the best" (1 for the best itself).
+        Holm-adjusted p-value of the test "as close to the record as the best" (1 for the best itself); for a
+        model coinciding with the best by its gain's test, that test's Holm-adjusted p-value (``nested_test``).
     parameters : dict
         Name -> [value, 95 % half-width, unit] or "not identified".
     separate : str
@@ -269,7 +271,7 @@ def stationarity(x, dt: float, bands: int = 8, level: float = 0.01) -> dict:
 
 
 def identify(x, dt: float | None = None, v: float | None = None, *, models=None, alpha: float = 0.05,
-             stationary: bool | None = None) -> list:
+             stationary: bool | None = None, progress=None) -> list:
     """The registered models ranked for a displacement record, best first, with verdicts and parameters.
 
     Parameters
@@ -289,6 +291,9 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
     stationary : bool, optional
         False for a record flagged as not stationary: no mechanism is named (an empty list). None (default): the
         record's halves are compared by :func:`stationarity`.
+    progress : callable, optional
+        Called with one line (str) as each family's fit starts and ends, with its time (a long record's fits take
+        minutes: a 600 s record at 1 kHz holds 3e5 ordinates).
 
     Returns
     -------
@@ -329,12 +334,19 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
     n_ord = len(rec.omega)
     fits, shared = {}, {}
     base = None  # model I's fit: the start of the families that extend it
-    for n in sorted(names, key=lambda n: n not in _BASE):
+    order = sorted(names, key=lambda n: n not in _BASE)
+    distinct = len({id(FAMILIES[n].shape) for n in names})
+    for n in order:
         fam: Family = FAMILIES[n]
         key = id(fam.shape)
         if key not in shared:
             start = base.theta if base is not None and n in _EXTENDS_I else None
+            t0 = time.perf_counter()
+            if progress is not None:
+                progress(f"fitting {n}'s family ({len(shared) + 1}/{distinct}, {len(rec.omega)} ordinates)")
             shared[key] = fit_family(rec, fam, v, start_theta=start, segments=segments)
+            if progress is not None:
+                progress(f"{n}'s family fitted in {time.perf_counter() - t0:.1f} s")
             if n in _BASE:
                 base = shared[key]
         f = shared[key]
@@ -375,6 +387,8 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
             p = float(adj[i - 1])
             sep = "" if verdict == "rejected" else _separate(best, n, fits, v)
             if n in tested:
+                if coincides[n]:  # judged one family with the best by its gain's test: that test's p-value
+                    p = float(adj_nested[n])
                 test = f"{tested[n][1]}; Holm-adjusted p = {adj_nested[n]:.2g}"
         if sep and found and (FAMILIES[n].line or FAMILIES[best].line):
             sep += "; lines found and subtracted here: " + ", ".join(f"{ln.omega:.4g} rad/s" for ln in found)

@@ -67,7 +67,7 @@ def cmd_analyze(args) -> int:
 
     from ..report.html import write_report
     from ..io.measured import units_line
-    from .mechanisms import mechanisms_of, ranking_lines
+    from .mechanisms import mechanisms_of, ranking_lines, ranking_section
 
     force = args.force_col is not None
     _check_analyze_numbers(args)
@@ -99,7 +99,9 @@ def cmd_analyze(args) -> int:
 
             an = analyze_displacement(data, mass=args.mass, band=band, method=args.method)
             sections, summary = build_measured_report(an, data)
-            summary.update(units=data.units, **mechanisms_of(data, an.mean_velocity, an.fit.flags))
+            summary.update(units=data.units, **mechanisms_of(data, an.mean_velocity, an.fit.flags,
+                                                             progress=_stderr_progress))
+            sections = [ranking_section(summary)] + list(sections)
     except ValueError as e:
         raise UserError(f"{args.data}: {e}") from None
     write_report(out, sections, summary, title=f"frictionnoise analyze: {Path(args.data).name}")
@@ -107,6 +109,11 @@ def cmd_analyze(args) -> int:
     for line in (force_lines if force else displacement_lines)(summary, out / "index.html"):
         print(line)
     return 0
+
+
+def _stderr_progress(line: str) -> None:
+    """A progress line of a long analysis on stderr (the terminal's and a log's), flushed at once."""
+    print(f"frictionnoise analyze: {line}", file=sys.stderr, flush=True)
 
 
 def _read_record(path, args):

@@ -378,7 +378,13 @@ def test_shipped_model_I_file_by_the_record_model(tmp_path, capsys):
     f = json.loads((out / "summary.json").read_text())["fit"]
     assert f["method"] == "record" and f["power_law"] and not f["flags"] and f["decades"] >= 1.0 - 1e-3, f
     assert f["gamma_interval"][0] <= 4.0 <= f["gamma_interval"][1], f
-    assert "gamma = " in capsys.readouterr().out
+    cap = capsys.readouterr()
+    assert "gamma = " in cap.out
+    assert "fitting model_I's family" in cap.err  # progress of the identification, on stderr
+    html = (out / "index.html").read_text()
+    # the ranking is on the page, ahead of the exponent's section
+    assert "Mechanisms: which model explains the record" in html
+    assert html.index("Mechanisms: which model") < html.index("Measured displacement")
     assert main(["analyze", "scenarios/data/model1_synthetic_um.csv", "--band", "2", "60", "-o", str(out)]) == 0
     f = json.loads((out / "summary.json").read_text())["fit"]
     assert f["gamma_interval"][0] <= 4.0 <= f["gamma_interval"][1] and f["power_law"], f

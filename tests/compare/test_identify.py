@@ -194,6 +194,20 @@ def test_families_nesting_model_I_coincide_with_it_on_model_I_records(model_I_cl
     assert r["model_II"].coincides_with is None and r["model_III"].coincides_with is None
     d = r["model_Ib"].to_dict()
     assert d["coincides_with"] == "model_I" and set(d) >= {"model", "verdict", "p_value", "parameters", "separate"}
+    # a model that coincides by its gain's test prints that test's Holm-adjusted p-value, the one nested_test quotes
+    for other in ("model_Ib", "model_ageing"):
+        m = r[other]
+        if "Holm-adjusted p = " in m.nested_test:
+            assert f"{m.p_value:.2g}" == m.nested_test.split("Holm-adjusted p = ")[1].split()[0], (other, m.nested_test)
+            assert m.p_value >= 0.05
+
+
+def test_identify_reports_its_progress_family_by_family(model_I_record):
+    lines = []
+    identify(model_I_record, DT, v=5e-4, progress=lines.append)
+    fitted = [ln for ln in lines if "family fitted in" in ln]
+    # one fit per distinct family: model_Iv shares model I's
+    assert len(fitted) == len({id(FAMILIES[n].shape) for n in rm.MODELS}) and lines[0].startswith("fitting model_I")
 
 
 def test_a_micro_level_inside_the_band_is_model_Ib_not_model_I():
