@@ -22,7 +22,9 @@ model's displacement spectrum rewritten in those parameters, the sliding speed v
 - model II (eq. B2 and eq. 3): ``S C_x^(1)(omega; s, 1/omega_hi, 1/omega_lo)``, the closed form of one particle of
   force 1 N on a 1 kg block with both states' mean times log-uniform in [1/omega_hi, 1/omega_lo] and
   c(tau) ~ tau^kappa, beta + beta' = s = 2 - 4 kappa: the level S = n c^2 / M^2, s and the two corners, never beta
-  and beta' apart.
+  and beta' apart. Between the corners (B2) falls as gamma = 6 - s / 2 up to a logarithm (each state's term
+  P c^2 ~ tau^-beta, averaged through 1 / (tau + tau') over the other state's times, gives C_F ~ omega^(beta - 2)):
+  the paper's C_F ~ omega^(beta + beta' - 3), gamma = 7 - s, agrees with it at s = 2 (flicker noise) only.
 - model III (section 6): ``L omega^-4 sinc^2(omega w / (2 v))``, gamma = 4 below 2 pi v / w and 6 above, with the
   window's zeros at multiples of 2 pi v / w (the continuum limit of the sampled moving window).
 - the ageing model: model I (without omega_1: its miniblocks are massless) with the contacts' friction slope
