@@ -12,8 +12,8 @@ gain times the model folded at Nyquist and the floor; a grid over the corner par
 width is set by the sharpest feature, a resonance: of quality Q its flanks change the mean by a factor e over
 1 / (2 Q) in frequency, 3 % for model I's reference (Q = 17); with bins 1 % wide its fitted omega_c fell 0.3 % below
 the truth on 60 s records (intervals +-0.2 %) and Q by up to 23 %, at 0.2 % they cover it (the fit costing about
-three times as much). L-BFGS-B stops on a relative change of 1e-13 (:data:`_STOP`): along a direction the record
-barely constrains, its default 2e-9 of a likelihood of 1e5 stops anywhere within 2e-4 of the maximum. This leaves out the finite record's leakage,
+three times as much). L-BFGS-B runs on the likelihood per ordinate, restarted from its own end while that gains
+(:func:`_descend`), and stops on a relative change of 1e-11 (:data:`_STOP`). This leaves out the finite record's leakage,
 small once two differences flatten the spectrum; ``exact=True`` polishes the maximum on the debiased likelihood of
 :mod:`compare.analysis.whittle` (records of at most :data:`EXACT_N` samples: its mean costs 0.03 s per evaluation at
 2e4 samples and 1.5 s at 4e5). Every family compared on one record must be fitted alike.
@@ -58,7 +58,7 @@ _ALONE = 64  # lowest ordinates kept alone
 _FINE_GROUPS = 20_000  # linear groups of a family that is not smooth: 4000 ordinates per model III zero spacing at
 #   400 s and v / w = 10 /s become 400 groups
 _BIN = 0.002  # relative width of a bin above them (module docstring)
-_STOP = {"ftol": 1e-13, "gtol": 1e-9, "maxiter": 2000}  # L-BFGS-B's stopping rule, module docstring
+_STOP = {"ftol": 1e-11, "gtol": 1e-9, "maxiter": 2000}  # L-BFGS-B's stopping rule, module docstring
 
 
 def record_for(x, dt: float) -> WhittleRecord:
@@ -508,7 +508,7 @@ def _descend(grouped, q0, bounds, per: float):
     return res
 
 
-_GAIN = 1e-3  # a restart's gain below which a descent has stopped (the likelihood's units; a 95 % drop is 1.92)
+_GAIN = 0.02  # a restart's gain below which a descent has stopped (the likelihood's units; a 95 % drop is 1.92)
 
 
 def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dict | None = None,
