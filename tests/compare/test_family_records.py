@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import reduced_models as rm
+from compare.analysis.confusion import CELLS
 from compare.analysis.families import FAMILIES
 from compare.analysis.family_fit import record_for, sampled_spectrum
 
@@ -42,7 +43,8 @@ def _bands(omega, lo, count):
     return [(omega >= a) & (omega < b) for a, b in zip(edges[:-1], edges[1:])]
 
 
-FINE_III = rm.asperity_force.AsperityForceParams(v=0.1, N=100.0)  # grid 0.1 ms: ten grid steps per 1 ms sample
+# the confusion study's cells (compare.analysis.confusion.CELLS): simulated where their families hold
+FINE_III = next(c.params for c in CELLS if c.model == "model_III")  # grid 0.1 ms: ten grid steps per 1 ms sample
 COARSE_III = rm.asperity_force.AsperityForceParams(v=0.1, N=10.0)  # grid 1 ms: the record's own step
 
 
@@ -84,7 +86,7 @@ def test_a_model_III_record_on_the_tenfold_grid_has_its_family_periodogram():
 RENEWING = {
     # model, parameters (alpha f_kin / (f_n A) = 0.21 for the ageing model: its linear response holds)
     "model_I": rm.spring_block.SpringBlockParams.reference(),
-    "model_ageing": rm.ageing.AgeingParams(alpha=0.1),
+    "model_ageing": next(c.params for c in CELLS if c.model == "model_ageing"),
 }
 
 
@@ -118,6 +120,7 @@ def test_the_ageing_reference_lies_outside_its_family():
     # f_n A) is far from its linear response: above the resonance its record stands twice the family (measured
     # 2.0-2.6 over 300-3000 rad/s on a 30 s record, seed 3, against a sampling error under 7 %). The confusion
     # study's ageing cell is set at alpha = 0.1, where the test above holds.
+    assert RENEWING["model_ageing"].alpha == 0.1
     p = rm.ageing.AgeingParams.reference()
     rec = record_for(rm.ageing.simulate(p, 10.0, DT, seed=3).x, DT)
     gain = np.abs(2 * np.sin(rec.omega * DT / 2) / DT) ** 4
