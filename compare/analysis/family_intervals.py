@@ -122,12 +122,17 @@ def intervals(fam, grouped, q, ident, neutral, bounds, corners) -> dict:
         if p.name in corners:
             direction = np.zeros(len(q))
             sub = [j for j, m in enumerate(idx) if m == len(q) - 1 or ident[m]]  # identified ones and the floor
-            cov_id = _inverse(H[np.ix_(sub, sub)]) if cov is not None else None
+            while len(sub) > 1 and _inverse(H[np.ix_(sub, sub)]) is None:
+                # a direction the record does not constrain (a floor far below the family): held, the flattest
+                sub.pop(int(np.argmin([H[j, j] for j in sub])))
+            cov_id = _inverse(H[np.ix_(sub, sub)]) if k in sub else None
             if cov_id is not None:
                 # the profile's line through the identified parameters only, the others held where the fit left
                 # them: a corner outside the band (model II's omega_lo below a record's lowest ordinate) is free
                 # along a flat direction, and the line through it ran into the search box's end within 2 % of
-                # omega_hi's value (model II at 100 Hz, 300 s: 83 [81, 86] rad/s against the 100 built)
+                # omega_hi's value (model II at 100 Hz, 300 s: 83 [81, 86] rad/s against the 100 built); with no
+                # inverse of the whole curvature the corner alone moved, the others held (1 kHz, 60 s: 107 [106,
+                # 109], now [87, 133])
                 c = sub.index(k)
                 direction[np.asarray(idx)[sub]] = cov_id[:, c] / cov_id[c, c]
             elif cov is not None:
