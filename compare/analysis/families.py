@@ -101,7 +101,7 @@ class Family:
     line : bool
         The model adds a spectral line (a nuisance term of the fit).
     smooth : bool
-        Smooth on a 0.2 % frequency scale (a fit may group ordinates); False for model III, whose window's zeros
+        Smooth on a 0.5 % frequency scale (a fit may group ordinates); False for model III, whose window's zeros
         repeat every 2 pi v / w and need every ordinate.
     """
 

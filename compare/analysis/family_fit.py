@@ -6,13 +6,14 @@ C_0 (Units: m^2 s; a sensor's white noise of rms sigma at step dt has C_0 = sigm
 Positive parameters are fitted as their base-10 logarithms.
 
 The fit runs on the Whittle likelihood of the differenced periodogram with adjacent ordinates grouped
-(:class:`Grouped`: the lowest 64 alone, then bins 0.2 % wide in frequency, each bin's m ordinates entering as
+(:class:`Grouped`: the lowest 64 alone, then bins 0.5 % wide in frequency, each bin's m ordinates entering as
 m [ln mu_b + mean(I)_b / mu_b], exact when the model's mean is constant over the bin), its mean the differencing
 gain times the model folded at Nyquist and the floor; a grid over the corner parameters gives the start. The bins'
 width is set by the sharpest feature, a resonance: of quality Q its flanks change the mean by a factor e over
 1 / (2 Q) in frequency, 3 % for model I's reference (Q = 17); with bins 1 % wide its fitted omega_c fell 0.3 % below
-the truth on 60 s records (intervals +-0.2 %) and Q by up to 23 %, at 0.2 % they cover it (the fit costing about
-three times as much). L-BFGS-B runs on the likelihood per ordinate, restarted from its own end while that gains
+the truth on 60 s records (intervals +-0.2 %) and Q by up to 23 %; at 0.5 % the fits of 8 such records are those
+at 0.2 % to a small fraction of their intervals (omega_c and Q covered in 7 of 8 with either, the same record
+missing), at 2.5 times the cost of 1 % bins (0.2 %: five times). L-BFGS-B runs on the likelihood per ordinate, restarted from its own end while that gains
 (:func:`_descend`), and stops on a relative change of 1e-11 (:data:`_STOP`). This leaves out the finite record's leakage,
 small once two differences flatten the spectrum; ``exact=True`` polishes the maximum on the debiased likelihood of
 :mod:`compare.analysis.whittle` (records of at most :data:`EXACT_N` samples: its mean costs 0.03 s per evaluation at
@@ -57,7 +58,7 @@ _GRID = 9  # trial points per corner parameter when choosing a start (5 missed a
 _ALONE = 64  # lowest ordinates kept alone
 _FINE_GROUPS = 20_000  # linear groups of a family that is not smooth: 4000 ordinates per model III zero spacing at
 #   400 s and v / w = 10 /s become 400 groups
-_BIN = 0.002  # relative width of a bin above them (module docstring)
+_BIN = 0.005  # relative width of a bin above them (module docstring)
 _STOP = {"ftol": 1e-11, "gtol": 1e-9, "maxiter": 2000}  # L-BFGS-B's stopping rule, module docstring
 
 
@@ -97,7 +98,7 @@ class Grouped:
     ----------
     record : WhittleRecord
     fine : bool, optional
-        Linear groups of :attr:`run` adjacent ordinates instead of 0.2 % bins (for a family that is not smooth on the
+        Linear groups of :attr:`run` adjacent ordinates instead of 0.5 % bins (for a family that is not smooth on the
         bins' scale), at most :data:`_FINE_GROUPS` of them.
 
     Attributes
