@@ -35,7 +35,8 @@ def _array_form(th, w, v):
     x = w * th["a"] / v
     renewal = 1.0 - np.cos(x) * np.sinc(x / (2.0 * np.pi)) ** 2
     r = w / th["omega_c"]
-    z = (1.0 - r * r / (1.0 + 1j * w / th["omega_0"])) * (1.0 + 1j * w / th["omega_1"]) + 1j * r / th["Q"]
+    Qc = 1.0 / (1.0 / th["Q"] - th["omega_c"] / th["omega_0"])  # the contacts' share of the resonance's damping
+    z = (1.0 - r * r / (1.0 + 1j * w / th["omega_0"])) * (1.0 + 1j * w / th["omega_1"]) + 1j * r / Qc
     return th["L"] * renewal / (np.abs(z) ** 2 * w**4)
 
 

@@ -6,19 +6,25 @@ model's displacement spectrum rewritten in those parameters, the sliding speed v
 
 - model I (eqs. A5-A11): ``L omega^-4 R(omega a / v) G(omega)``, the omega^-4 level L (proportional to
   alpha^2 v f_kin^2 / (N a (m eta1)^2), eq. A11), the renewal length a (corner near v/a), the block's resonance
-  omega_c = sqrt(N k0 / M), its quality Q = N m eta1 / (M omega_c), the contact springs' damping corner
-  omega_0 = k0 / (m eta0) and the contacts' own friction rate omega_1 = eta1 (their inertia). R(x) = 1 - cos(x)
+  omega_c = sqrt(N k0 / M), its quality Q, the contact springs' damping corner omega_0 = k0 / (m eta0) and the
+  contacts' own friction rate omega_1 = eta1 (their inertia). Q is the resonance's quality as the record shows it,
+  with both dampings: 1 / Q = 1 / Q_c + omega_c / omega_0, Q_c = N m eta1 / (M omega_c) the contacts' own (at
+  r = 1 and omega_c << omega_0, G's imaginary part is 1 / Q_c + omega_c / omega_0). A record places the
+  resonance's width, not its two sources apart: with Q_c as the parameter, Q_c and omega_0 trade along a flat
+  direction wherever omega_0 lies above the band, and Q_c's interval held the resonance's width, not Q_c. R(x) = 1 - cos(x)
   sinc^2(x / 2) is the renewal force's (1 - <cos omega tau>) of eq. (A8) over the renewal interval's own law,
   tau = (a / v)(1 + r - r') with r, r' uniform, as the simulators and the scenes' patch tracks draw it (the paper's
   cumulant closure exp(-x^2/12) cos x differs from it by up to 5 % at x = 4-6, which long records resolve);
-  G = |(1 - r^2 / (1 + i omega / omega_0))(1 + i omega / omega_1) + i r / Q|^-2, r = omega / omega_c, is
+  G = |(1 - r^2 / (1 + i omega / omega_0))(1 + i omega / omega_1) + i r / Q_c|^-2, r = omega / omega_c, is
   |Z|^2 (m eta1 omega)^2 of eq. (A5) exactly (the miniblock's inertia in the factor with omega_1: negligible for the
   paper's reference, omega / eta1 ~ 1e-5, but 10-30 % at the resonance's flanks for a scene's 1 g pads).
 - model Ib: model I plus the micro level ``L2 omega^-4 R(omega a2 / v) / (1 + (omega / omega3)^2)``.
 - model II (eq. B2 and eq. 3): ``S C_x^(1)(omega; s, 1/omega_hi, 1/omega_lo)``, the closed form of one particle of
   force 1 N on a 1 kg block with both states' mean times log-uniform in [1/omega_hi, 1/omega_lo] and
   c(tau) ~ tau^kappa, beta + beta' = s = 2 - 4 kappa: the level S = n c^2 / M^2, s and the two corners, never beta
-  and beta' apart.
+  and beta' apart. Between the corners (B2) falls as gamma = 6 - s / 2 up to a logarithm (each state's term
+  P c^2 ~ tau^-beta, averaged through 1 / (tau + tau') over the other state's times, gives C_F ~ omega^(beta - 2)):
+  the paper's C_F ~ omega^(beta + beta' - 3), gamma = 7 - s, agrees with it at s = 2 (flicker noise) only.
 - model III (section 6): ``L omega^-4 sinc^2(omega w / (2 v))``, gamma = 4 below 2 pi v / w and 6 above, with the
   window's zeros at multiples of 2 pi v / w (the continuum limit of the sampled moving window).
 - the ageing model: model I (without omega_1: its miniblocks are massless) with the contacts' friction slope
@@ -44,7 +50,7 @@ from reduced_models import ageing, asperity_force, multiscale, spring_block, vib
 
 from .family_kernels import contact_spectrum, window_spectrum
 
-__all__ = ["Param", "Family", "FAMILIES", "MARGIN", "family_of", "identified"]
+__all__ = ["Param", "Family", "FAMILIES", "MARGIN", "family_of", "identified", "contacts_quality"]
 
 MARGIN = 10**0.25  # a feature counts as inside a band when it lies a quarter decade inside either end
 
@@ -95,7 +101,7 @@ class Family:
     line : bool
         The model adds a spectral line (a nuisance term of the fit).
     smooth : bool
-        Smooth on a 1 % frequency scale (a fit may group ordinates); False for model III, whose window's zeros
+        Smooth on a 0.5 % frequency scale (a fit may group ordinates); False for model III, whose window's zeros
         repeat every 2 pi v / w and need every ordinate.
     """
 
@@ -130,20 +136,33 @@ def identified(feature, band) -> bool:
 
 
 # ----------------------------------------------------------------------------- shapes
+def contacts_quality(Q: float, omega_c: float, omega_0: float) -> float:
+    """The contacts' own quality Q_c from the resonance's Q and the springs' share omega_c / omega_0:
+    1 / Q_c = 1 / Q - omega_c / omega_0 (module docstring); NaN where the springs alone damp more than Q says
+    (no physical point: a fit's likelihood is then infinite)."""
+    inv = 1.0 / Q - omega_c / omega_0
+    return 1.0 / inv if inv > 0 else math.nan
+
+
+def _contact(th, w, v, **extra):
+    Qc = contacts_quality(th["Q"], th["omega_c"], th["omega_0"])
+    if not math.isfinite(Qc):
+        return np.full(np.shape(w), math.nan)
+    return contact_spectrum(w, L=th["L"], a_v=th["a"] / v, omega_c=th["omega_c"], Q=Qc, omega_0=th["omega_0"],
+                            **extra)
+
+
 def _model_I(th, w, v):
-    return contact_spectrum(w, L=th["L"], a_v=th["a"] / v, omega_c=th["omega_c"], Q=th["Q"], omega_0=th["omega_0"],
-                            inv_omega_1=1.0 / th["omega_1"])
+    return _contact(th, w, v, inv_omega_1=1.0 / th["omega_1"])
 
 
 def _model_Ib(th, w, v):
-    return contact_spectrum(w, L=th["L"], a_v=th["a"] / v, omega_c=th["omega_c"], Q=th["Q"], omega_0=th["omega_0"],
-                            inv_omega_1=1.0 / th["omega_1"], L2=th["L2"], a2_v=th["a2"] / v, omega3=th["omega3"])
+    return _contact(th, w, v, inv_omega_1=1.0 / th["omega_1"], L2=th["L2"], a2_v=th["a2"] / v, omega3=th["omega3"])
 
 
 def _ageing(th, w, v):
     # massless miniblocks: no inertia term
-    return contact_spectrum(w, L=th["L"], a_v=th["a"] / v, omega_c=th["omega_c"], Q=th["Q"], omega_0=th["omega_0"],
-                            b=th["b"], dc_v=th["D_c"] / v)
+    return _contact(th, w, v, b=th["b"], dc_v=th["D_c"] / v)
 
 
 def _model_III(th, w, v):
@@ -178,7 +197,8 @@ def _I_point(p, slope, v, mass=None):
     w0 = p.k0 / (p.m * p.eta0) if p.eta0 > 0 else _I_PARAMS[4].bounds[1]
     w1 = slope / mass if mass else _I_PARAMS[5].bounds[1]
     L = p.alpha**2 * v * p.f_kin**2 / (12 * np.pi * p.N * p.a * slope**2)  # eq. (A11)
-    return {"L": L, "a": p.a, "omega_c": wc, "Q": p.N * slope / (p.M * wc), "omega_0": w0, "omega_1": w1}
+    Q = 1.0 / (p.M * wc / (p.N * slope) + wc / w0)  # both dampings (module docstring)
+    return {"L": L, "a": p.a, "omega_c": wc, "Q": Q, "omega_0": w0, "omega_1": w1}
 
 
 def _from_I(p):
@@ -229,7 +249,8 @@ _I_PARAMS = (Param("L", _LEVEL4, True, (1e-40, 1e10)), Param("a", "m", True, (1e
 
 
 def _I_features(th, v):
-    return {"L": None, "a": 2 * v / th["a"], "omega_c": th["omega_c"], "Q": th["omega_c"], "omega_0": th["omega_c"],
+    # the springs' damping corner shows where the block's fall steepens from omega^-8 to omega^-6, at omega_0 itself
+    return {"L": None, "a": 2 * v / th["a"], "omega_c": th["omega_c"], "Q": th["omega_c"], "omega_0": th["omega_0"],
             "omega_1": th.get("omega_1")}
 
 

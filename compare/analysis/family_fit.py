@@ -6,10 +6,15 @@ C_0 (Units: m^2 s; a sensor's white noise of rms sigma at step dt has C_0 = sigm
 Positive parameters are fitted as their base-10 logarithms.
 
 The fit runs on the Whittle likelihood of the differenced periodogram with adjacent ordinates grouped
-(:class:`Grouped`: the lowest 64 alone, then bins 1 % wide in frequency, each bin's m ordinates entering as
-m [ln mu_b + mean(I)_b / mu_b], exact when the model's mean is constant over the bin; the model varies by under
-2e-4 across a bin for any slope up to omega^-8), its mean the differencing gain times the model folded at Nyquist
-and the floor; a grid over the corner parameters gives the start. This leaves out the finite record's leakage,
+(:class:`Grouped`: the lowest 64 alone, then bins 0.5 % wide in frequency, each bin's m ordinates entering as
+m [ln mu_b + mean(I)_b / mu_b], exact when the model's mean is constant over the bin), its mean the differencing
+gain times the model folded at Nyquist and the floor; a grid over the corner parameters gives the start. The bins'
+width is set by the sharpest feature, a resonance: of quality Q its flanks change the mean by a factor e over
+1 / (2 Q) in frequency, 3 % for model I's reference (Q = 17); with bins 1 % wide its fitted omega_c fell 0.3 % below
+the truth on 60 s records (intervals +-0.2 %) and Q by up to 23 %; at 0.5 % the fits of 8 such records are those
+at 0.2 % to a small fraction of their intervals (omega_c and Q covered in 7 of 8 with either, the same record
+missing), at 2.5 times the cost of 1 % bins (0.2 %: five times). L-BFGS-B runs on the likelihood per ordinate, restarted from its own end while that gains
+(:func:`_descend`), and stops on a relative change of 1e-11 (:data:`_STOP`). This leaves out the finite record's leakage,
 small once two differences flatten the spectrum; ``exact=True`` polishes the maximum on the debiased likelihood of
 :mod:`compare.analysis.whittle` (records of at most :data:`EXACT_N` samples: its mean costs 0.03 s per evaluation at
 2e4 samples and 1.5 s at 4e5). Every family compared on one record must be fitted alike.
@@ -21,22 +26,31 @@ parameter whose feature (:meth:`Family.feature`) lies outside the band where the
 floor is "not identified": no interval; so is a scale whose 95 % interval spans more than a factor 100, and so are
 the parameters placing a feature (a step, a micro level) whose amplitude the record does not tell from its neutral
 value.
+
+A level's interval also holds the record's own scatter of its level (:func:`segments_of`): a renewal force's
+spectrum is set by the squared jumps of the renewals the record holds, N T v / a of them, so its level scatters by
+sqrt(1.8 / (N T v / a)) about the mean (4.5 % for model I's reference at 60 s, 1.2 % at 900 s: relative variance
+1.4 of one uniform jump's square and 0.2 covariance with each neighbour), while the Whittle curvature counts the
+ordinates only (0.6 %). The scatter of the level over :data:`SEGMENTS` consecutive segments of the record (batch
+means) measures it without knowing N; the level's interval is the wider of the curvature's and the batch means'
+(Student's t with SEGMENTS - 1 degrees of freedom).
 """
 from __future__ import annotations
 
+import copy
 import itertools
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import optimize
+from scipy import optimize, stats
 
 from . import family_intervals
 from .families import Family, identified
 from .whittle import WhittleFit, WhittleRecord, maximum_likelihood
 
 __all__ = ["FamilyFit", "Grouped", "fit_family", "record_for", "sampled_spectrum", "SampledSpectrum", "cell_of", "ORDER",
-           "EXACT_N"]
+           "EXACT_N", "SEGMENTS", "segments_of", "without"]
 
 ORDER = 2  # differences: every family's omega^-4 range flat, the floor rising as omega^4
 EXACT_N = 2**15  # records up to this many samples get the debiased likelihood's maximum
@@ -44,7 +58,8 @@ _GRID = 9  # trial points per corner parameter when choosing a start (5 missed a
 _ALONE = 64  # lowest ordinates kept alone
 _FINE_GROUPS = 20_000  # linear groups of a family that is not smooth: 4000 ordinates per model III zero spacing at
 #   400 s and v / w = 10 /s become 400 groups
-_BIN = 0.01  # relative width of a bin above them
+_BIN = 0.005  # relative width of a bin above them (module docstring)
+_STOP = {"ftol": 1e-11, "gtol": 1e-9, "maxiter": 2000}  # L-BFGS-B's stopping rule, module docstring
 
 
 def record_for(x, dt: float) -> WhittleRecord:
@@ -61,6 +76,21 @@ def record_for(x, dt: float) -> WhittleRecord:
     return WhittleRecord(np.asarray(x, dtype=float), dt, ORDER)
 
 
+def without(record: WhittleRecord, spans) -> WhittleRecord:
+    """A copy of ``record`` whose ordinates inside the frequency ``spans`` ((low, high), rad/s: a line's skirt,
+    :func:`compare.analysis.lines.remove_lines`) are left out of the grouped likelihood; the record itself unchanged.
+    Its expected-periodogram machinery (``exact=True``) is not available on the copy."""
+    if not spans:
+        return record
+    keep = np.ones(len(record.omega), bool)
+    for lo, hi in spans:
+        keep &= ~((record.omega >= lo) & (record.omega <= hi))
+    out = copy.copy(record)
+    out.omega, out.periodogram, out.memo = record.omega[keep], record.periodogram[keep], {}
+    out.n = record.n  # the ordinates' spacing 2 pi / (n dt) is the record's
+    return out
+
+
 class Grouped:
     """A record's differenced periodogram with adjacent ordinates grouped (module docstring).
 
@@ -68,7 +98,7 @@ class Grouped:
     ----------
     record : WhittleRecord
     fine : bool, optional
-        Linear groups of :attr:`run` adjacent ordinates instead of 1 % bins (for a family that is not smooth on the
+        Linear groups of :attr:`run` adjacent ordinates instead of 0.5 % bins (for a family that is not smooth on the
         bins' scale), at most :data:`_FINE_GROUPS` of them.
 
     Attributes
@@ -353,12 +383,8 @@ def _start(G: Grouped, fam: Family, v: float, start_theta: dict | None):
               else [_param_at(fam.params[i].name, f, v) for f in freqs] for i in free]
     bnd = _bounds(fam, v, lo, hi)
     levels = [k for k, p in enumerate(fam.params) if p.name in ("L", "S")]
-    best, best_v = None, math.inf
-    for combo in itertools.product(*trials):
-        q = np.array([c if c is not None else 0.0 for c in base], dtype=float)
-        q[free] = combo
-        if fam.name == "model_II" and q[3] <= q[2]:
-            continue
+    def trial(q):
+        """(q with its levels matched to the record, its likelihood)."""
         q = np.clip(q, [b[0] for b in bnd], [b[1] for b in bnd])
         # the level that best matches this shape (the median ratio of ordinate to model)
         floor = 10.0 ** q[-1]
@@ -367,9 +393,28 @@ def _start(G: Grouped, fam: Family, v: float, start_theta: dict | None):
             ratio = max(float(np.median(I / (G.gain * (part + floor)))), 1e-300)
             q[j] += math.log10(ratio)
             part = spectrum.scaled_part(w, q)
-        val = G.negloglik_of(G.gain * (part + floor))
+        return q, G.negloglik_of(G.gain * (part + floor))
+
+    best, best_v = None, math.inf
+    for combo in itertools.product(*trials):
+        q = np.array([c if c is not None else 0.0 for c in base], dtype=float)
+        q[free] = combo
+        if fam.name == "model_II" and q[3] <= q[2]:
+            continue
+        q, val = trial(q)
         if val < best_v:
             best, best_v = q, val
+    if not fam.smooth:
+        # the likelihood of a comb of zeros has a mode at every alignment of its zeros with the ordinates, 1e-4 apart
+        # in the spacing on a 60 s record (a zero's width over the band's top): each corner scanned over +-1 % of
+        # its start in steps of 2e-4, the descent taking it from there
+        for i in free:
+            for d in np.log10(1.0 + np.linspace(-0.01, 0.01, 101)):
+                q = best.copy()
+                q[i] += d
+                q, val = trial(q)
+                if val < best_v:
+                    best, best_v = q, val
     return best
 
 
@@ -386,16 +431,62 @@ def _peaks(G: Grouped, count: int = 2) -> np.ndarray:
 
 def _zero_spacings(G: Grouped, peaks: int = 4) -> np.ndarray:
     """Candidate spacings (rad/s) of a comb of zeros in an ungrouped periodogram: the ``peaks`` strongest periods of
-    log I along the ordinates (between 3 ordinates and a third of them), each also doubled and tripled."""
+    log I along the ordinates (between 3 ordinates and a third of them), each also doubled and tripled.
+
+    Each period is refined between the Fourier frequencies of log I (the amplitude's maximum within half a bin, on
+    a grid of 1/40 bin): a whole-bin period is 2 % off for a comb of 50 periods, which misplaces the band's top zeros
+    by their own width and left a 60 s record of model III starting at three times the spacing."""
     y = np.log(np.maximum(G.mean, 1e-300))
     y = y - np.convolve(y, np.ones(101) / 101, mode="same")  # the slow trend out
     P = np.abs(np.fft.rfft(y)) ** 2
     k = np.arange(len(P))
     ok = (k >= 3) & (k <= len(y) / 3)
     top = k[ok][np.argsort(P[ok])[-peaks:]]
-    step = G.omega[-1] - G.omega[-2]  # the linear groups' spacing
-    spacing = len(y) / top * step
+    j = np.arange(len(y))
+    fine = []
+    for kk in top:
+        shifts = kk + np.linspace(-0.5, 0.5, 41)
+        amp = np.abs(np.exp(-2j * np.pi * np.outer(shifts, j) / len(y)) @ y)
+        fine.append(shifts[int(np.argmax(amp))])
+    step = float(np.median(np.diff(G.omega)))  # the linear groups' spacing (the last group may be partial)
+    spacing = len(y) / np.array(fine) * step
     return np.concatenate([spacing, 2 * spacing, 3 * spacing])
+
+
+SEGMENTS = 8  # consecutive segments of a record whose levels' scatter widens a level's interval
+
+
+def segments_of(x, dt: float, count: int = SEGMENTS) -> list:
+    """The :func:`record_for` of ``count`` consecutive equal segments of record ``x`` (Units: m) at step ``dt`` (s),
+    for :func:`fit_family`'s level interval; empty when a segment would hold fewer than 256 samples."""
+    x = np.asarray(x, dtype=float)
+    m = len(x) // count
+    if m < 256:
+        return []
+    return [record_for(x[i * m:(i + 1) * m], dt) for i in range(count)]
+
+
+def _level_scatter(spectrum: "SampledSpectrum", q, band, segments) -> float | None:
+    """The 95 % half-width (natural log) of the family's level from the scatter of its ratio to the fit over the
+    record's ``segments`` (each the sum of its ordinates over the sum of the fit's means, where the family stands
+    above the floor inside ``band``, its lowest three ordinates left out): Student's t over the segments' log ratios'
+    standard error. None without segments or where fewer than two hold 16 such ordinates."""
+    logs = []
+    floor = 10.0 ** q[-1]
+    for seg in segments:
+        w = seg.omega
+        keep = (w >= max(band[0], 4 * w[0])) & (w <= band[1])
+        if keep.sum() < 16:
+            continue
+        part = spectrum.part(w[keep], q)
+        dom = part > floor
+        if dom.sum() < 16:
+            continue
+        gain = np.abs(2.0 * np.sin(w[keep][dom] * seg.dt / 2.0) / seg.dt) ** (2 * seg.order)
+        logs.append(math.log(float(np.sum(seg.periodogram[keep][dom]) / np.sum(gain * (part[dom] + floor)))))
+    if len(logs) < 2:
+        return None
+    return float(stats.t.ppf(0.975, len(logs) - 1) * np.std(logs, ddof=1) / math.sqrt(len(logs)))
 
 
 def _band(record: WhittleRecord, fam: Family, theta: dict, floor: float, v: float):
@@ -415,8 +506,39 @@ def _identify(record: WhittleRecord, fam: Family, v: float, q):
     return q, [identified(feats[p.name], band) for p in fam.params], band
 
 
+_DESCENTS = 6  # L-BFGS-B restarted from its own end while it gains more than _GAIN
+
+
+def _descend(grouped, q0, bounds, per: float):
+    """L-BFGS-B from ``q0`` on the negative log-likelihood per ordinate (``per``: one over their number), restarted
+    from where it stops while a restart gains more than :data:`_GAIN` (at most :data:`_DESCENTS` runs). Returns
+    scipy's result with ``fun`` the likelihood itself.
+
+    Per ordinate: L-BFGS-B's first step goes to the minimum of a quadratic of unit curvature, a gradient's length
+    away; on the sum over 3e4 ordinates (a gradient of 1e4 per decade) that step reached the search box's ends,
+    where the family is not finite, and the run ended after one iteration where it began (measured on model_Iv's
+    60 s records: 1300 short of the maximum). Its memory of the curvature, built along a narrow valley (omega_c
+    against Q and the contacts' inertia), can also end a run early: hence the restarts."""
+    def f(q):
+        return grouped(q) * per
+
+    res = optimize.minimize(f, q0, method="L-BFGS-B", bounds=bounds, options=_STOP)
+    for _ in range(_DESCENTS - 1):
+        again = optimize.minimize(f, res.x, method="L-BFGS-B", bounds=bounds, options=_STOP)
+        gained = (res.fun - again.fun) / per
+        if again.fun < res.fun:
+            res = again
+        if not gained > _GAIN:
+            break
+    res.fun = grouped(res.x)
+    return res
+
+
+_GAIN = 0.02  # a restart's gain below which a descent has stopped (the likelihood's units; a 95 % drop is 1.92)
+
+
 def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dict | None = None,
-               exact: bool = False) -> FamilyFit:
+               exact: bool = False, segments=()) -> FamilyFit:
     """Maximum-likelihood fit of family ``fam`` plus a white floor to ``record``, with 95 % intervals.
 
     Parameters
@@ -432,6 +554,9 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
     exact : bool, optional
         Polish the maximum on the debiased likelihood (records of at most :data:`EXACT_N` samples; 5-15 s more per
         family on a loaded 2-core machine at 2e4 samples). Every family compared on one record must be fitted alike.
+    segments : list of WhittleRecord, optional
+        The record's consecutive segments (:func:`segments_of`): the level's interval then holds the scatter of the
+        level over them (module docstring); none: the curvature's alone.
 
     Returns
     -------
@@ -446,14 +571,13 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         val = G.negloglik(spectrum, q)
         return val if math.isfinite(val) else 1e300
 
-    res = optimize.minimize(grouped, q0, method="L-BFGS-B", bounds=bounds)
+    per = 1.0 / float(G.count.sum())
+    res = _descend(grouped, q0, bounds, per)
     for i, p in enumerate(fam.params):
         if p.name in _RESTARTS:
             q1 = res.x.copy()
             q1[i] = min(max(math.log10(_RESTARTS[p.name] * G.omega[-1]), bounds[i][0]), bounds[i][1])
-            # truncated Newton: L-BFGS-B's first projected step from here can leave the range where the spectrum
-            # is finite and stop there (measured on a scene's twin: one iteration, 19 short of this maximum)
-            again = optimize.minimize(grouped, q1, method="TNC", bounds=bounds)
+            again = _descend(grouped, q1, bounds, per)
             if again.fun < res.fun:
                 res = again
     q, ident, band = _identify(record, fam, v, res.x)
@@ -463,7 +587,7 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         if unseen:
             # a feature the record does not show: hold its amplitude at the neutral value, and the parameters that
             # share its feature (its corner) where they are, and fit the rest again
-            res, neutral = _hold(fam, v, grouped, res.x, bounds, unseen, neutral)
+            res, neutral = _hold(fam, v, grouped, res.x, bounds, unseen, neutral, per)
         if exact and record.n <= EXACT_N:
             fit = maximum_likelihood(record, spectrum, res.x, bounds=bounds, images=None)
         else:
@@ -478,13 +602,20 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
                   and (intervals[p.name] is None or intervals[p.name][0] <= p.neutral <= intervals[p.name][1])]
         if not unseen:
             break
+    lev = next((i for i, p in enumerate(fam.params) if p.name in ("L", "S")), None)
+    if lev is not None and intervals.get(fam.params[lev].name) is not None and segments:
+        half = _level_scatter(spectrum, q, band, segments)
+        lo, hi = intervals[fam.params[lev].name]
+        val = 10.0 ** q[lev]
+        if half is not None:
+            intervals[fam.params[lev].name] = (min(lo, val * math.exp(-half)), max(hi, val * math.exp(half)))
     theta = _to_theta(fam, q)
     n_free = 1 + sum(1 for i in range(len(fam.params)) if i not in neutral and ident[i])  # what the band shows
     return FamilyFit(fam.name, theta, 10.0 ** q[-1], fit.nll, intervals, band, n_free, v, fit.converged, tuple(q),
                      tuple(fam.params[i].name for i in neutral))
 
 
-def _hold(fam: Family, v: float, grouped, q, bounds, unseen, neutral):
+def _hold(fam: Family, v: float, grouped, q, bounds, unseen, neutral, per: float):
     """Hold the amplitudes ``unseen`` at their neutral values and the parameters sharing their features where they
     are (narrowing ``bounds`` in place), and fit the rest again from ``q``. Returns (result, held indices)."""
     q = np.array(q, dtype=float)
@@ -498,7 +629,6 @@ def _hold(fam: Family, v: float, grouped, q, bounds, unseen, neutral):
         if i in unseen:
             q[i] = math.log10(p.neutral) if p.log else p.neutral
         bounds[i] = (q[i], q[i])
-    res = optimize.minimize(grouped, np.clip(q, [b[0] for b in bounds], [b[1] for b in bounds]),
-                            method="L-BFGS-B", bounds=bounds)
+    res = _descend(grouped, np.clip(q, [b[0] for b in bounds], [b[1] for b in bounds]), bounds, per)
     return res, sorted(held)
 

@@ -2,6 +2,10 @@
 (:mod:`compare.analysis.family_fit`), ranked, and compared with the best by a likelihood-ratio test in both
 directions.
 
+Lines: the record's spectral lines (a drive's or the mains' frequency; model_Iv's vibration) are found, subtracted and
+their skirts left out before any family is fitted (:mod:`compare.analysis.lines`): a nuisance term every family
+carries alike, never a mechanism; model_Iv is model I's family, and its line is named in what would separate them.
+
 Ranking: by the Bayesian information criterion of the Whittle fit, nll + k ln(n) / 2 (n Fourier ordinates, k
 fitted parameters with the floor), so a family that only adds a feature the record does not show ranks below the
 one without it; criteria within 1 of the lowest count as a tie, won by the family with fewer parameters. Models
@@ -31,6 +35,7 @@ coinciding one names the best in ``coincides_with``). A record flagged as not st
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -40,7 +45,9 @@ import reduced_models
 
 from . import null_tables
 from .families import FAMILIES, MARGIN, Family
-from .family_fit import FamilyFit, Grouped, cell_of, fit_family, record_for, sampled_spectrum
+from . import lines as lines_mod
+from .family_fit import (FamilyFit, Grouped, cell_of, fit_family, record_for, sampled_spectrum, segments_of,
+                         without)
 
 __all__ = ["Mechanism", "identify", "holm", "vuong", "stationarity"]
 
@@ -60,7 +67,8 @@ class Mechanism:
     verdict : str
         "fits", "indistinguishable" or "rejected".
     p_value : float
-        Holm-adjusted p-value of the test "as close to the record as the best" (1 for the best itself).
+        Holm-adjusted p-value of the test "as close to the record as the best" (1 for the best itself); for a
+        model coinciding with the best by its gain's test, that test's Holm-adjusted p-value (``nested_test``).
     parameters : dict
         Name -> [value, 95 % half-width, unit] or "not identified".
     separate : str
@@ -72,6 +80,8 @@ class Mechanism:
         The best model, where this one's family is the best's on the record's band (module docstring).
     nested_test : str
         How a coinciding or nesting model's gain over the best was judged ("" where it does not nest the best).
+    lines : tuple of Line
+        The record's spectral lines, subtracted before every family was fitted (:mod:`compare.analysis.lines`).
     """
 
     model: str
@@ -83,6 +93,7 @@ class Mechanism:
     fit: FamilyFit
     coincides_with: str | None = None
     nested_test: str = ""
+    lines: tuple = ()
 
     def to_dict(self) -> dict:
         """summary.json's form of this standing.
@@ -91,14 +102,16 @@ class Mechanism:
         -------
         dict
             ``model``, ``verdict``, ``p_value``, ``parameters``, ``separate``, ``coincides_with`` (the best, or
-            None), ``nested_test``, ``bic``, ``band_rad_s`` (rad/s), ``floor_m2s`` (m^2 s) and ``cannot_separate``
-            (the model's parameters the family lumps together).
+            None), ``nested_test``, ``bic``, ``band_rad_s`` (rad/s), ``floor_m2s`` (m^2 s), ``cannot_separate``
+            (the model's parameters the family lumps together) and ``lines`` (the lines subtracted as nuisance
+            terms, each ``omega_rad_s``, ``amplitude_m``, ``excess``).
         """
         return {"model": self.model, "verdict": self.verdict, "p_value": float(self.p_value),
                 "parameters": self.parameters, "separate": self.separate, "coincides_with": self.coincides_with,
                 "nested_test": self.nested_test, "bic": float(self.bic),
                 "band_rad_s": [float(b) for b in self.fit.band], "floor_m2s": float(self.fit.floor),
-                "cannot_separate": FAMILIES[self.model].cannot_separate}
+                "cannot_separate": FAMILIES[self.model].cannot_separate,
+                "lines": [ln.to_dict() for ln in self.lines]}
 
 
 def holm(p) -> np.ndarray:
@@ -258,7 +271,7 @@ def stationarity(x, dt: float, bands: int = 8, level: float = 0.01) -> dict:
 
 
 def identify(x, dt: float | None = None, v: float | None = None, *, models=None, alpha: float = 0.05,
-             stationary: bool | None = None) -> list:
+             stationary: bool | None = None, progress=None) -> list:
     """The registered models ranked for a displacement record, best first, with verdicts and parameters.
 
     Parameters
@@ -278,6 +291,9 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
     stationary : bool, optional
         False for a record flagged as not stationary: no mechanism is named (an empty list). None (default): the
         record's halves are compared by :func:`stationarity`.
+    progress : callable, optional
+        Called with one line (str) as each family's fit starts and ends, with its time (a long record's fits take
+        minutes: a 600 s record at 1 kHz holds 3e5 ordinates).
 
     Returns
     -------
@@ -294,6 +310,12 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
     if dt is None or not (dt > 0 and math.isfinite(dt)):
         raise ValueError(f"the sampling step dt must be positive, in s (got {dt!r})")
     x = np.asarray(x, dtype=float)
+    if v is None and len(x) > 1:
+        v = float((x[-1] - x[0]) / (dt * (len(x) - 1)))
+    if len(x) > 4 * lines_mod.WINDOW:
+        x, found, skirts = lines_mod.remove_lines(x, dt)
+    else:
+        found, skirts = [], []
     if stationary is None:
         stationary = stationarity(x, dt)["stationary"]
     if not stationary:
@@ -306,17 +328,25 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
     for n in names:
         if n not in FAMILIES:
             raise ValueError(f"no spectral family for model {n!r}; families: {', '.join(FAMILIES)}")
-    rec = record_for(x, dt)
+    rec = without(record_for(x, dt), skirts)
+    segments = segments_of(x, dt)
     G = Grouped(rec)
     n_ord = len(rec.omega)
     fits, shared = {}, {}
     base = None  # model I's fit: the start of the families that extend it
-    for n in sorted(names, key=lambda n: n not in _BASE):
+    order = sorted(names, key=lambda n: n not in _BASE)
+    distinct = len({id(FAMILIES[n].shape) for n in names})
+    for n in order:
         fam: Family = FAMILIES[n]
         key = id(fam.shape)
         if key not in shared:
             start = base.theta if base is not None and n in _EXTENDS_I else None
-            shared[key] = fit_family(rec, fam, v, start_theta=start)
+            t0 = time.perf_counter()
+            if progress is not None:
+                progress(f"fitting {n}'s family ({len(shared) + 1}/{distinct}, {len(rec.omega)} ordinates)")
+            shared[key] = fit_family(rec, fam, v, start_theta=start, segments=segments)
+            if progress is not None:
+                progress(f"{n}'s family fitted in {time.perf_counter() - t0:.1f} s")
             if n in _BASE:
                 base = shared[key]
         f = shared[key]
@@ -357,7 +387,11 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
             p = float(adj[i - 1])
             sep = "" if verdict == "rejected" else _separate(best, n, fits, v)
             if n in tested:
+                if coincides[n]:  # judged one family with the best by its gain's test: that test's p-value
+                    p = float(adj_nested[n])
                 test = f"{tested[n][1]}; Holm-adjusted p = {adj_nested[n]:.2g}"
+        if sep and found and (FAMILIES[n].line or FAMILIES[best].line):
+            sep += "; lines found and subtracted here: " + ", ".join(f"{ln.omega:.4g} rad/s" for ln in found)
         out.append(Mechanism(n, verdict, p, fits[n].parameters(FAMILIES[n]), sep, bic[n], fits[n],
-                             best if i > 0 and coincides[n] else None, test))
+                             best if i > 0 and coincides[n] else None, test, tuple(found)))
     return out

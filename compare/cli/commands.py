@@ -63,11 +63,12 @@ def cmd_sweep(args) -> int:
 
 
 def cmd_analyze(args) -> int:
+    import time
     from pathlib import Path
 
     from ..report.html import write_report
     from ..io.measured import units_line
-    from .mechanisms import mechanisms_of, ranking_lines
+    from .mechanisms import mechanisms_of, ranking_lines, ranking_section
 
     force = args.force_col is not None
     _check_analyze_numbers(args)
@@ -97,9 +98,16 @@ def cmd_analyze(args) -> int:
             from ..analysis.displacement import analyze_displacement
             from ..report.measured_report import build_measured_report
 
+            say = _stderr_progress if len(data.t) >= PROGRESS_SAMPLES else None
+            t0 = time.perf_counter()
+            if say:
+                say(f"fitting the exponent of C_x ({len(data.t)} samples)")
             an = analyze_displacement(data, mass=args.mass, band=band, method=args.method)
+            if say:
+                say(f"exponent fitted in {time.perf_counter() - t0:.1f} s; naming the mechanism")
             sections, summary = build_measured_report(an, data)
-            summary.update(units=data.units, **mechanisms_of(data, an.mean_velocity, an.fit.flags))
+            summary.update(units=data.units, **mechanisms_of(data, an.mean_velocity, an.fit.flags, progress=say))
+            sections = [ranking_section(summary)] + list(sections)
     except ValueError as e:
         raise UserError(f"{args.data}: {e}") from None
     write_report(out, sections, summary, title=f"frictionnoise analyze: {Path(args.data).name}")
@@ -107,6 +115,14 @@ def cmd_analyze(args) -> int:
     for line in (force_lines if force else displacement_lines)(summary, out / "index.html"):
         print(line)
     return 0
+
+
+PROGRESS_SAMPLES = 100_000  # a record this long prints its analysis's progress (a minute or more of fitting)
+
+
+def _stderr_progress(line: str) -> None:
+    """A progress line of a long analysis on stderr (the terminal's and a log's), flushed at once."""
+    print(f"frictionnoise analyze: {line}", file=sys.stderr, flush=True)
 
 
 def _read_record(path, args):

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["mechanisms_of", "ranking_lines"]
+__all__ = ["mechanisms_of", "ranking_lines", "ranking_section"]
 
 
-def mechanisms_of(data, v: float, flags=()) -> dict:
+def mechanisms_of(data, v: float, flags=(), progress=None) -> dict:
     """summary.json's ``mechanisms`` (best first, each :meth:`Mechanism.to_dict`) and ``stationarity`` of a
     measured displacement record at mean speed ``v`` (m/s); ``mechanisms_note`` says why there are none.
 
@@ -20,6 +20,8 @@ def mechanisms_of(data, v: float, flags=()) -> dict:
     flags : iterable of str, optional
         The exponent fit's flags; one starting "not stationary" (the record model's split-half test) names no
         mechanism.
+    progress : callable, optional
+        Called with one line per family fitted (:func:`compare.analysis.identify.identify`'s ``progress``).
 
     Returns
     -------
@@ -34,7 +36,7 @@ def mechanisms_of(data, v: float, flags=()) -> dict:
                                    "one uniform record; --resample makes one)"}
     if not v > 0:
         return {"mechanisms": [], "stationarity": None,
-                "mechanisms_note": f"no mechanism named: the record does not slide forward (mean speed {v:.3g} m/s)"}
+                "mechanisms_note": _backward(v)}
     split = [f for f in flags if f.startswith("not stationary")]
     if split:
         return {"mechanisms": [], "stationarity": None, "mechanisms_note": f"no mechanism named: {split[0]}"}
@@ -43,8 +45,17 @@ def mechanisms_of(data, v: float, flags=()) -> dict:
     if not st["stationary"]:
         return {"mechanisms": [], "stationarity": st,
                 "mechanisms_note": "no mechanism named: the record's two halves have different spectra (not stationary)"}
-    ranking = identify(data.x, dt, v, stationary=True)
+    ranking = identify(data.x, dt, v, stationary=True, progress=progress)
     return {"mechanisms": [m.to_dict() for m in ranking], "stationarity": st, "mechanisms_note": ""}
+
+
+def _backward(v: float) -> str:
+    """Why a record whose displacement does not grow gets no mechanism, in words a user can act on."""
+    if v == 0 or v != v:
+        return "no mechanism named: the displacement does not advance over the record (no sliding speed to refer to)"
+    return (f"no mechanism named: the displacement falls over the record ({v:.3g} m/s on average); the families "
+            "describe a block sliding forward at the drive's speed (negate x for a record sliding backward; a free "
+            "block that wanders is not a driven slide)")
 
 
 def _value(p) -> str:
@@ -67,7 +78,8 @@ def ranking_lines(summary: dict) -> list:
     mechs = summary.get("mechanisms") or []
     if not mechs:
         return [f"mechanism: {summary.get('mechanisms_note') or 'none named'}"]
-    lines = ["mechanisms (best first; p: Holm-adjusted, against the best; +-: 95 % half-width):"]
+    lines = ["mechanisms (best first; p: Holm-adjusted, against the best; +-: 95 % half-width, the larger side of "
+             "an asymmetric interval):"]
     best = mechs[0]["model"]
     same = [m for m in mechs[1:] if m.get("coincides_with") == best]
     for m in [mechs[0]] + [m for m in mechs[1:] if m not in same]:
@@ -80,3 +92,17 @@ def ranking_lines(summary: dict) -> list:
         elif m["separate"]:
             lines.append(f"      to separate: {m['separate']}")
     return lines
+
+
+def ranking_section(summary: dict):
+    """The ranking as the first section of analyze's index.html: the terminal's lines, verbatim, and where
+    "indistinguishable" is explained."""
+    from ..report.html import esc
+    from ..report.study import StudyResult
+
+    text = ("<pre>" + esc("\n".join(ranking_lines(summary))) + "</pre>"
+            "<p>Which of the paper's models explains this record (every registered model's spectral family fitted "
+            "and compared with the best; summary.json's <code>mechanisms</code> holds the same, best first). "
+            "Reading the ranking and what \"indistinguishable\" means: the documentation's explanation page "
+            "<i>Which mechanism? Reading the ranking</i> (docs/explanation/identification.md).</p>")
+    return StudyResult("mechanism_ranking", "Mechanisms: which model explains the record", {}, (), text)

@@ -22,12 +22,27 @@ def print_breaks(timeline, most: int = 10):
 
 def _fit_text(f: dict) -> str:
     """A fit as the terminal shows it: exponent, 95 % interval, method, band, the floor (record model), flags."""
-    ci = f"95 % [{f['gamma_interval'][0]:.3f}, {f['gamma_interval'][1]:.3f}]" if "gamma_interval" in f else "95 %"
-    floor = "" if "floor" not in f else (f"; white floor {f['floor_rms']:.3g} m rms, over the power law above "
-                                         f"{f['crossover'] or float('inf'):.3g} rad/s")
-    flags = "" if f["power_law"] else f" [not a power law: {'; '.join(f['flags'])}]"
+    ci = (f"+-: 95 % half-width; interval [{f['gamma_interval'][0]:.3f}, {f['gamma_interval'][1]:.3f}]"
+          if "gamma_interval" in f else "+-: 95 % half-width")
     return (f"{f['gamma']:.3f} +- {f['gamma_err']:.3f} ({ci}, {f['method']}) over {f['band'][0]:.3g}-{f['band'][1]:.3g} "
-            f"rad/s{floor}{flags}")
+            f"rad/s{_floor_text(f)}{_flags_text(f)}")
+
+
+def _floor_text(f: dict) -> str:
+    """The record model's white floor in words: none detected, below the power law over the whole band, or over it
+    above its crossover."""
+    if "floor" not in f:
+        return ""
+    rms, cross = f.get("floor_rms") or 0.0, f.get("crossover")
+    if not rms > 0:
+        return "; no white floor detected"
+    if cross is None or not cross < float("inf"):
+        return f"; white floor {rms:.3g} m rms, below the power law over the whole band"
+    return f"; white floor {rms:.3g} m rms, over the power law above {cross:.3g} rad/s"
+
+
+def _flags_text(f: dict) -> str:
+    return "" if f["power_law"] else f" [not a power law: {'; '.join(f['flags'])}]"
 
 
 def force_lines(summary: dict, index, most: int = 10) -> list:

@@ -187,8 +187,8 @@ def _remaining(rows, cells=CELLS, target: int = 100) -> str:
     if not missing:
         return ""
     return (f"Left to reach {target} seeds in every cell of the grid ({unrun} cells not run here): {missing} records, "
-            f"about {total / 3600:.1f} h of CPU at this run's cost per record (one process per core; measured under "
-            f"load 10-16, so an upper estimate for a quiet machine).")
+            f"about {total / 3600:.1f} h of CPU at this run's cost per record (one process per core; CPU time measured "
+            f"on a shared machine, load {os.getloadavg()[0]:.1f} when the page was written).")
 
 
 def main(argv=None):

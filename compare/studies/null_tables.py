@@ -6,7 +6,8 @@
 ``run`` simulates ``best``'s records at parameter point POINT (:data:`POINTS`) with the point's sensor, seeds A to
 B - 1, fits ``best``'s family and every family nesting it as :func:`~compare.analysis.identify.identify` fits them
 (the nesting ones started from ``best``'s fit), and appends one JSON line per record to FILE (default
-study-results/null_tables_<POINT>_<S>s_<Hz>Hz.jsonl): the seed, ``nll_<best>``, T = 2 (nll_best - nll_other) per nesting
+study-results/null_tables/null_<POINT>_<S>s_<Hz>Hz[_<sensor>].jsonl, the name ``combine`` reads): the seed,
+``nll_<best>``, T = 2 (nll_best - nll_other) per nesting
 model, the parameters each held neutral and the seconds the record cost. ``combine`` reads such files (one per
 point; the files of one record length and step form one table per pair), compares the points' T by a two-sample
 Kolmogorov-Smirnov test and their 90 and 95 % quantiles, reads each point's records against the other point's table
@@ -170,8 +171,9 @@ def main(argv=None) -> int:
         print(combine(a.files, a.write))
         return 0
     tail = "" if a.sensor == "round" else f"_{a.sensor}"
-    out = Path(a.out or ROOT / "study-results" / f"null_tables_{a.point}_{a.duration:g}s_{1 / a.dt:g}Hz{tail}.jsonl")
-    out.parent.mkdir(exist_ok=True)
+    name = f"null_{a.point}_{a.duration:g}s_{1 / a.dt:g}Hz{tail}.jsonl"
+    out = Path(a.out or ROOT / "study-results" / "null_tables" / name)
+    out.parent.mkdir(parents=True, exist_ok=True)
     with out.open("a") as fh:
         for seed in range(*a.seeds):
             fh.write(json.dumps(one_record(a.point, a.duration, a.dt, seed, a.sensor)) + "\n")

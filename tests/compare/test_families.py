@@ -43,7 +43,7 @@ def test_renewal_law_is_the_triangular_intervals_the_simulators_draw():
     for x in (0.3, 2.0, 5.0, 11.0):
         direct = 1 - np.mean(np.cos(x * (1 + d)))
         fam = family_of("model_I")
-        th = {"L": 1.0, "a": 1.0, "omega_c": 1e12, "Q": 1.0, "omega_0": 1e12, "omega_1": 1e12}
+        th = {"L": 1.0, "a": 1.0, "omega_c": 1e12, "Q": 1.0, "omega_0": 1e14, "omega_1": 1e12}
         got = fam.spectrum(th, [x], 1.0)[0] * x**4  # v = a = 1: x = omega; the block's factor 1 to 1e-12
         assert got == pytest.approx(direct, rel=1e-5)  # midpoint rule on 2000^2 points: error ~ (x / 2000)^2
 
@@ -114,3 +114,39 @@ def test_identified_needs_the_feature_inside_the_band():
 def test_unknown_model_is_named():
     with pytest.raises(KeyError, match="model_X"):
         family_of("model_X")
+
+
+def test_Q_is_the_resonance_quality_with_both_dampings():
+    # Q is what a record places: the resonance's width from the contacts' damping and the springs' together,
+    # 1 / Q = 1 / Q_c + omega_c / omega_0. The reference's springs add omega_c / omega_0 = 0.0044 to 1 / Q_c = 0.055
+    # (8 % of the width). With Q held, moving omega_0 from the reference's 1.25e5 rad/s to 1e12 changes the family
+    # on a 1 kHz record's band (to pi / dt) by at most (omega / omega_0)^2-order terms and the springs' r^2 u against
+    # r / Q_c far above the resonance: measured 0.6 %; 1 % is the bound asserted. With Q_c held instead, the peak
+    # moves by the 8 % of its width squared, 17 %.
+    p = rm.spring_block.SpringBlockParams.reference()
+    fam = family_of("model_I")
+    theta, v = fam.from_model(p)
+    wc, w0 = np.sqrt(p.N * p.k0 / p.M), p.k0 / (p.m * p.eta0)
+    Qc = p.N * p.m * p.eta1 / (p.M * wc)
+    assert 1 / theta["Q"] == pytest.approx(1 / Qc + wc / w0, rel=1e-12)
+    w = np.geomspace(0.1, np.pi / 1e-3, 2000)
+    far = fam.spectrum({**theta, "omega_0": 1e12}, w, v) / fam.spectrum(theta, w, v)
+    assert np.max(np.abs(far - 1)) < 0.01
+    contacts_only = fam.spectrum({**theta, "Q": Qc, "omega_0": 1e12}, [wc], v) / fam.spectrum(theta, [wc], v)
+    assert contacts_only[0] > 1.1
+    assert not np.isfinite(fam.spectrum({**theta, "Q": 2 * w0 / wc}, [1.0], v)[0])  # springs alone damp more
+
+
+@pytest.mark.parametrize("s", [1.0, 2.0, 3.0])
+def test_model_II_falls_as_six_minus_half_s_between_its_corners(s):
+    # (B2) with log-uniform mean times: each state's term P c^2 ~ tau^-beta, averaged through 1 / (tau + tau') over
+    # the other state's times, gives C_F ~ omega^(beta - 2), so gamma = 6 - s / 2 between the corners, up to the
+    # logarithm that average leaves (measured 5.59, 5.11, 4.63 for s = 1, 2, 3 over 0.1-10 rad/s with the corners at
+    # 1e-4 and 1e4 rad/s); 0.15 allows that logarithm. The paper's gamma = 7 - s meets it at s = 2 alone.
+    fam = family_of("model_II")
+    w = np.array([0.1, 10.0])
+    c = fam.spectrum({"S": 1.0, "s": s, "omega_lo": 1e-4, "omega_hi": 1e4}, w, 5e-4)
+    gamma = -np.log(c[1] / c[0]) / np.log(w[1] / w[0])
+    assert abs(gamma - (6 - s / 2)) < 0.15
+    if s != 2.0:
+        assert abs(gamma - (7 - s)) > 0.3

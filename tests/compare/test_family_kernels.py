@@ -12,9 +12,10 @@ def _renewal(x):
 
 def _block(w, th, slope=1.0):
     r = w / th["omega_c"]
+    Qc = 1.0 / (1.0 / th["Q"] - th["omega_c"] / th["omega_0"])  # the contacts' share of the resonance's damping
     spring = 1.0 - r * r / (1.0 + 1j * w / th["omega_0"])
     inertia = 1j * w / (th["omega_1"] * slope) if "omega_1" in th else 0.0
-    return 1.0 / np.abs(spring * (1.0 + inertia) + 1j * r / (th["Q"] * slope)) ** 2
+    return 1.0 / np.abs(spring * (1.0 + inertia) + 1j * r / (Qc * slope)) ** 2
 
 
 def _array_form(name, th, w, v):
@@ -30,7 +31,7 @@ def _array_form(name, th, w, v):
     return th["L"] * np.sinc(w * th["w"] / (2 * np.pi * v)) ** 2 / w**4
 
 
-I_POINT = {"L": 1.1e-10, "a": 1e-3, "omega_c": 548.0, "Q": 16.4, "omega_0": 3e3, "omega_1": 2e4}
+I_POINT = {"L": 1.1e-10, "a": 1e-3, "omega_c": 548.0, "Q": 4.0, "omega_0": 3e3, "omega_1": 2e4}  # Q_c = 15
 POINTS = {
     "model_I": I_POINT,
     "model_Ib": {**I_POINT, "L2": 3e-12, "a2": 2e-6, "omega3": 4e3},

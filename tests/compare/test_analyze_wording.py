@@ -1,0 +1,37 @@
+"""What analyze prints about a record's floor, its speed and its mechanisms, in words a user can act on."""
+from compare.cli.mechanisms import mechanisms_of, ranking_lines, ranking_section
+from compare.cli.record_summary import _fit_text
+
+FIT = {"gamma": 4.01, "gamma_err": 0.05, "gamma_interval": [3.96, 4.06], "method": "record", "band": [1.0, 100.0],
+       "power_law": True, "flags": []}
+
+
+def test_a_floor_that_is_absent_or_never_reached_is_said_so():
+    assert "no white floor detected" in _fit_text({**FIT, "floor": 0.0, "floor_rms": 0.0, "crossover": None})
+    below = _fit_text({**FIT, "floor": 1e-30, "floor_rms": 1e-12, "crossover": None})
+    assert "below the power law over the whole band" in below and "inf" not in below
+    assert "over the power law above 250 rad/s" in _fit_text({**FIT, "floor": 1e-24, "floor_rms": 7.9e-11,
+                                                              "crossover": 250.0})
+
+
+def test_the_exponent_and_the_ranking_label_their_plus_minus_alike():
+    assert "+-: 95 % half-width" in _fit_text(FIT)
+    assert "+-: 95 % half-width" in ranking_lines({"mechanisms": [
+        {"model": "model_I", "verdict": "fits", "p_value": 1.0, "separate": "", "parameters": {}}]})[0]
+
+
+def test_a_record_whose_displacement_falls_gets_no_mechanism_and_a_reason():
+    class Record:
+        segmented = False
+
+    note = mechanisms_of(Record(), -16.4)["mechanisms_note"]
+    assert "falls over the record" in note and "negate x" in note and "slide forward" not in note
+
+
+def test_the_ranking_is_the_first_section_of_the_page_text():
+    summary = {"mechanisms": [{"model": "model_I", "verdict": "fits", "p_value": 1.0, "separate": "",
+                               "parameters": {"L": [1.1e-10, 5e-12, "m^2 s^-3"]}}]}
+    sec = ranking_section(summary)
+    assert sec.title.startswith("Mechanisms")
+    for line in ranking_lines(summary):
+        assert line.replace("<", "&lt;").replace(">", "&gt;") in sec.html
