@@ -13,8 +13,9 @@ width is set by the sharpest feature, a resonance: of quality Q its flanks chang
 1 / (2 Q) in frequency, 3 % for model I's reference (Q = 17); with bins 1 % wide its fitted omega_c fell 0.3 % below
 the truth on 60 s records (intervals +-0.2 %) and Q by up to 23 %; at 0.5 % the fits of 8 such records are those
 at 0.2 % to a small fraction of their intervals (omega_c and Q covered in 7 of 8 with either, the same record
-missing), at 2.5 times the cost of 1 % bins (0.2 %: five times). L-BFGS-B runs on the likelihood per ordinate, restarted from its own end while that gains
-(:func:`_descend`), and stops on a relative change of 1e-11 (:data:`_STOP`). This leaves out the finite record's leakage,
+missing), at 2.5 times the cost of 1 % bins (0.2 %: five times). L-BFGS-B runs on the likelihood per ordinate,
+restarted from its own end while that gains (:func:`_descend`), and stops on a relative change of 1e-11
+(:data:`_STOP`). This leaves out the finite record's leakage,
 small once two differences flatten the spectrum; ``exact=True`` polishes the maximum on the debiased likelihood of
 :mod:`compare.analysis.whittle` (records of at most :data:`EXACT_N` samples: its mean costs 0.03 s per evaluation at
 2e4 samples and 1.5 s at 4e5). Every family compared on one record must be fitted alike.
