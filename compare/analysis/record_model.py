@@ -92,12 +92,28 @@ class RecordFit:
         return math.log10(self.band[1] / self.band[0])
 
     def level(self, omega):
-        """The fitted power law A omega^-gamma at ``omega`` (rad/s), without the floor."""
+        """The fitted power law A omega^-gamma at ``omega``, without the floor.
+
+        Parameters
+        ----------
+        omega : array_like
+            Angular frequencies (Units: rad/s).
+
+        Returns
+        -------
+        ndarray
+            A omega^-gamma (Units: those of the fitted spectrum, e.g. m^2 s).
+        """
         return self.prefactor * np.asarray(omega, dtype=float) ** (-self.gamma)
 
     def ln_level(self, omega: float) -> tuple[float, float]:
         """ln(A omega^-gamma) at ``omega`` (rad/s) and its standard error from the Fisher information of the fit
         (``level_cov``: the covariance of (gamma, ln A), the floor profiled out).
+
+        Parameters
+        ----------
+        omega : float
+            Angular frequency (Units: rad/s).
 
         Returns
         -------
@@ -113,12 +129,33 @@ class RecordFit:
 
     def derived(self, power: float, factor: float, quantity: str) -> "RecordFit":
         """The fit of factor * omega^power * C (e.g. C_mu = omega^4 C_x / g^2): gamma and its interval less
-        ``power``, the prefactor times ``factor``; floor, crossover and band stay those of the fitted record."""
+        ``power``, the prefactor times ``factor``; floor, crossover and band stay those of the fitted record.
+
+        Parameters
+        ----------
+        power : float
+            The exponent of omega multiplying the spectrum (dimensionless).
+        factor : float
+            The constant multiplying it (its unit converts the prefactor's).
+        quantity : str
+            What the derived spectrum is of (``"mu"``, ``"F"``, ...).
+
+        Returns
+        -------
+        RecordFit
+            The derived fit.
+        """
         return replace(self, gamma=self.gamma - power, gamma_low=self.gamma_low - power,
                        gamma_high=self.gamma_high - power, prefactor=self.prefactor * factor, quantity=quantity)
 
     def to_dict(self) -> dict:
-        """JSON-ready: every field plus ``gamma_err``, ``power_law``, ``decades`` and ``confidence``."""
+        """JSON-ready: every field plus ``gamma_err``, ``power_law``, ``decades`` and ``confidence``.
+
+        Returns
+        -------
+        dict
+            The fit's numbers (SI units, frequencies in rad/s).
+        """
         return {"gamma": self.gamma, "gamma_err": self.gamma_err, "gamma_se": self.gamma_err / 1.96, "gamma_interval": [self.gamma_low, self.gamma_high],
                 "confidence": 0.95, "prefactor": self.prefactor, "floor": self.floor, "floor_rms": self.floor_rms,
                 "crossover": None if math.isinf(self.crossover) else self.crossover,
