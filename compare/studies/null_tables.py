@@ -1,7 +1,7 @@
 """Build the simulated null tables of :mod:`compare.analysis.null_tables` and docs/results/null_tables.md.
 
     python -m compare.studies.null_tables run POINT --duration S --dt S --seeds A B [--out FILE]
-    python -m compare.studies.null_tables combine FILE [FILE ...] [--write]
+    python -m compare.studies.null_tables combine [FILE ...] [--write]
 
 ``run`` simulates ``best``'s records at parameter point POINT (:data:`POINTS`) with the point's sensor, seeds A to
 B - 1, fits ``best``'s family and every family nesting it as :func:`~compare.analysis.identify.identify` fits them
@@ -164,11 +164,15 @@ def main(argv=None) -> int:
     r.add_argument("--sensor", choices=sorted(_SENSORS), default="round")
     r.add_argument("--out")
     c = sub.add_parser("combine")
-    c.add_argument("files", nargs="+")
+    c.add_argument("files", nargs="*", help="the run step's files (default: every one it wrote here)")
     c.add_argument("--write", action="store_true")
     a = ap.parse_args(argv)
     if a.cmd == "combine":
-        print(combine(a.files, a.write))
+        files = a.files or sorted(str(f) for f in (ROOT / "study-results" / "null_tables").glob("null_*.jsonl"))
+        if not files:
+            print("null_tables: no files to combine (run the `run` step first, or name the files)", file=sys.stderr)
+            return 2
+        print(combine(files, a.write))
         return 0
     tail = "" if a.sensor == "round" else f"_{a.sensor}"
     name = f"null_{a.point}_{a.duration:g}s_{1 / a.dt:g}Hz{tail}.jsonl"
