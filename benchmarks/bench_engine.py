@@ -108,7 +108,7 @@ for n in sys.stdin:
 """
 
 
-def against(base_tree, names, pairs: int = 4, turns: int = 10, chunks: int = 10, core: int = 0, log=print):
+def against(base_tree, names, pairs: int = 20, turns: int = 2, chunks: int = 10, core: int = 0, log=print):
     """This tree's loop cost over ``base_tree``'s, per scene, measured in lockstep.
 
     Each process pair (one worker per tree, pinned to ``core``, each importing its own tree's engine_sim and
@@ -183,8 +183,8 @@ def main(argv=None):
     ap.add_argument("--clock", choices=tuple(CLOCK), default="cpu")
     ap.add_argument("--table-only", action="store_true")
     ap.add_argument("--against", metavar="BASE_TREE", help="compare this tree's loop with BASE_TREE's in lockstep")
-    ap.add_argument("--pairs", type=int, default=4, help="with --against: worker process pairs")
-    ap.add_argument("--turns", type=int, default=10, help="with --against: turns per pair")
+    ap.add_argument("--pairs", type=int, default=20, help="with --against: worker process pairs (the repeats)")
+    ap.add_argument("--turns", type=int, default=2, help="with --against: turns per pair")
     ap.add_argument("--chunks", type=int, default=10, help="with --against: chunk pairs per scene and turn")
     ap.add_argument("names", nargs="*", help="scenarios of the table (default: every shipped one)")
     a = ap.parse_args(argv)
