@@ -7,7 +7,7 @@ import glob as _glob
 from pathlib import Path
 
 from .sheet import (Sheet, SheetError, detect_separator, first_run, is_pattern, is_text, SEPARATOR_NAMES,
-                     tabulate, layout, text_lines)
+                    tabulate, layout, text_lines)
 
 def _needs(src, what, package, extra) -> SheetError:
     return SheetError(f"{src}: {what}; reading it needs {package} (pip install 'frictionnoise[{extra}]')")

@@ -2,9 +2,10 @@
 rows of cells and the blocks they fall in, each row with the place it came from (a line of a text file, a cell of
 a workbook, a value of a TDMS channel), so that every refusal names the file and the place.
 
-Layouts are registered (:data:`LAYOUTS`, :func:`layout`; the readers are in :mod:`compare.io.layouts`): each says
-from a file's first bytes whether it reads it, and reads it. Text layouts share one decoder and line splitter (:mod:`engine_sim.text_file`: UTF-8, UTF-16 with a
-BOM, latin-1; LF, CRLF, CR CR LF or CR ends; lines numbered as ``grep -n`` numbers them).
+Layouts are registered (:data:`LAYOUTS`, :func:`layout` and :class:`Sheet`, from :mod:`compare.io.sheet`; the
+readers are in :mod:`compare.io.layouts`, imported here): each says from a file's first bytes whether it reads it, and
+reads it. Text layouts share one decoder and line splitter (:mod:`engine_sim.text_file`: UTF-8, UTF-16 with a BOM,
+latin-1; LF, CRLF, CR CR LF or CR ends; lines numbered as ``grep -n`` numbers them).
 
 - ``delimited``: ``,``, ``;`` or tab separated text after any preamble; a header row, an optional units row of
   any units (a trailing empty cell for a unitless column), decimal commas with ``;`` or tab; several blocks, each
