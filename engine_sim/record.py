@@ -27,8 +27,7 @@ from . import sample_layout as R, units as U
 from .batch_reader import BatchReader
 from .channels import recorded_channels
 from .reduction import reduce_sample, slider_velocities
-from .sample_layout import COLS, MS_COLS, PRM
-from .vibration import VIB_COLS
+from .sample_layout import COLS, MS_COLS, PRM, VIB_COLS
 
 __all__ = ["EngineTrace", "Recorder", "step_weights", "FORCE_CHANNELS"]
 

@@ -34,10 +34,13 @@ from dataclasses import dataclass
 
 from frictionnoise.base import G
 
-from .arrangements import SPRING_DAMPING_X, SPRING_OMEGA_DT
+__all__ = ["Limit", "limits", "check_regimes", "mass_limit", "SOFTENING", "HANG_FRACTION", "LOST_CONTACT_S", "PARTIAL_LOSS_FRACTION",
+           "SPRING_OMEGA_DT", "SPRING_DAMPING_X"]
 
-__all__ = ["Limit", "limits", "check_regimes", "mass_limit", "SOFTENING", "HANG_FRACTION", "LOST_CONTACT_S", "PARTIAL_LOSS_FRACTION"]
-
+# Explicit spring forces are accurate for omega dt < 0.3 (DESIGN.md, measured on pymunk 7.3).
+SPRING_OMEGA_DT = 0.3
+# Spring damping is exact-exponential but its effect is slowed by x/(e^x - 1), x = c dt / m: keep x < 0.1.
+SPRING_DAMPING_X = 0.1
 SOFTENING = 0.1  # the normal spring's geometric softening F_s / LN may change the pad's tangential stiffness by 10 %
 HANG_FRACTION = 0.01  # a pad may hang over at most 1 % of its track's length
 # a run whose pads all leave their tracks for longer than this stops (engine_sim.run), its trace marked partial

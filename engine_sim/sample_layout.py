@@ -6,12 +6,14 @@ module-level integers as constants); this module imports nothing.
 """
 from __future__ import annotations
 
-__all__ = ["COLS", "PRM", "MS_COLS", "AF", "STALE_TOL"]
+__all__ = ["COLS", "VIB_COLS", "PRM", "MS_COLS", "AF", "STALE_TOL"]
 
 # columns of the recorder's scalar buffer, one row per sample
 COLS = ("x", "v", "F_t", "F_n", "F_drag", "F_drive", "penetration", "power_in", "power_out", "mech", "pairs", "p_pen",
         "stale", "momentum_x", "momentum_y")
 X, V, F_T, F_N, F_DRAG, F_DRIVE, PEN, POWER_IN, POWER_OUT, MECH, PAIRS, P_PEN, STALE, MOM_X, MOM_Y = range(len(COLS))
+# the vibration's two columns, after COLS in the recorder's rows, written by engine_sim.vibration.Vibration.record
+VIB_COLS = ("vib_disp", "vib_power")
 # the scalar parameters of a sample (Recorder._prm), scene units; pulled: index of the body the drive spring pulls among
 # the drive's bodies (-1: the block); means: 1 to record the forces as means over the output step (:func:`means`), 0 for
 # point samples; steps: pymunk steps since the previous sample (0 at the first); w0..w3: the quadrature weights of a

@@ -40,6 +40,7 @@ import pymunk
 from frictionnoise.base import G
 
 from .parts import Part
+from .sample_layout import VIB_COLS  # the recorder's columns this part writes (Vibration.record)
 
 __all__ = ["VibrationSpec", "Vibration", "MIN_STEPS_PER_PERIOD", "VIB_COLS", "ANCHOR_MASS"]
 
@@ -49,7 +50,6 @@ MIN_STEPS_PER_PERIOD = 20  # pymunk steps per vibration period the loader demand
 # the smallest amplitude swept); pymunk applies gravity whatever the mass, so the mass sets only that feedback
 ANCHOR_MASS = 1e20
 _FAR = 1e9  # mm: the anchor's groove reaches this far either way
-VIB_COLS = ("vib_disp", "vib_power")  # the recorder's columns after sample_layout.COLS, written by Vibration.record
 
 
 @dataclass(frozen=True)

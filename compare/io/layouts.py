@@ -1,13 +1,13 @@
 """The registered layouts of :mod:`compare.io.sheets`, in the order they are tried: a folder or glob of per-stroke
 files, LabVIEW TDMS, xlsx, the look program's ASCII export, delimited text (see :mod:`compare.io.sheets` for what
-each reads). Imported by :func:`compare.io.sheets.read_sheet`, which registers them."""
+each reads). Imported by :mod:`compare.io.sheets`, which reads a file by them."""
 from __future__ import annotations
 
 import glob as _glob
 from pathlib import Path
 
-from .sheets import (Sheet, SheetError, detect_separator, first_run, is_pattern, is_text, SEPARATOR_NAMES,
-                     tabulate, layout, text_lines)
+from .sheet import (Sheet, SheetError, detect_separator, first_run, is_pattern, is_text, SEPARATOR_NAMES,
+                    tabulate, layout, text_lines)
 
 def _needs(src, what, package, extra) -> SheetError:
     return SheetError(f"{src}: {what}; reading it needs {package} (pip install 'frictionnoise[{extra}]')")

@@ -27,7 +27,8 @@ from frictionnoise.base import check_number
 from ..substrates.patches import Patches, PatchesSpec
 from functools import cached_property
 
-from . import ARRANGEMENTS, LT, SPRING_DAMPING_X, SPRING_OMEGA_DT, PadSpec
+from ..regime import SPRING_DAMPING_X, SPRING_OMEGA_DT, Limit, load_limit, mass_limit
+from .arrangement import ARRANGEMENTS, LT, PadSpec
 from .tracks import Tracks
 
 _MICRO_BIT = 31
@@ -146,8 +147,6 @@ class Micro(Tracks):
 
     def limits(self):
         """The pads' limits, and the micro-pads' tangential spring (micro_k) against their largest friction."""
-        from ..regime import Limit, load_limit, mass_limit
-
         out = super().limits()
         sc, p = self.sc, self.spec
         f = self._micro_friction(sc.normal_load_per_pad)

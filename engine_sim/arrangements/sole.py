@@ -7,7 +7,8 @@ import math
 import numpy as np
 import pymunk
 
-from . import ARRANGEMENTS, Arrangement, PadSpec, track_rng
+from ..regime import dt_limit
+from .arrangement import ARRANGEMENTS, Arrangement, PadSpec, track_rng
 
 
 @ARRANGEMENTS.register
@@ -24,8 +25,6 @@ class Sole(Arrangement):
     def limits(self):
         """The feet's tangential springs and contact thickness (the mean foot load), and run.dt against the block's
         vertical mode on its N normal springs."""
-        from ..regime import dt_limit
-
         p, M = self.spec, self.sc.block.M
         return super().limits() + [dt_limit("run.dt", self.sc, math.sqrt(p.N * p.k_normal / M), p.N * p.c_normal / M,
                                             f"the block on its {p.N} normal foot springs")]

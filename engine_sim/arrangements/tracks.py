@@ -5,7 +5,7 @@ from __future__ import annotations
 import pymunk
 
 
-from . import ARRANGEMENTS, Arrangement, PadSpec, track_rng
+from .arrangement import ARRANGEMENTS, Arrangement, PadSpec, track_rng
 
 
 @ARRANGEMENTS.register

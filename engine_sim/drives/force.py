@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from . import DRIVES, Drive, DriveSpec
+from .drive import DRIVES, Drive, DriveSpec
 
 
 @dataclass(frozen=True)

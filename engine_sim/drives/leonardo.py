@@ -7,7 +7,7 @@ import pymunk
 
 from frictionnoise.base import G
 
-from . import DRIVES, FAR, Drive, DriveSpec
+from .drive import DRIVES, FAR, Drive, DriveSpec
 
 
 @dataclass(frozen=True)

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 from frictionnoise.base import G
 
-from . import DRIVES, Drive, DriveSpec
+from .drive import DRIVES, Drive, DriveSpec
 
 
 @dataclass(frozen=True)

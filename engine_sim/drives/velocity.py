@@ -8,7 +8,7 @@ import numpy as np
 
 import pymunk
 
-from . import DRIVES, Drive, DriveSpec
+from .drive import DRIVES, Drive, DriveSpec
 
 _REST = 5.0  # mm: the drive spring's rest length
 

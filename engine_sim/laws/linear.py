@@ -5,7 +5,7 @@ import math
 
 import pymunk
 
-from . import LAWS, FrictionSpec, Law
+from .law import LAWS, FrictionSpec, Law
 
 _FAR = 1e9  # mm: the drag springs' static anchors, so their axis stays horizontal over any run
 

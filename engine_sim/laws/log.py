@@ -8,7 +8,7 @@ import numba
 import numpy as np
 import pymunk.batch as B
 
-from . import LAWS, FrictionSpec
+from .law import LAWS, FrictionSpec
 from .linear import Linear
 
 

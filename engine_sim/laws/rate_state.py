@@ -43,7 +43,7 @@ import numba
 import numpy as np
 import pymunk.batch as PB
 
-from . import LAWS, FrictionSpec
+from .law import LAWS, FrictionSpec
 from .linear import Linear
 from .log import log_slope
 

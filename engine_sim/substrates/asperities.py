@@ -6,7 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..substrate import BumpTrack
-from . import SUBSTRATES, Substrate, SubstrateSpec
+from .substrate import SUBSTRATES, Substrate, SubstrateSpec
 
 
 @dataclass(frozen=True)

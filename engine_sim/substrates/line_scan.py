@@ -18,7 +18,7 @@ import numpy as np
 from ..profile_file import ProfileError, read_line_scan
 from ..shipped import SCENARIO_DIR
 from ..substrate import StreamedTrack
-from . import SUBSTRATES, Substrate, SubstrateSpec
+from .substrate import SUBSTRATES, Substrate, SubstrateSpec
 from .self_affine import sliding_limit
 
 __all__ = ["LineScanSpec", "LineScan", "read_profile", "TrackProfile", "ProfileTrack", "pad_path", "pad_closing"]

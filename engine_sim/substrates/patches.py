@@ -5,7 +5,7 @@ import math
 from dataclasses import dataclass
 
 from ..substrate import PatchTrack
-from . import SUBSTRATES, Substrate, SubstrateSpec
+from .substrate import SUBSTRATES, Substrate, SubstrateSpec
 
 
 @dataclass(frozen=True)

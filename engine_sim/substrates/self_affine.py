@@ -8,7 +8,7 @@ from statistics import NormalDist
 import numpy as np
 
 from ..substrate import SelfAffineTrack, self_affine_kernel
-from . import SUBSTRATES, Substrate, SubstrateSpec
+from .substrate import SUBSTRATES, Substrate, SubstrateSpec
 
 
 @dataclass(frozen=True)

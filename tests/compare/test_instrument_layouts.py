@@ -20,8 +20,6 @@ GF = 9.80665e-3  # N per gram-force
 
 
 def test_layouts_are_registered_in_detection_order():
-    import compare.io.layouts  # noqa: F401  (read_sheet imports it on first use)
-
     assert list(LAYOUTS) == ["folder", "tdms", "xlsx", "look-ascii", "delimited"]
 
 

@@ -86,3 +86,28 @@ def test_the_loop_samples_maintains_every_64_and_ends_a_recording_on_its_sample(
     s.log.clear()
     Loop(s).run(2)  # a warm-up: no recorder, every output step steps
     assert s.log == ["maintain", "advance 3", "advance 3"]
+
+
+FAMILIES = [("laws", "law"), ("drives", "drive"), ("substrates", "substrate"), ("arrangements", "arrangement")]
+
+
+@pytest.mark.parametrize("package, base", FAMILIES)
+def test_a_family_s_names_are_the_package_s_and_old_checkpoints_find_them(package, base):
+    """Each family's base module (``engine_sim/laws/law.py``) is what the package re-exports: the names a plugin or
+    a how-to imports from the package are the same objects, and a pickle naming a class by the package's path (a
+    checkpoint written when the base was the package's ``__init__``) loads it."""
+    import importlib
+    import pickle
+    import pkgutil
+
+    pkg = importlib.import_module(f"engine_sim.{package}")
+    mod = importlib.import_module(f"engine_sim.{package}.{base}")
+    for name in mod.__all__:
+        assert getattr(pkg, name) is getattr(mod, name), f"engine_sim.{package}.{name}"
+    assert set(mod.__all__) <= set(pkg.__all__)
+    spec = next(n for n in mod.__all__ if n.endswith("Spec"))
+    assert pickle.loads(f"cengine_sim.{package}\n{spec}\n.".encode()) is getattr(mod, spec)
+    # importing the package registers a kind from each of its other modules (a plugin's kinds may sit beside them)
+    registry = next(getattr(mod, n) for n in mod.__all__ if n.isupper() and isinstance(getattr(mod, n), dict))
+    kinds = {k.__module__ for k in registry.values() if k.__module__.startswith(f"engine_sim.{package}.")}
+    assert kinds == {f"engine_sim.{package}.{m.name}" for m in pkgutil.iter_modules(pkg.__path__) if m.name != base}
