@@ -189,7 +189,7 @@ class Scenario:
     @property
     def steady_velocity(self) -> float:
         """The friction law's steady speed under the drive, N f(v) = F (m/s); <= 0 if F does not exceed the
-        kinetic friction."""
+        law's force as sliding starts, N f(0)."""
         return self.drive_part.steady_velocity()
 
     @property

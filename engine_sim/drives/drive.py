@@ -52,8 +52,10 @@ class Drive(Part):
     def validate(cls, spec, sc) -> None:
         """Raise ValueError (naming the field) if the drive cannot slide the scene."""
         if cls.constant_force and not sc.steady_velocity > 0:
-            raise ValueError(f"drive force {sc.drive_force:.4g} N does not exceed the kinetic friction "
-                             f"{sc.pads.N * sc.column_force(0.0):.4g} N: the block would not slide")
+            raise ValueError(f"drive force {sc.drive_force:.4g} N does not exceed the friction law's force as "
+                             f"sliding starts, N f(0) = {sc.pads.N * sc.column_force(0.0):.4g} N: the block would not "
+                             f"slide (a law whose force falls from rest reaches its strengthening branch under a "
+                             f"velocity drive)")
 
     def limits(self) -> list:
         """The drive's regime limits (:class:`engine_sim.regime.Limit`; none for a constant force, whose far spring
@@ -75,7 +77,7 @@ class Drive(Part):
 
     def steady_velocity(self) -> float:
         """The friction law's steady speed under the drive, N f(v) = F (m/s); <= 0 if F does not exceed the
-        kinetic friction (f: the friction of one pad column, ``Scenario.column_force``)."""
+        law's force as sliding starts, N f(0) (f: the friction of one pad column, ``Scenario.column_force``)."""
         sc = self.sc
         target = sc.drive_force / sc.pads.N
         f0 = sc.column_force(0.0)

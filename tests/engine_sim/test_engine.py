@@ -45,7 +45,7 @@ def test_unknown_key_lists_valid_keys_and_limits_are_named():
         scenario_from_dict({"pads": {"k0": "stiff"}})
     with pytest.raises(ScenarioError, match=r"run.dt = 0.0002 s exceeds the pad spring limit 0.000147 s"):
         scenario_from_dict({"run": {"dt": 2e-4}})
-    with pytest.raises(ScenarioError, match="does not exceed the kinetic friction"):
+    with pytest.raises(ScenarioError, match="does not exceed the friction law.s force as sliding starts"):
         scenario_from_dict({"drive": {"force": 0.1}})
     with pytest.raises(ScenarioError, match="substrate.kind = 'fractal' is not one of"):
         scenario_from_dict({"substrate": {"kind": "fractal"}})
