@@ -76,7 +76,9 @@ def model_I_parameters(trace, scenario=None) -> dict:
         "f_kin": {"value": f_kin, "unit": "N", "provenance": "mean tangential contact force per pad"},
         "alpha": {"value": math.sqrt(12.0) * rms / f_kin, "unit": "", "provenance": "sqrt(12) x rms pad force / f_kin (eq. A7)",
                   "substrate_value": info["substrate"].get("alpha")},
-        "c": {"value": c_law, "unit": "N s/m", "provenance": "friction law (scenario)", "measured": c_meas},
+        "c": {"value": c_law, "unit": "N s/m", "provenance": "friction law's slope at v (scenario)", "measured": c_meas,
+              "measured_provenance": "mean F_drag / (N v): the law's secant at v, its slope only for a law through "
+                                     "the origin"},
         "k0": {"value": pads["k0"], "unit": "N/m", "provenance": "scenario"},
         "M": {"value": M, "unit": "kg", "provenance": M_prov},
         "m": {"value": pads["mass"], "unit": "kg", "provenance": "scenario (pad mass)"},
