@@ -298,8 +298,8 @@ def nested_gains(names, fits: dict, n_samples: int, dt: float, alpha: float, bic
 
 def _reorder(ranked: list, gains) -> list:
     """The ranking with model I's family moved below every promoted nesting family and every unseen nesting family
-    that ranked above the root moved just below model I's family (:class:`NestedGains`); the order is otherwise
-    kept."""
+    that ranked above a member of model I's family moved just below the family (:class:`NestedGains`); the order
+    is otherwise kept."""
     if gains is None:
         return ranked
     ranked = list(ranked)
@@ -309,9 +309,10 @@ def _reorder(ranked: list, gains) -> list:
         if ahead:
             ranked = [m for m in ranked[:i + 1] if m not in ahead] + ahead + ranked[i + 1:]
     for n in gains.unseen:
-        if ranked.index(n) < ranked.index(gains.root):
+        last = max(ranked.index(m) for m in gains.family if m in ranked)
+        if ranked.index(n) < last:
             ranked.remove(n)
-            ranked.insert(max(ranked.index(m) for m in gains.family if m in ranked) + 1, n)
+            ranked.insert(last, n)  # just below the family's last member (the removal shifted it up by one)
     return ranked
 
 
