@@ -1,7 +1,7 @@
 """Build the simulated null tables of :mod:`compare.analysis.null_tables` and docs/results/null_tables.md.
 
     python -m compare.studies.null_tables run POINT --duration S --dt S --seeds A B [--out FILE]
-    python -m compare.studies.null_tables combine [FILE ...] [--write]
+    python -m compare.studies.null_tables combine [FILE ...] [--write] [--keep]
 
 ``run`` simulates ``best``'s records at parameter point POINT (:data:`POINTS`) with the point's sensor, seeds A to
 B - 1, fits ``best``'s family and every family nesting it as :func:`~compare.analysis.identify.identify` fits them
@@ -13,7 +13,8 @@ point; the files of one record length and step form one table per pair), compare
 Kolmogorov-Smirnov test and their 90 and 95 % quantiles, reads each point's records against the other point's table
 (the fraction of p < 0.05, with its binomial interval: a calibrated table gives 5 %), and prints the page; with
 ``--write`` it writes compare/analysis/null_tables.json (the points pooled) and the generated part of
-docs/results/null_tables.md (the text after it is kept).
+docs/results/null_tables.md (the text after it is kept); ``--keep`` keeps the shipped tables of the record
+lengths and steps no file covers.
 Run under ``nice -n 10``, one process per core.
 """
 from __future__ import annotations
@@ -93,11 +94,34 @@ def _name(path: Path) -> tuple:
     return point, dur, 1.0 / hz, parts[4] if len(parts) > 4 else "round"
 
 
-def combine(files, write: bool = False) -> str:
+def _kept(groups: dict) -> dict:
+    """The shipped tables of record lengths and steps no file covers, as rows (T per nesting model, in the order the
+    tables hold them; whether a record's fit held the feature neutral is not stored: ``held`` None)."""
+    if not null_tables.TABLES_FILE.exists():
+        return {}
+    label_of = {v[1]: k for k, v in POINTS.items()}
+    sensor_of = {v: k for k, v in _SENSORS.items()}
+    out = defaultdict(dict)
+    by_key = defaultdict(dict)  # (duration, dt, sensor) -> other -> points
+    for t in json.loads(null_tables.TABLES_FILE.read_text())["tables"]:
+        key = (float(t["duration_s"]), float(t["dt_s"]), sensor_of[t["sensor"]])
+        if key not in groups:
+            by_key[key][t["other"]] = t["points"]
+    for key, pairs in by_key.items():
+        for i, pt in enumerate(pairs[NESTING[0]]):
+            cols = [pairs[o][i]["values"] for o in NESTING]
+            out[key][label_of[pt["label"]]] = [{**{o: c[j] for o, c in zip(NESTING, cols)},
+                                                **{o + "_held": None for o in NESTING}} for j in range(len(cols[0]))]
+    return out
+
+
+def combine(files, write: bool = False, keep: bool = False) -> str:
     groups = defaultdict(dict)  # (duration, dt, sensor) -> point -> rows
     for f in map(Path, files):
         point, dur, dt, sensor = _name(f)
         groups[(dur, dt, sensor)][point] = _read(f)
+    kept = _kept(groups) if keep else {}
+    groups.update(kept)
     tables, lines = [], [
         "# Null tables: the gain of a family nesting model I's, on model I's own records",
         "",
@@ -116,6 +140,7 @@ def combine(files, write: bool = False) -> str:
         "p < 0.05 |",
         "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
+    reranked = []
     for (dur, dt, sensor), by_point in sorted(groups.items()):
         for other in NESTING:
             pooled, pts = [], []
@@ -128,19 +153,25 @@ def combine(files, write: bool = False) -> str:
             ks = stats.ks_2samp(*[pts[i]["values"] for i in range(2)]).pvalue if len(pts) == 2 else float("nan")
             for i, point in enumerate(names):
                 T = np.array(pts[i]["values"])
-                held = sum(1 for r in by_point[point] if r[other + "_held"])
+                held = ("not stored" if (dur, dt, sensor) in kept
+                        else sum(1 for r in by_point[point] if r[other + "_held"]))
                 cross = ""
                 if len(pts) == 2:
                     ref = null_tables.NullTable("model_I", other, dur, dt, tuple(sorted(pts[1 - i]["values"])), ())
                     k = sum(1 for t in T if ref.p_value(t) < 0.05)
                     lo, hi = binomial_interval(k, len(T))
                     cross = f"{k}/{len(T)} ({100 * lo:.0f}-{100 * hi:.0f} %)"
-                lines.append(f"| {dur:g} s at {1 / dt:g} Hz, {sensor} | model_I → {other} | {POINTS[point][1]} | "
+                earlier = " (kept: an earlier fit's)" if (dur, dt, sensor) in kept else ""
+                lines.append(f"| {dur:g} s at {1 / dt:g} Hz, {sensor}{earlier} | model_I → {other} | {POINTS[point][1]} | "
                              f"{len(T)} | {held} | {np.quantile(T, 0.9):.2f} | {np.quantile(T, 0.95):.2f} | "
                              f"{T.max():.2f} | {stats.chi2.ppf(0.95, _SEEN_EXTRA[other]):.2f} | "
                              f"{ks:.2f} | {cross} |")
             tables.append({"best": "model_I", "other": other, "duration_s": dur, "dt_s": dt, "sensor": _SENSORS[sensor],
                            "points": pts})
+        reranked.append(_reranked(dur, dt, sensor, by_point))
+    lines += ["", "Model I's records that `identify` would rank below a nesting family (the Holm-adjusted p-value of "
+              "either gain < 0.05, each read against the other point's table): "
+              + "; ".join(r for r in reranked if r) + " (the rule's false-alarm rate; asked at most 5 %)."]
     lines += ["", "Columns: *held*: records whose fit held the extra feature at its neutral value (T at rounding); "
               "*chi² 95 %*: the quantile of chi² with the extra parameters that a record can identify (model Ib's "
               "filter corner omega3 lies above these bands; the ageing step's b and D_c); *KS p*: two-sample "
@@ -160,6 +191,26 @@ def combine(files, write: bool = False) -> str:
     return page
 
 
+def _reranked(dur: float, dt: float, sensor: str, by_point: dict) -> str:
+    """How many of one record length's model I records a nesting family's gain would re-rank, each record's gains
+    read against the other point's tables and Holm-adjusted over the nesting families, as `identify` adjusts them
+    ("" with one point)."""
+    from compare.analysis.identify import holm
+
+    names = sorted(by_point)
+    if len(names) != 2:
+        return ""
+    k = n = 0
+    for i, point in enumerate(names):
+        tabs = {o: null_tables.NullTable("model_I", o, dur, dt, tuple(sorted(r[o] for r in by_point[names[1 - i]])), ())
+                for o in NESTING}
+        for r in by_point[point]:
+            k += int(min(holm([tabs[o].p_value(r[o]) for o in NESTING])) < 0.05)
+            n += 1
+    lo, hi = binomial_interval(k, n)
+    return f"{dur:g} s at {1 / dt:g} Hz, {sensor}: {k}/{n} ({100 * lo:.0f}-{100 * hi:.0f} %)"
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m compare.studies.null_tables", description=__doc__.splitlines()[0])
     sub = ap.add_subparsers(dest="cmd", required=True)
@@ -173,13 +224,15 @@ def main(argv=None) -> int:
     c = sub.add_parser("combine")
     c.add_argument("files", nargs="*", help="the run step's files (default: every one it wrote here)")
     c.add_argument("--write", action="store_true")
+    c.add_argument("--keep", action="store_true",
+                   help="keep the shipped tables of record lengths and steps no file covers (their rows say so)")
     a = ap.parse_args(argv)
     if a.cmd == "combine":
         files = a.files or sorted(str(f) for f in (ROOT / "study-results" / "null_tables").glob("null_*.jsonl"))
         if not files:
             print("null_tables: no files to combine (run the `run` step first, or name the files)", file=sys.stderr)
             return 2
-        print(combine(files, a.write))
+        print(combine(files, a.write, a.keep))
         return 0
     tail = "" if a.sensor == "round" else f"_{a.sensor}"
     name = f"null_{a.point}_{a.duration:g}s_{1 / a.dt:g}Hz{tail}.jsonl"

@@ -134,11 +134,6 @@ def test_fn_identify_takes_a_trace():
     assert isinstance(ranking[0], fn.Mechanism) and ranking[0].model == "model_II"
 
 
-@pytest.mark.xfail(strict=True, reason="the 60 s, 1 kHz null tables were simulated with the earlier fit (1 % bins, "
-                   "L-BFGS-B on the sum, which held model Ib's micro level neutral in 80 of 80 records: 95 % quantile "
-                   "of T 0.50); the current fit finds T = 4.56 on this record (Holm p = 0.028), so model I is not "
-                   "named alone. Rebuild: python -m compare.studies.null_tables run reference --duration 60 --dt 1e-3 "
-                   "--seeds 0 80 --sensor white (and a2mm, 0 60), then combine --write")
 def test_the_explanation_page_example():
     # docs/explanation/identification.md: model I's reference case, 60 s at 1 kHz, seed 1, no floor
     import frictionnoise as fn
