@@ -316,6 +316,25 @@ def _reorder(ranked: list, gains) -> list:
     return ranked
 
 
+def _judge_nested(gains, best: str, fits: dict, rejected: dict, coincides: dict, p_of: dict, tie: dict) -> None:
+    """Apply the nested gains' verdicts (module docstring) to the comparisons with the best, in place: an unseen
+    nesting family is model I's family (its extra parameters not identified; it coincides with the best where model
+    I is the best, else shares model I's verdict and p-value); a promoted one rejects model I's family."""
+    root_best = best in gains.family
+    for n in gains.unseen:
+        fits[n] = replace(fits[n], intervals={**fits[n].intervals, **{e: None for e in _extra(gains.root, n)}})
+        tie[n] = best if root_best else gains.root
+        if root_best:
+            coincides[n], p_of[n] = True, gains.adjusted[n]
+    if gains.promoted:
+        for n in gains.family:
+            rejected[n], coincides[n], p_of[n] = True, False, gains.adjusted[gains.top]
+            tie.pop(n, None)
+    if not root_best:
+        for n in gains.unseen:
+            rejected[n], coincides[n], p_of[n] = rejected[gains.root], False, p_of[gains.root]
+
+
 def _separate(best: str, other: str, fits: dict, v: float) -> str:
     """What would tell ``other`` from ``best`` on a record like this one."""
     fam_o, fit_o = FAMILIES[other], fits[other]
@@ -495,21 +514,7 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
     coincides = {n: FAMILIES[n].shape is FAMILIES[best].shape for n in ranked[1:]}
     tie = {n: best for n in ranked[1:] if coincides[n]}  # coincides_with
     if gains is not None:
-        root_best = best in gains.family
-        for n in gains.unseen:
-            # model I's family on this record: its extra features add nothing the record shows (not identified),
-            # and it stands as model I stands
-            fits[n] = replace(fits[n], intervals={**fits[n].intervals, **{e: None for e in _extra(gains.root, n)}})
-            tie[n] = best if root_best else gains.root
-            if root_best:
-                coincides[n], p_of[n] = True, gains.adjusted[n]
-        if gains.promoted:  # a nesting family's significant gain rejects model I's family (it ranks below it)
-            for n in gains.family:
-                rejected[n], coincides[n], p_of[n] = True, False, gains.adjusted[gains.top]
-                tie.pop(n, None)
-        if not root_best:
-            for n in gains.unseen:
-                rejected[n], coincides[n], p_of[n] = rejected[gains.root], False, p_of[gains.root]
+        _judge_nested(gains, best, fits, rejected, coincides, p_of, tie)
     alone = all(rejected[n] or coincides[n] for n in ranked[1:])
     out = []
     for i, n in enumerate(ranked):
