@@ -31,7 +31,10 @@ model's displacement spectrum rewritten in those parameters, the sliding speed v
   c(omega) = c_inf (1 - b / (1 + i omega D_c / v)), b = B / A, in place of m eta1, in the level and the resonance's
   damping: a level step of (A / (A - B))^2 below v / D_c.
 - model_Iv (the shaken block) is model I's family at its mean speed, plus its line at the vibration frequency (a
-  nuisance term of the fit).
+  nuisance term of the fit). Exact where every contact slides through the whole cycle (m eta1 V > alpha f_kin / 2
+  + A sqrt(k0^2 + (m eta0 omega_v)^2): the Coulomb part never engages and the model is linear); where contacts
+  stick for part of each cycle the record's resonance lies below sqrt(N k0 / M) (0.4-0.8 % measured at A = 10-60 um,
+  omega_v = 2000-3000 rad/s) and its quality below the mean-field one: no closed form is stated for that shift.
 
 A parameter is identified by a record only when its feature (the frequency listed for it by
 :meth:`Family.feature`) lies inside the record's band by at least :data:`MARGIN`; otherwise it is "not identified".

@@ -9,7 +9,9 @@ carries alike, never a mechanism; model_Iv is model I's family, and its line is 
 Ranking: by the Bayesian information criterion of the Whittle fit, nll + k ln(n) / 2 (n Fourier ordinates, k
 fitted parameters with the floor), so a family that only adds a feature the record does not show ranks below the
 one without it; criteria within 1 of the lowest count as a tie, won by the family with fewer parameters. Models
-whose families are one (model_Iv is model I's family plus a line) share one fit.
+whose families are one (model_Iv is model I's family plus a line) share one fit. Between model I's family and a
+family nesting it (below), the calibrated test of the nesting family's gain decides the order, not the criterion:
+a significant gain ranks the nesting family above model I's, an insignificant one below it.
 
 Comparison: each model against the best by Vuong's test (Vuong 1989, Econometrica 57, 307) on the per-ordinate
 log-likelihood differences d_j: Z = sum d_j / (sqrt(n) sd(d)); the one-sided p-value 1 - Phi(Z) is the chance of a
@@ -19,14 +21,23 @@ show, for a penalty far larger than its tiny sd(d)): a richer family that fits n
 rejected. Where two families coincide on the record (sd(d) = 0) p = 1. The p-values of the comparisons are adjusted
 by Holm's step-down method (Holm 1979). A model is "rejected" at adjusted p < alpha.
 
-Coinciding families: a model whose family is the best's (model_Iv is model I's family plus a line), or nests it by
-features with a neutral value (model Ib's micro level, the ageing step) whose gain over the best the record does not
-show, is the best's family on this record's band: it "coincides" with the best. Its gain T = 2 (nll_best - nll_other)
-is judged against the simulated null table of the pair, record length and sampling step
-(:mod:`compare.analysis.null_tables`) where one applies, else against chi^2 with the identified extra parameters'
-count (optimistic: the extra corner is not identified under the null, so the fit's search over it inflates T); these
-p-values are Holm-adjusted across the nesting models, and a model coincides at adjusted p >= alpha, or whenever the
-fit held its extra features at their neutral values. A coinciding model's extra parameters are "not identified".
+Nested gains: a family nesting model I's by features with a neutral value (model Ib's micro level, the ageing
+step) fits every record at least as well as model I's; its gain T = 2 (nll_I - nll_other) is judged against the
+simulated null table of the pair, record length and sampling step (:mod:`compare.analysis.null_tables`) where one
+applies, else against chi^2 with the identified extra parameters' count (optimistic: the extra corner is not
+identified under the null, so the fit's search over it inflates T); these p-values are Holm-adjusted across the
+nesting models (:func:`nested_gains`). A gain significant at adjusted p < alpha ranks its family above model I's
+and rejects model I's family (model_I and model_Iv, p the gain's adjusted p-value): by the table's calibration,
+model I's own records are re-ranked at most at the rate alpha. A gain judged by chi^2 does so only where the
+information criterion agrees (the optimistic p alone would re-rank model I's records too often). A gain not
+significant, or a fit that held the extra features at their neutral values, makes the nesting model model I's
+family on this record: its extra parameters are "not identified", it ranks below model I and stands as model I
+stands (it coincides with the best where model I is the best, else shares model I's verdict and p-value, with
+``coincides_with`` naming model I).
+
+Coinciding families: a model whose family is the best's (model_Iv is model I's family plus a line), or a nesting
+family whose gain the record does not show while model I is the best, coincides with the best: one family on this
+record's band.
 
 Verdicts: the best "fits" when every other model is rejected or coincides with it; else the best is
 "indistinguishable". Every model not rejected but the best is "indistinguishable", with what would separate it (a
@@ -49,7 +60,7 @@ from . import lines as lines_mod
 from .family_fit import (FamilyFit, Grouped, cell_of, fit_family, record_for, sampled_spectrum, segments_of,
                          without)
 
-__all__ = ["Mechanism", "identify", "holm", "vuong", "stationarity"]
+__all__ = ["Mechanism", "NestedGains", "identify", "holm", "nested_gains", "vuong", "stationarity"]
 
 _BASE = ("model_I",)  # fitted first: the families below extend its spectrum and start from its fit
 _EXTENDS_I = ("model_Ib", "model_ageing")
@@ -68,7 +79,8 @@ class Mechanism:
         "fits", "indistinguishable" or "rejected".
     p_value : float
         Holm-adjusted p-value of the test "as close to the record as the best" (1 for the best itself); for a
-        model coinciding with the best by its gain's test, that test's Holm-adjusted p-value (``nested_test``).
+        model coinciding with the best by its gain's test, that test's Holm-adjusted p-value (``nested_test``); for
+        model I's family rejected by a nesting family's significant gain, that gain's.
     parameters : dict
         Name -> [value, 95 % half-width, unit] or "not identified".
     separate : str
@@ -77,9 +89,11 @@ class Mechanism:
         Its information criterion (lower is better).
     fit : FamilyFit
     coincides_with : str or None
-        The best model, where this one's family is the best's on the record's band (module docstring).
+        The best model, where this one's family is the best's on the record's band; model I, where this one nests
+        model I's family by a gain the record does not show and model I is not the best (module docstring).
     nested_test : str
-        How a coinciding or nesting model's gain over the best was judged ("" where it does not nest the best).
+        How a nesting model's gain over model I was judged, or which nesting family's gain rejects model I's family
+        ("" otherwise).
     lines : tuple of Line
         The record's spectral lines, subtracted before every family was fitted (:mod:`compare.analysis.lines`).
     """
@@ -181,18 +195,144 @@ def _nests(best: str, other: str, fits: dict) -> bool:
 
 
 def _nested_p(best: str, other: str, fits: dict, n_samples: int, dt: float) -> tuple:
-    """The p-value of ``other``'s gain over ``best`` (it nests it, :func:`_nests`) and how it was judged: 1 where the
-    fit held its extra features neutral; the pair's simulated null table where one applies
-    (:mod:`compare.analysis.null_tables`); chi^2 with the identified extra parameters' count otherwise."""
+    """The p-value of ``other``'s gain over ``best`` (it nests it, :func:`_nests`), how it was judged, and whether
+    that p-value is calibrated: 1 where the fit held its extra features neutral; the pair's simulated null table
+    where one applies (:mod:`compare.analysis.null_tables`); chi^2 with the identified extra parameters' count
+    otherwise (optimistic: not calibrated)."""
     fit_o = fits[other]
     seen = [n for n in _extra(best, other) if fit_o.intervals.get(n) is not None]
     if not seen:
-        return 1.0, "its extra features held neutral (not seen)"
+        return 1.0, "its extra features held neutral (not seen)", True
     t = null_tables.statistic(fits[best].nll, fit_o.nll)
     table = null_tables.lookup(best, other, n_samples, dt)
     if table is not None:
-        return table.p_value(t), f"T = {t:.3g} against the simulated null ({table.n} records of {best})"
-    return float(stats.chi2.sf(max(t, 0.0), len(seen))), f"T = {t:.3g} against chi^2({len(seen)}) (no null table)"
+        return table.p_value(t), f"T = {t:.3g} against the simulated null ({table.n} records of {best})", True
+    return (float(stats.chi2.sf(max(t, 0.0), len(seen))), f"T = {t:.3g} against chi^2({len(seen)}) (no null table)",
+            False)
+
+
+@dataclass(frozen=True)
+class NestedGains:
+    """The gains of the families nesting model I's over it on one record, and what they decide.
+
+    Attributes
+    ----------
+    root : str
+        The nested model (model_I, or model_Iv where model_I is not compared).
+    family : tuple of str
+        The compared models whose family is the root's (model_I and model_Iv).
+    nesting : tuple of str
+        The compared models whose family nests the root's (:func:`_nests`).
+    tests : dict
+        Nesting model -> (raw p-value, how T was judged, whether that p-value is calibrated).
+    adjusted : dict
+        Nesting model -> Holm-adjusted p-value (among the nesting models).
+    promoted : tuple of str
+        The nesting models ranked above the root's family: a significant gain (adjusted p < alpha) judged against a
+        simulated null table, or against chi^2 where the information criterion agrees.
+    unseen : tuple of str
+        The nesting models whose gain is not significant: the root's family on this record.
+    """
+
+    root: str
+    family: tuple
+    nesting: tuple
+    tests: dict
+    adjusted: dict
+    promoted: tuple
+    unseen: tuple
+
+    @property
+    def top(self) -> str | None:
+        """The promoted model with the smallest adjusted p-value (None where none is promoted)."""
+        return min(self.promoted, key=lambda n: self.adjusted[n]) if self.promoted else None
+
+    def describe(self, model: str) -> str:
+        """``nested_test`` of ``model``: how its gain over the root was judged, or for a member of the root's family
+        rejected by a nesting family's gain, which one; "" otherwise."""
+        if model in self.tests:
+            return f"{self.tests[model][1]}; Holm-adjusted p = {self.adjusted[model]:.2g}"
+        if model in self.family and self.promoted:
+            return (f"nested in {self.top}, whose gain over {self.root} ({self.tests[self.top][1]}) is significant: "
+                    f"Holm-adjusted p = {self.adjusted[self.top]:.2g}")
+        return ""
+
+
+def nested_gains(names, fits: dict, n_samples: int, dt: float, alpha: float, bic: dict | None = None):
+    """The gains of the compared families nesting model I's over it (:class:`NestedGains`), or None where no model
+    of model I's family is compared.
+
+    Parameters
+    ----------
+    names : sequence of str
+        The compared models.
+    fits : dict
+        Model -> its :class:`~compare.analysis.family_fit.FamilyFit`.
+    n_samples : int
+        The record's length in samples (picks the null table).
+    dt : float
+        Sampling step (Units: s).
+    alpha : float
+        Level of the Holm-adjusted tests.
+    bic : dict, optional
+        Model -> information criterion; a gain judged by chi^2 (no null table) promotes its family only where the
+        criterion ranks it above the root too. Without it, only calibrated gains promote.
+
+    Returns
+    -------
+    NestedGains or None
+    """
+    shape_I = FAMILIES[_BASE[0]].shape
+    family = [n for n in names if FAMILIES[n].shape is shape_I]
+    if not family:
+        return None
+    root = _BASE[0] if _BASE[0] in family else family[0]
+    nesting = [n for n in names if n not in family and _nests(root, n, fits)]
+    tests = {n: _nested_p(root, n, fits, n_samples, dt) for n in nesting}
+    adjusted = dict(zip(nesting, (float(a) for a in holm([tests[n][0] for n in nesting])))) if nesting else {}
+    promoted = tuple(n for n in nesting if adjusted[n] < alpha
+                     and (tests[n][2] or (bic is not None and bic[n] < bic[root])))
+    unseen = tuple(n for n in nesting if adjusted[n] >= alpha)
+    return NestedGains(root, tuple(family), tuple(nesting), tests, adjusted, promoted, unseen)
+
+
+def _reorder(ranked: list, gains) -> list:
+    """The ranking with model I's family moved below every promoted nesting family and every unseen nesting family
+    that ranked above a member of model I's family moved just below the family (:class:`NestedGains`); the order
+    is otherwise kept."""
+    if gains is None:
+        return ranked
+    ranked = list(ranked)
+    for n in gains.promoted:
+        i = ranked.index(n)
+        ahead = [m for m in ranked[:i] if m in gains.family]
+        if ahead:
+            ranked = [m for m in ranked[:i + 1] if m not in ahead] + ahead + ranked[i + 1:]
+    for n in gains.unseen:
+        last = max(ranked.index(m) for m in gains.family if m in ranked)
+        if ranked.index(n) < last:
+            ranked.remove(n)
+            ranked.insert(last, n)  # just below the family's last member (the removal shifted it up by one)
+    return ranked
+
+
+def _judge_nested(gains, best: str, fits: dict, rejected: dict, coincides: dict, p_of: dict, tie: dict) -> None:
+    """Apply the nested gains' verdicts (module docstring) to the comparisons with the best, in place: an unseen
+    nesting family is model I's family (its extra parameters not identified; it coincides with the best where model
+    I is the best, else shares model I's verdict and p-value); a promoted one rejects model I's family."""
+    root_best = best in gains.family
+    for n in gains.unseen:
+        fits[n] = replace(fits[n], intervals={**fits[n].intervals, **{e: None for e in _extra(gains.root, n)}})
+        tie[n] = best if root_best else gains.root
+        if root_best:
+            coincides[n], p_of[n] = True, gains.adjusted[n]
+    if gains.promoted:
+        for n in gains.family:
+            rejected[n], coincides[n], p_of[n] = True, False, gains.adjusted[gains.top]
+            tie.pop(n, None)
+    if not root_best:
+        for n in gains.unseen:
+            rejected[n], coincides[n], p_of[n] = rejected[gains.root], False, p_of[gains.root]
 
 
 def _separate(best: str, other: str, fits: dict, v: float) -> str:
@@ -358,6 +498,10 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
     close = [n for n in ranked if bic[n] <= bic[ranked[0]] + _TIE]
     first = min(close, key=lambda n: (len(FAMILIES[n].params), names.index(n)))
     ranked = [first] + [n for n in ranked if n != first]
+    # the families nesting model I's: their gains over it tested, Holm-adjusted among themselves; a significant gain
+    # ranks the nesting family above model I's, an insignificant one below it (module docstring)
+    gains = nested_gains(names, fits, len(x), dt, alpha, bic)
+    ranked = _reorder(ranked, gains)
     best = ranked[0]
     G_fine = None if all(FAMILIES[n].smooth for n in names) else Grouped(rec, fine=True)
     ll = {n: (G if FAMILIES[n].smooth else G_fine).ordinate_loglik(sampled_spectrum(FAMILIES[n], v, dt,
@@ -365,33 +509,24 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
                                                                     np.asarray(fits[n].params)) for n in names}
     raw = [vuong(ll[best], ll[n])[1] for n in ranked[1:]]
     adj = holm(raw) if raw else np.array([])
-    rejected = {n: bool(p < alpha) for n, p in zip(ranked[1:], adj)}
-    # the models nesting the best: their gains tested, Holm-adjusted among themselves
-    nesting = [n for n in ranked[1:] if _nests(best, n, fits)]
-    tested = {n: _nested_p(best, n, fits, len(x), dt) for n in nesting}
-    adj_nested = dict(zip(nesting, holm([tested[n][0] for n in nesting]))) if nesting else {}
-    coincides = {n: FAMILIES[n].shape is FAMILIES[best].shape or (n in adj_nested and adj_nested[n] >= alpha)
-                 for n in ranked[1:]}
-    for n in ranked[1:]:
-        if coincides[n] and n in adj_nested:
-            # its extra features add nothing the record shows: not identified
-            fits[n] = replace(fits[n], intervals={**fits[n].intervals, **{e: None for e in _extra(best, n)}})
+    p_of = dict(zip(ranked[1:], (float(a) for a in adj)))
+    rejected = {n: bool(p < alpha) for n, p in p_of.items()}
+    coincides = {n: FAMILIES[n].shape is FAMILIES[best].shape for n in ranked[1:]}
+    tie = {n: best for n in ranked[1:] if coincides[n]}  # coincides_with
+    if gains is not None:
+        _judge_nested(gains, best, fits, rejected, coincides, p_of, tie)
     alone = all(rejected[n] or coincides[n] for n in ranked[1:])
     out = []
     for i, n in enumerate(ranked):
-        test = ""
         if i == 0:
             verdict, p, sep = ("fits" if alone else "indistinguishable"), 1.0, ""
         else:
             verdict = "rejected" if rejected[n] and not coincides[n] else "indistinguishable"
-            p = float(adj[i - 1])
+            p = p_of[n]
             sep = "" if verdict == "rejected" else _separate(best, n, fits, v)
-            if n in tested:
-                if coincides[n]:  # judged one family with the best by its gain's test: that test's p-value
-                    p = float(adj_nested[n])
-                test = f"{tested[n][1]}; Holm-adjusted p = {adj_nested[n]:.2g}"
         if sep and found and (FAMILIES[n].line or FAMILIES[best].line):
             sep += "; lines found and subtracted here: " + ", ".join(f"{ln.omega:.4g} rad/s" for ln in found)
         out.append(Mechanism(n, verdict, p, fits[n].parameters(FAMILIES[n]), sep, bic[n], fits[n],
-                             best if i > 0 and coincides[n] else None, test, tuple(found)))
+                             tie.get(n) if i > 0 else None, gains.describe(n) if gains is not None else "",
+                             tuple(found)))
     return out

@@ -1,4 +1,5 @@
 """Families fitted to records of the exact simulators, and the ranking of the mechanisms."""
+import dataclasses
 import math
 
 import numpy as np
@@ -133,11 +134,6 @@ def test_fn_identify_takes_a_trace():
     assert isinstance(ranking[0], fn.Mechanism) and ranking[0].model == "model_II"
 
 
-@pytest.mark.xfail(strict=True, reason="the 60 s, 1 kHz null tables were simulated with the earlier fit (1 % bins, "
-                   "L-BFGS-B on the sum, which held model Ib's micro level neutral in 80 of 80 records: 95 % quantile "
-                   "of T 0.50); the current fit finds T = 4.56 on this record (Holm p = 0.028), so model I is not "
-                   "named alone. Rebuild: python -m compare.studies.null_tables run reference --duration 60 --dt 1e-3 "
-                   "--seeds 0 80 --sensor white (and a2mm, 0 60), then combine --write")
 def test_the_explanation_page_example():
     # docs/explanation/identification.md: model I's reference case, 60 s at 1 kHz, seed 1, no floor
     import frictionnoise as fn
@@ -250,3 +246,114 @@ def test_a_parameter_not_identified_never_gets_an_interval_printed():
          "parameters": {"L": [1.1e-10, 5e-12, "m^2 s^-3"], "D_c": "not identified"}}
     line = ranking_lines({"mechanisms": [m]})[1]
     assert "L = 1.1e-10 +- 5e-12 m^2 s^-3" in line and "not identified: D_c" in line and "D_c =" not in line
+
+
+# ----------------------------------------------------------------------------- a significant nested gain re-ranks
+def test_reorder_puts_a_significant_nesting_family_above_model_I_and_an_unseen_one_below():
+    from compare.analysis.identify import NestedGains, _reorder
+
+    g = NestedGains("model_I", ("model_I", "model_Iv"), ("model_Ib", "model_ageing"),
+                    {"model_Ib": (0.5, "", True), "model_ageing": (0.007, "", True)},
+                    {"model_Ib": 0.5, "model_ageing": 0.014}, ("model_ageing",), ("model_Ib",))
+    # the information criterion's order: model I's penalty for the step's two parameters kept it first
+    bic_order = ["model_I", "model_Iv", "model_Ib", "model_ageing", "model_II"]
+    assert _reorder(bic_order, g) == ["model_ageing", "model_I", "model_Iv", "model_Ib", "model_II"]
+    # an unseen nesting family never ranks above model I's family, whatever the criterion says; a model outside the
+    # nesting (model II) keeps its place
+    assert _reorder(["model_Ib", "model_II", "model_I", "model_Iv", "model_ageing"], g) == [
+        "model_II", "model_ageing", "model_I", "model_Iv", "model_Ib"]
+    assert g.top == "model_ageing" and "significant" in g.describe("model_I") and g.describe("model_II") == ""
+
+
+def test_a_chi2_gain_promotes_only_where_the_criterion_agrees():
+    # no null table applies (a 3 s record at 100 Hz): the optimistic chi^2 p-value re-ranks only with the criterion
+    from compare.analysis.identify import nested_gains
+
+    theta, v = FAMILIES["model_I"].from_model(rm.spring_block.SpringBlockParams.reference())
+    fits = {"model_I": fit_family(record_for(closed_form_record("model_I", theta, v, seed=0), DT_FILE),
+                                  FAMILIES["model_I"], v)}
+    # the ageing family's fit, stood in by model I's with a gain of T = 20 and its step's two parameters identified
+    fits["model_ageing"] = dataclasses.replace(fits["model_I"], family="model_ageing", nll=fits["model_I"].nll - 10.0,
+                                               intervals={**fits["model_I"].intervals, "b": (0.1, 0.5),
+                                                          "D_c": (1e-5, 1e-3)})
+    names = ["model_I", "model_ageing"]
+    agree = nested_gains(names, fits, 300, DT_FILE, 0.05, {"model_I": 0.0, "model_ageing": -1.0})
+    disagree = nested_gains(names, fits, 300, DT_FILE, 0.05, {"model_I": 0.0, "model_ageing": 1.0})
+    # T = 20 against chi^2(2): p = 4.5e-5, significant in both; calibrated in neither
+    assert agree.adjusted["model_ageing"] < 1e-4 and not agree.tests["model_ageing"][2]
+    assert agree.promoted == ("model_ageing",) and disagree.promoted == () and disagree.unseen == ()
+
+
+def test_a_strong_ageing_step_ranks_the_ageing_model_first_and_rejects_model_I():
+    # the ageing family's closed form with its step (A / (A - B))^2 = 2.25 below v / D_c = 5 rad/s, 1.7 decades
+    # inside the 200 s, 100 Hz band (0.03-314 rad/s), at alpha = 0.1 (the confusion table's ageing cell). Its gain
+    # over model I is judged against the 200 s null table; the information criterion alone may keep model I first
+    # (it charges the step's two parameters ln(n) / 2 each), the calibrated test does not
+    theta, v = FAMILIES["model_ageing"].from_model(rm.ageing.AgeingParams(alpha=0.1))
+    ranking = identify(closed_form_record("model_ageing", theta, v, seed=0), DT_FILE, v=v)
+    r = {m.model: m for m in ranking}
+    assert ranking[0].model == "model_ageing", [(m.model, m.verdict, m.nested_test) for m in ranking]
+    assert r["model_I"].verdict == r["model_Iv"].verdict == "rejected"
+    assert "model_ageing" in r["model_I"].nested_test and r["model_I"].p_value < 0.05
+    assert r["model_ageing"].parameters["b"] != "not identified"
+    b, half, _ = r["model_ageing"].parameters["b"]
+    assert abs(b - theta["b"]) <= half
+
+
+@pytest.mark.slow
+def test_model_I_records_keep_model_I_first_at_the_tables_false_alarm_rate():
+    # 10 records of model I's simulator (60 s at 1 kHz, the white floor of the 60 s null tables; seeds 100-109, none
+    # of the tables' 0-79): a nesting family's gain re-ranks a record at most at the Holm-adjusted level, 5 %. The
+    # count of records with model I first is read against ">= 95 %" by its Clopper-Pearson interval: 8 of 10 has an
+    # upper end of 0.975, 7 of 10 0.933 (contradicted). At a true re-ranking rate of 5 % the test fails with
+    # probability P(Bin(10, 0.05) >= 3) = 1.2 %. (The null tables' page counts the rule's re-rankings over the
+    # tables' own records, each read against the other point's table: the larger sample.)
+    from compare.analysis.confusion import binomial_interval
+
+    p = rm.spring_block.SpringBlockParams.reference()
+    models = ("model_I", "model_Iv", "model_Ib", "model_ageing")
+    first = [identify(record("model_I", p, 60.0, seed), DT, v=p.v, models=models)[0].model for seed in range(100, 110)]
+    k = sum(f in ("model_I", "model_Iv") for f in first)
+    assert binomial_interval(k, len(first))[1] >= 0.95, first
+
+
+@pytest.mark.slow
+def test_the_ageing_record_the_criterion_kept_below_model_I_now_ranks_first():
+    # the confusion table's ageing cell (alpha = 0.1, step at v / D_c = 5 rad/s, 60 s at 1 kHz, white floor), its
+    # seed 0: the information criterion kept model I first on this record (the step's two parameters cost
+    # ln(3e4) = 10.3, its gain T / 2 = 8.6); the 60 s null table calls T = 17.2 significant. The step lies about
+    # 50 Fourier ordinates above the band's bottom: the fit does not always see it (a record of the same simulator
+    # seed with another floor realisation held it neutral: docs/results/identification.md)
+    from compare.analysis.confusion import CELLS, _record
+
+    cell = next(c for c in CELLS if c.model == "model_ageing" and c.duration == 60.0)
+    ranking = identify(_record(cell, 0), DT, v=cell.params.v)
+    r = {m.model: m for m in ranking}
+    assert ranking[0].model == "model_ageing", [(m.model, m.verdict, m.nested_test) for m in ranking]
+    assert r["model_ageing"].verdict == "fits" and r["model_I"].verdict == r["model_Iv"].verdict == "rejected"
+
+
+# ----------------------------------------------------------------------------- model_Iv's resonance
+def _slide_margin(p) -> float:
+    """How far every contact of model_Iv stays from sticking through the vibration's cycle (N): the mean spring
+    force over f_kin (m eta1 V, V ~ v), less the random force's largest offset alpha f_kin / 2 and the cycle's swing
+    A sqrt(k0^2 + (m eta0 omega_v)^2) (the miniblock follows the substrate: its spring and damper carry the
+    substrate's motion). Positive: the Coulomb part never engages and model_Iv is linear, model I plus its line."""
+    return p.m * p.eta1 * p.v - p.alpha * p.f_kin / 2 - p.amplitude * math.hypot(p.k0, p.m * p.eta0 * p.omega_v)
+
+
+@pytest.mark.slow
+def test_model_Iv_whose_contacts_slide_throughout_has_model_I_resonance():
+    # A = 10 um, alpha = 0.3: every contact slides through every cycle (margin 0.042 N), so the record is model I's
+    # plus the line, and the fitted resonance covers sqrt(N k0 / M) = 547.7 rad/s (measured 547.2 [546.2, 548.2]).
+    # At the reference (A = 30 um, alpha = 1: margin -0.22 N, contacts stick part of each cycle) the resonance lies
+    # 0.4-0.8 % below it (docs/results/identification.md), a departure of the nonlinear contacts the family does
+    # not hold
+    p = dataclasses.replace(rm.vibrating_block.VibratingBlockParams.reference(), amplitude=10e-6, alpha=0.3)
+    assert _slide_margin(p) > 0.03
+    assert _slide_margin(rm.vibrating_block.VibratingBlockParams.reference()) < -0.2
+    truth, V = FAMILIES["model_Iv"].from_model(p)
+    m = identify(rm.MODELS["model_Iv"].simulate(p, 60.0, DT, seed=0).x, DT, v=V, models=("model_Iv",))[0]
+    lo, hi = m.fit.intervals["omega_c"]
+    assert lo <= truth["omega_c"] <= hi
+    assert any(abs(ln.omega - p.omega_v) < 1.0 for ln in m.lines)
