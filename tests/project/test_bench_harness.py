@@ -5,10 +5,11 @@ made 20 % slower (FRICTIONNOISE_BENCH_SLOWDOWN, in the new tree's worker only) t
 quiet machine is needed: both trees see the same load within a round.
 
 Measured on this 2-core machine while other sessions ran (load average 9-21; a comparison of the two entries took
-2-6 min at that load): unchanged, the entries' medians read 0.966-1.013 (5 comparisons, none flagged); model III
-slowed by the injected 20 % read 1.26-1.34 (4 comparisons, all flagged), model II beside it 0.98-1.00. Under load the
-injected fifth reads as a quarter to a third: the slowed worker's longer rounds are interrupted more often and pay
-more of the other processes' cache traffic (1.26 at load 20 with 5 ms rounds). The threshold sits between the two.
+2-7 min at that load): unchanged, the entries' medians read 0.966-1.015 (6 comparisons, 12 entries, none flagged);
+model III slowed by the injected 20 % read 1.26-1.39 (6 comparisons, all flagged), model II beside it 0.98-1.03 (none
+flagged). One process pair's median strays further (0.95-1.09 unchanged): hence two pairs. Under load the injected
+fifth reads as a quarter to two fifths: the slowed worker's longer rounds are interrupted more often and pay more of
+the other processes' cache traffic (1.26 at load 20 with 5 ms rounds). The threshold sits between the two.
 """
 import os
 import random
