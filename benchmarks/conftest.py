@@ -87,8 +87,9 @@ def _slowed(fn, fraction: float):
 
 
 # One tree's worker: argv = module, entry, its parameters (JSON), smoke (0/1), slowdown fraction, core. It calls the
-# entry once with stand-ins for the harness's fixtures, keeping the call the entry hands to ``benchmark``; then each
-# line "N" on stdin runs that call N times and answers their CPU seconds. Only the protocol uses stdout (the entry's
+# entry once with stand-ins for the harness's fixtures, keeping the call the entry hands to ``benchmark``, and says
+# how many more calls the entry planned (-1: any number); then each line "N" on stdin runs that call N times and
+# answers their CPU seconds. Only the protocol uses stdout (the entry's
 # prints go to stderr), so the worker depends on nothing in the other tree but the entry's name and fixtures.
 _WORKER = r"""
 import importlib, inspect, json, os, shutil, sys, tempfile, time, types
@@ -118,11 +119,14 @@ def run(call, n):
 
 class Benchmark:
     def __init__(self):
-        self.extra_info, self.call, self.stats = {}, None, None
+        self.extra_info, self.call, self.stats, self.left = {}, None, None, -1
     def __call__(self, target, *args, **kwargs):
-        return self.pedantic(target, args, kwargs)
+        out = self.pedantic(target, args, kwargs)
+        self.left = -1  # the harness repeats such a call at will
+        return out
     def pedantic(self, target, args=(), kwargs=None, setup=None, rounds=1, warmup_rounds=0, iterations=1):
-        self.call = (target, tuple(args), dict(kwargs or {}), setup, iterations)
+        # the calls the entry planned, less the one made here: some cannot go on (a recorder's buffer fills)
+        self.call, self.left = (target, tuple(args), dict(kwargs or {}), setup, iterations), rounds + warmup_rounds - 1
         out, t = run(self.call, 1)
         self.stats = types.SimpleNamespace(stats=types.SimpleNamespace(total=t, min=t, median=t))
         return out
@@ -136,7 +140,7 @@ if missing:
 fn(**{p: params[p] if p in params else fixtures[p] for p in inspect.signature(fn).parameters})
 if bench.call is None:
     raise SystemExit(f"{entry} timed nothing")
-print("ready", file=answer, flush=True)
+print("ready", bench.left, file=answer, flush=True)
 for line in sys.stdin:
     print(json.dumps(run(bench.call, int(line))[1]), file=answer, flush=True)
 shutil.rmtree(tmp, ignore_errors=True)
@@ -167,27 +171,37 @@ def interleaved(module: str, entry: str, params: dict, base_tree, *, smoke: bool
         p = subprocess.Popen([sys.executable, "-c", _WORKER, module, entry, json.dumps(params), str(int(smoke)),
                               str(fraction), str(core)], cwd=tree, env=env, stdin=subprocess.PIPE,
                              stdout=subprocess.PIPE, stderr=log, text=True)
-        if p.stdout.readline().strip() != "ready":
+        ready = p.stdout.readline().split()
+        if not ready or ready[0] != "ready":
             p.kill()
             p.wait()
             log.seek(0)
             raise RuntimeError(f"{entry}: the worker in {tree} did not start:\n{log.read()[-2000:]}")
+        p.log, p.left = log, int(ready[1])
         return p
 
     def ask(p, n):
         p.stdin.write(f"{n}\n")
         p.stdin.flush()
-        return json.loads(p.stdout.readline())
+        line = p.stdout.readline()
+        if not line:
+            p.log.seek(0)
+            raise RuntimeError(f"{entry}: a worker stopped:\n{p.log.read()[-2000:]}")
+        return json.loads(line)
 
     ratios, per_pair, base_s, new_s, calls = [], [], [], [], 1
     for k in range(pairs):
         with tempfile.TemporaryFile("w+") as log_b, tempfile.TemporaryFile("w+") as log_n:
             w = {"base": start(base_tree, 0.0, log_b), "new": start(HERE, slowdown, log_n)}
             try:
-                calls = max(1, math.ceil(round_time / max(ask(w["base"], 1), 1e-6)))  # about round_time per round
-                ask(w["new"], 1)
+                left = min(q.left for q in w.values())
+                if left < 0:  # calls repeat at will: about round_time per round
+                    calls = max(1, math.ceil(round_time / max(ask(w["base"], 1), 1e-6)))
+                    ask(w["new"], 1)
+                else:  # as many rounds of one call as the entry planned
+                    calls = 1
                 mine = []
-                for i in range(rounds):
+                for i in range(rounds if left < 0 else min(rounds, left)):
                     t = {side: ask(w[side], calls) for side in (("base", "new") if (i + k) % 2 == 0 else ("new", "base"))}
                     mine.append(t["new"] / t["base"])
                     base_s.append(t["base"] / calls)
