@@ -80,7 +80,8 @@ def test_velocity_analysis_of_model_I(tmp_path):
     # segments, lowest omega 1.5 rad/s) still share a range of q = omega / v across the 50x in v below omega_max;
     # 60 s runs (lowest omega 3.1 rad/s) share none, so the collapse is not measured there. Eq. (6): C_x ~ v^3 at
     # fixed omega in the omega^-4 band; the distance-domain collapse cuts the spread at least 5x. Measured at 120 s,
-    # seeds 0, 1, 2: v^2.976 +- 0.019, v^2.994 +- 0.072, v^3.007 +- 0.040 (95 %); collapse 48x, 40x, 30x.
+    # seeds 0, 1, 2: v^2.976 +- 0.019, v^2.994 +- 0.072, v^3.007 +- 0.040 (95 %); collapse 48x, 40x, 30x (the
+    # shipped 600 s, seed 0: v^2.994 +- 0.019, 38x, for 12x the CPU time).
     text = SHIPPED.read_text()
     assert "duration = 600.0" in text
     short = tmp_path / "velocity_120s.toml"
