@@ -16,7 +16,8 @@ def velocity_analysis(results: list, omega_ref=(70.0, 140.0), omega_max: float |
       if the noise is set by position, curves for different v coincide. The spread is the mean over a common
       abscissa grid of the standard deviation across velocities of ln C; ``collapse_gain`` is the spread in the
       frequency domain (ln C_x at common omega) over that in the distance domain (ln v C_x at common q), both on
-      the range where every curve is defined and below ``omega_max`` (default: no limit).
+      the range where every curve is defined and below ``omega_max`` (default: no limit); NaN when the curves
+      share no range of q (a record's lowest frequency times v_max / v_min above the highest one kept).
     """
     from scipy import stats
 
@@ -60,5 +61,6 @@ def velocity_analysis(results: list, omega_ref=(70.0, 140.0), omega_max: float |
         "exponent": float(res.slope), "exponent_err": tq * float(res.stderr) if len(vs) > 2 else float("nan"),
         "spread_frequency_domain": s_freq, "frequency_range": r_freq,
         "spread_distance_domain": s_dist, "q_range": r_dist,
-        "collapse_gain": s_freq / s_dist if s_dist > 0 else float("inf"),
+        # no common q range (the slowest run's lowest q above the fastest run's highest): no collapse measured
+        "collapse_gain": s_freq / s_dist if s_dist > 0 else float("nan") if np.isnan(s_dist) else float("inf"),
     }
