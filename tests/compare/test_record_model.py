@@ -212,7 +212,7 @@ def test_an_anti_aliased_record_reads_steeper_up_to_nyquist():
     # The model folds the power law at Nyquist, as sampling a continuous process does. A record whose sampled
     # spectrum is omega^-4.5 up to Nyquist without its images (an ideal anti-aliasing filter at Nyquist) has about
     # half the model's power there, and the same fit without noise reads it steeper: 4.576 at 2^12 samples (4.575 at
-    # 2^15), where records of 2^12 give a half-width of 0.05, so intervals miss 4.5 (3 of 20 seeds covered). Over a
+    # 2^15), where records of 2^12 give a half-width of 0.05, so intervals miss 4.5 (25 of 200 seeds covered). Over a
     # band stopping at a quarter of Nyquist the images weigh (1/7)^4.5 = 2e-4 and both read 4.5 to 1e-3.
     fit = fit_record(power_law_record(4096, DT, 4.5, seed=0), DT, order=2, stationarity=False)
 
