@@ -38,10 +38,13 @@ def power_law_series(gamma: int, n: int, seed: int) -> np.ndarray:
 
 
 def power_law_record(n: int, dt: float, gamma: float, seed: int, over: int = 4) -> np.ndarray:
-    """n samples of a series whose spectrum is exactly omega^-gamma (any real gamma), by Fourier synthesis.
+    """n samples of a series whose sampled spectrum is omega^-gamma up to Nyquist (any real gamma), by Fourier synthesis.
 
     Gaussian coefficients with |c|^2 ~ omega^-gamma over a periodic series ``over`` times longer, of which the first
-    n samples are returned: the window is not periodic, so an estimator meets the leakage of a real record.
+    n samples are returned: the window is not periodic, so an estimator meets the leakage of a real record. Nothing
+    is folded at Nyquist: this is the record of an ideal anti-aliasing filter, not of a sampled continuous omega^-gamma
+    process (:func:`compare.analysis.synthetic.power_law_record`), whose spectrum is about twice as high at Nyquist; the
+    record model, which folds, reads it steeper (noise-free 4.576 for 4.5) unless its band stops below Nyquist.
     """
     rng = np.random.default_rng(seed)
     m = over * n

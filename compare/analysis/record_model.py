@@ -2,7 +2,10 @@
 ``compare.analysis.record_model``).
 
 A sampled record is the physical spectrum A omega^-gamma folded at Nyquist (exactly, by Hurwitz zeta sums) plus a
-sensor's white floor B (a level of the sampled record, Units: m^2 s; rms sqrt(2 pi B / dt)). :func:`fit_record`
+sensor's white floor B (a level of the sampled record, Units: m^2 s; rms sqrt(2 pi B / dt)). A record filtered below
+Nyquist before sampling (an instrument's anti-aliasing filter) lacks the folded images, about half the model's power
+at Nyquist for omega^-4 and steeper, and is read steeper (omega^-4.5 up to Nyquist unfolded: 4.576 without noise);
+a band below the filter's corner removes that (below a quarter of Nyquist: 4.500). :func:`fit_record`
 differences the record k times (:func:`compare.analysis.whittle.order_for` of a pilot slope, raised while the
 exponent's interval reaches the order's limit 2k + 1), and maximises the debiased Whittle likelihood
 (:mod:`compare.analysis.whittle`) over all Fourier ordinates: A and the floor's share are profiled out exactly for
@@ -20,7 +23,8 @@ Without a band given, a record whose spectrum may bend (bend test p < :data:`SCR
 resonance, the other side of a crossover between mechanisms) is searched by binary segmentation: a band is kept when the split
 test (:func:`split_p`: the model fitted on each side of a knot apart and over the whole band, knots every quarter
 decade, Bonferroni over the knots) does not reject at :data:`TEST_LEVEL`, else cut at its best knot and each side
-searched alike, down to a decade; of the kept bands the one with the most Fourier ordinates is fitted. The bend
+searched alike, down to a decade, each band at the differencing order its own exponent asks for; of the kept bands
+the one with the most Fourier ordinates is fitted, and every kept band is reported (``segments``). The bend
 test is the cheap screen (no refit), the split test the decision: a searched record is flagged only when no band of a
 decade is left, one not searched when its bend test rejects at :data:`TEST_LEVEL`, and either when the split-half
 test does (``flags``; ``power_law`` False).
@@ -52,7 +56,10 @@ class RecordFit:
     A (Units: C's unit times (rad/s)^gamma); ``floor`` B (C's unit) and ``floor_rms`` sqrt(2 pi B / dt) (the
     record's unit); ``crossover`` where A omega^-gamma = B (rad/s; inf without a floor); ``band`` the identified band
     (rad/s): from the lowest Fourier frequency to the crossover or Nyquist. ``stationarity_p``: the split-half test's
-    p-value; ``bend_p``: the bend test's.
+    p-value; ``bend_p``: the bend test's. ``segments``: when the band was searched, every band kept as one power law,
+    (low, high, gamma, gamma_low, gamma_high, differencing order), in rising frequency; the fit is the one of them
+    with the most Fourier ordinates. ``fit_band``: the band whose ordinates were fitted (rad/s; given or searched;
+    empty when every ordinate was), the one to hand :func:`expected_gamma`.
     """
 
     gamma: float
@@ -75,6 +82,8 @@ class RecordFit:
     band_auto: bool = True
     n_points: int = 0
     level_cov: tuple = ()
+    segments: tuple = ()
+    fit_band: tuple = ()
 
     @property
     def gamma_err(self) -> float:
@@ -163,7 +172,10 @@ class RecordFit:
                 "n_samples": self.n_samples, "stationarity_p": self.stationarity_p,
                 "bend_p": self.bend_p, "quantity": self.quantity, "method": self.method,
                 "power_law": self.power_law, "flags": list(self.flags), "notes": list(self.notes),
-                "band_auto": self.band_auto, "n_points": self.n_points}
+                "band_auto": self.band_auto, "n_points": self.n_points,
+                "segments": [{"band": [a, b], "gamma": g, "gamma_interval": [lo, hi], "differencing_order": k}
+                             for a, b, g, lo, hi, k in self.segments],
+                "fit_band": list(self.fit_band) if self.fit_band else None}
 
     def __str__(self) -> str:
         flag = f" [NOT A POWER LAW: {'; '.join(self.flags)}]" if self.flags else ""
@@ -186,13 +198,20 @@ def _pilot(x: np.ndarray, dt: float) -> float:
     return float(np.clip(2.0 - slope, GAMMA_MIN + 0.1, 2 * MAX_ORDER))
 
 
-def _fit_order(x, dt, k, floor, band):
-    rec = WhittleRecord(x, dt, k)
+def _fit_band(rec, floor, band):
+    """(profile, (gamma, nll, ln ratio, low, high, low at the wall, high at the wall, wall low, wall high)) of the
+    power law (+ floor) over the Fourier ordinates of the differenced record ``rec`` inside ``band`` (None: all)."""
+    k = rec.order
     prof = PowerFloorProfile([rec], floor, keep_band(rec, band))
     lo, hi = max(GAMMA_MIN, 2 * k - 3.0), 2 * k + _HEADROOM
     g, nll, t = minimum(prof, lo, hi, None)
     g_lo, g_hi, wall_lo, wall_hi = interval(prof, g, nll, lo, hi)
-    return rec, prof, (g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi)
+    return prof, (g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi)
+
+
+def _fit_order(x, dt, k, floor, band):
+    rec = WhittleRecord(x, dt, k)
+    return (rec, *_fit_band(rec, floor, band))
 
 
 def _split_half_p(x, dt, k, floor, g0, band) -> float:
@@ -245,34 +264,69 @@ def split_p(rec: WhittleRecord, floor: bool, band) -> tuple[float, float | None]
     return float(min(1.0, count * stats.chi2.sf(best, 3 if floor else 2))), knot
 
 
-def _segments(rec, floor, band, out):
-    """Binary segmentation: a band whose split test (:func:`split_p`) does not reject at :data:`TEST_LEVEL` is kept
-    (as (ordinates, decades, band)); a rejected one is cut at its best knot and each side searched the same way.
-    Sides shorter than a decade are dropped."""
+def _differenced(x, dt):
+    """order -> the record differenced that many times (:class:`WhittleRecord`), each made when first asked for and
+    kept, so that every band fitted at one order shares its expected periodograms."""
+    made = {}
+
+    def get(k):
+        if k not in made:
+            made[k] = WhittleRecord(x, dt, k)
+        return made[k]
+    return get
+
+
+def _at_its_order(get, floor, band, k):
+    """(record, profile, result) of the power law (+ floor) over ``band`` at the differencing order its own estimate
+    asks for: from order ``k``, raised while the interval reaches the order's upper limit 2k + 0.95, lowered while
+    the estimate asks for a lower order (:func:`compare.analysis.whittle.order_for`; an estimate at the lower limit
+    2k - 3 always does), each order tried once. A band whose spectrum is flatter or steeper than the whole record's
+    is so fitted at its own order, not held at the limit of the record's."""
+    tried = set()
+    while True:
+        tried.add(k)
+        rec = get(k)
+        prof, res = _fit_band(rec, floor, band)
+        if res[6] and k < MAX_ORDER and k + 1 not in tried:
+            k += 1
+            continue
+        want = order_for(res[0])
+        if want < k and want not in tried:
+            k = want
+            continue
+        return rec, prof, res
+
+
+def _segments(get, floor, band, k, out):
+    """Binary segmentation: a band whose split test (:func:`split_p`, at the band's own differencing order,
+    :func:`_at_its_order` from ``k``) does not reject at :data:`TEST_LEVEL` is kept (as (ordinates, band, record,
+    profile, result)); a rejected one is cut at its best knot and each side searched the same way. Sides shorter
+    than a decade are dropped."""
     lo, hi = band
     if hi / lo < 10 * (1 - 1e-9):
         return out
+    rec, prof, res = _at_its_order(get, floor, band, k)
     p, knot = split_p(rec, floor, band)
     if p >= TEST_LEVEL or knot is None:
-        keep = (rec.omega >= lo * (1 - 1e-12)) & (rec.omega <= hi * (1 + 1e-12))
-        out.append((int(np.sum(keep)), math.log10(hi / lo), (lo, hi)))
+        out.append((prof.m, band, rec, prof, res))
         return out
-    _segments(rec, floor, (lo, knot), out)
-    _segments(rec, floor, (knot, hi), out)
+    _segments(get, floor, (lo, knot), rec.order, out)
+    _segments(get, floor, (knot, hi), rec.order, out)
     return out
 
 
-def _narrowed(x, dt, k, floor, omega, bend):
-    """The band of a record whose spectrum bends: the binary segmentation's kept bands (:func:`_segments`), and of
-    them the one with the most Fourier ordinates (the most information on gamma). Returns (record, profile,
-    result, bend p, band), or None when no band of a decade or more is kept."""
-    rec = WhittleRecord(x, dt, k)
-    kept = _segments(rec, floor, (float(omega[0]), float(omega[-1])), [])
+def _narrowed(x, dt, k, floor, omega):
+    """The band of a record whose spectrum bends: of the binary segmentation's kept bands (:func:`_segments`, each
+    fitted at its own differencing order), the one with the most Fourier ordinates. Returns (record, profile,
+    result, bend p, band, segments), segments the kept bands as (low, high, gamma, low end, high end, order) in
+    rising frequency; or None when no band of a decade or more is kept."""
+    kept = _segments(_differenced(x, dt), floor, (float(omega[0]), float(omega[-1])), k, [])
     if not kept:
         return None
-    band = max(kept)[2]
-    rec, prof, res = _fit_order(x, dt, k, floor, band)
-    return rec, prof, res, bend_p(prof, res[0], res[2]), band
+    kept.sort(key=lambda c: c[1])
+    segments = tuple((band[0], band[1], res[0], res[3], res[4], rec.order) for _, band, rec, _, res in kept)
+    _, band, rec, prof, res = max(kept, key=lambda c: c[0])
+    return rec, prof, res, bend_p(prof, res[0], res[2]), band, segments
 
 
 def check_record(x, name: str = "x", unit: str = "", *, resolution: bool = True) -> None:
@@ -353,22 +407,27 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
         rec, prof, res = _fit_order(x, dt, k, floor, band)
     g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
     bend = bend_p(prof, g, t)
-    searched, split_flag = False, None
+    searched, split_flag, segments = False, None, ()
     if band is None and bend < SCREEN_LEVEL:
         searched = True
         whole = (float(rec.omega[0]), float(rec.omega[-1]))
-        narrowed = _narrowed(x, dt, k, floor, rec.omega, bend)
+        narrowed = _narrowed(x, dt, k, floor, rec.omega)
         if narrowed is None:
             split_flag = (f"no band of a decade holds one power law (bend test p = {bend:.2g}; the split test rejects "
                           f"every band at {TEST_LEVEL:g})")
         elif narrowed[4] != whole:
             bend_whole = bend
-            rec, prof, res, bend, trimmed = narrowed
+            rec, prof, res, bend, trimmed, segments = narrowed
             g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
+            k = rec.order
             notes.append(f"one power law does not fit every frequency (bend test p = {bend_whole:.2g}); "
                          f"fitted over {trimmed[0]:.3g}-{trimmed[1]:.3g} rad/s, of the bands where a split test "
                          f"(likelihood ratio at knots every quarter decade, Bonferroni, p >= {TEST_LEVEL:g}) finds "
                          "one power law the one with the most frequencies")
+            if len(segments) > 1:
+                notes.append("the bands where one power law holds: " + "; ".join(
+                    f"{g_:.2f} [{a:.2f}, {b:.2f}] over {lo_:.3g}-{hi_:.3g} rad/s (order {k_})"
+                    for lo_, hi_, g_, a, b, k_ in segments))
             band = trimmed
     if wall_hi or wall_lo:
         notes.append(f"the 95 % interval reaches the fitted range's {'upper' if wall_hi else 'lower'} limit "
@@ -378,6 +437,9 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
     cross = (A / B) ** (1.0 / g) if B > 0 else math.inf
     band_out = (w0, float(min(cross, w1)))
     flags = []
+    if (wall_lo and g - lo < 1e-3 and lo > GAMMA_MIN) or (wall_hi and hi - g < 1e-3):
+        flags.append(f"gamma is not identified: the estimate sits at the fitted range's limit {lo if wall_lo else hi:.2f} "
+                     f"at differencing order {k}")
     if band_out[1] <= w0 * 1.0001:
         notes.append("the floor lies above the power law at every fitted frequency: gamma is not identified")
         band_out = (w0, w0 * 1.0001)
@@ -392,7 +454,8 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
                      floor_rms=math.sqrt(2.0 * math.pi * B / dt), crossover=cross, band=band_out, order=k,
                      n_samples=len(x), nll=nll, stationarity_p=p, bend_p=bend, quantity=quantity,
                      flags=tuple(flags), notes=tuple(notes), band_auto=auto, n_points=prof.m,
-                     level_cov=level_cov(prof, g, t))
+                     level_cov=level_cov(prof, g, t), segments=segments,
+                     fit_band=tuple(map(float, band)) if band is not None else ())
 
 
 def expected_gamma(spectrum, fit: RecordFit, dt: float, band=None, floor: bool = True, sampled: bool = True) -> float:

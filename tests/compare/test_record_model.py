@@ -174,6 +174,56 @@ def test_expected_gamma_folds_a_continuous_closed_form():
     assert abs(expected_gamma(lambda w: np.asarray(w) ** -4.0, fit, DT, band, sampled=False) - 4.0) < 1e-3
 
 
+def test_a_searched_band_is_fitted_at_its_own_differencing_order():
+    # Model I's reference case at 1 kHz: omega^-2 below v/a = 0.5 rad/s, omega^-4 to the resonance at 548 rad/s,
+    # omega^-8 to -10 above it, so the whole record asks for differencing order 5 (exponents 7-10.95). The band
+    # search keeps the lower bands; each must be fitted at the order its own exponent asks for, not held at the
+    # limit of the whole record's (which read 10.95 at the limit over 0.2-3.6 rad/s on this record, 7.00 on 120 s).
+    # The fit must stop below the resonance and hold the exponent the same fit reads off eq. (A10) over its band;
+    # one record, so within 1.5 half-widths (2.9 sigma: a 0.4 % chance of a false failure).
+    from reduced_models import spring_block
+
+    p = spring_block.SpringBlockParams.reference()
+    tr = spring_block.simulate(p, 30.0, 1e-3, seed=1)
+    f = fit_record(tr.x, 1e-3, stationarity=False)
+    assert f.power_law and f.fit_band and f.fit_band[1] < spring_block.crossover_frequency(p)
+    for _, _, g, lo, hi, k in f.segments:  # no kept band's interval at its order's limits
+        assert 2 * k - 3 + 1e-3 < lo or k == 1, f.segments
+        assert hi < 2 * k + 0.95 - 1e-3, f.segments
+    ref = expected_gamma(lambda w: spring_block.theory_spectrum(p, w), f, 1e-3, f.fit_band, sampled=False)
+    assert abs(f.gamma - ref) <= 1.5 * f.gamma_err, (f, ref)
+
+
+def test_a_line_in_the_record_changes_nothing():
+    # Differencing k >= 1 times removes a line exactly (the once-differenced pilot keeps a constant, which the
+    # taper-weighted mean removes), so a drift added or a fitted line removed leaves the fit as it is, to the
+    # rounding of the differences (the line is 5x the record's rms over its length: 1e-9 of gamma here).
+    t = np.arange(4096) * DT
+    x = power_law_record(4096, DT, 4.5, seed=3)
+    drift = x + 5 * x.std() * t / t[-1]
+    detrended = drift - np.polyval(np.polyfit(t, drift, 1), t)
+    fits = [fit_record(y, DT, stationarity=False) for y in (x, drift, detrended)]
+    for f in fits[1:]:
+        assert (f.gamma, f.gamma_low, f.gamma_high) == pytest.approx((fits[0].gamma, fits[0].gamma_low,
+                                                                      fits[0].gamma_high), abs=1e-6)
+
+
+def test_an_anti_aliased_record_reads_steeper_up_to_nyquist():
+    # The model folds the power law at Nyquist, as sampling a continuous process does. A record whose sampled
+    # spectrum is omega^-4.5 up to Nyquist without its images (an ideal anti-aliasing filter at Nyquist) has about
+    # half the model's power there, and the same fit without noise reads it steeper: 4.576 at 2^12 samples (4.575 at
+    # 2^15), where records of 2^12 give a half-width of 0.05, so intervals miss 4.5 (25 of 200 seeds covered). Over a
+    # band stopping at a quarter of Nyquist the images weigh (1/7)^4.5 = 2e-4 and both read 4.5 to 1e-3.
+    fit = fit_record(power_law_record(4096, DT, 4.5, seed=0), DT, order=2, stationarity=False)
+
+    def unfolded(w):
+        return np.asarray(w) ** -4.5
+    assert abs(expected_gamma(lambda w: _folded(w, 4.5), fit, DT) - 4.5) < 1e-3
+    assert expected_gamma(unfolded, fit, DT) == pytest.approx(4.576, abs=2e-3)
+    band = (fit.band[0], 0.25 * math.pi / DT)
+    assert abs(expected_gamma(unfolded, fit, DT, band) - 4.5) < 1e-3
+
+
 @pytest.mark.parametrize("floor_rms", [0.0, 3e-9])
 def test_interpolated_search_finds_the_exact_fit(monkeypatch, floor_rms):
     # A record of 2^15 samples is searched on an interpolant of the expected periodogram in gamma; the same search
