@@ -86,3 +86,18 @@ def test_the_loop_samples_maintains_every_64_and_ends_a_recording_on_its_sample(
     s.log.clear()
     Loop(s).run(2)  # a warm-up: no recorder, every output step steps
     assert s.log == ["maintain", "advance 3", "advance 3"]
+
+
+def test_the_loop_at_a_finer_step_samples_each_and_maintains_as_a_run_does():
+    # n_sub = 1 on a scene of 3 steps per output step: a sample before every pymunk step, the maintenance every
+    # MAINTAIN_EVERY * 3 pymunk steps (where a run's loop maintains), none between
+    from engine_sim.loop import MAINTAIN_EVERY, Loop
+
+    s = _Scene()
+    n = 3 * MAINTAIN_EVERY + 2
+    seen = []
+    Loop(s, _Recorder(s.log), n_out=n, on_maintain=seen.append, n_sub=1).run(n)
+    assert seen == [0, 3 * MAINTAIN_EVERY]
+    assert s.log.count("sample") == n and s.log.count("advance 1") == n - 1 and "advance 3" not in s.log
+    with pytest.raises(ValueError, match="n_sub = 2 does not divide the scene's 3"):
+        Loop(s, n_sub=2)
