@@ -12,7 +12,8 @@ A kernel compiled with ``numba.njit(cache=True)`` is cached beside its file with
 loaded under, and a later process imports that module by that name to use the cache. So one file may be named
 both ways, as a file in one scenario and as a module in another: a module plugin is also entered in
 ``sys.modules`` under its file's plugin name, and a file plugin answers an import of a module name its path ends
-with (``mylab/laws.py`` answers ``laws`` and ``mylab.laws``) when nothing else on ``sys.path`` does.
+with (``mylab/laws.py`` answers ``laws``, and ``mylab.laws`` if ``mylab`` holds an ``__init__.py``) when nothing
+else on ``sys.path`` does.
 """
 from __future__ import annotations
 
@@ -54,20 +55,22 @@ class _Existing(importlib.abc.Loader):
 
 class _FileAliases(importlib.abc.MetaPathFinder):
     """The last finder on ``sys.meta_path``: a module name that nothing else finds and that a loaded plugin
-    file's path ends with is that file's module (module docstring); its parent packages are empty namespaces."""
+    file's path ends with is that file's module (module docstring); its parents, folders with an
+    ``__init__.py`` each, are answered as empty namespaces. A folder without one is never answered."""
 
     def find_spec(self, fullname, path=None, target=None):
         want = fullname.split(".")
         for file, mod in list(_FILES.items()):
-            parts = Path(file).with_suffix("").parts
-            if file.endswith("__init__.py"):
-                parts = parts[:-1]
-            for depth in range(len(want), len(parts) + 1):
-                if list(parts[-depth:][: len(want)]) != want:
+            names = Path(file).with_suffix("").parts
+            for s in range(1, len(names)):
+                chain = names[s:]  # the module's dotted name if the folder above names[s] were on sys.path
+                if list(chain[:len(want)]) != want:
                     continue
-                leaf = depth == len(want)
-                target = mod if leaf else types.ModuleType(fullname)
-                spec = importlib.machinery.ModuleSpec(fullname, _Existing(target), is_package=not leaf)
+                if not all((Path(*names[:j + 1]) / "__init__.py").is_file() for j in range(s, len(names) - 1)):
+                    continue
+                leaf = len(want) == len(chain)
+                spec = importlib.machinery.ModuleSpec(
+                    fullname, _Existing(mod if leaf else types.ModuleType(fullname)), is_package=not leaf)
                 if not leaf:
                     spec.submodule_search_locations = []
                 return spec
@@ -134,7 +137,8 @@ def load_plugins(entries, base: Path | None = None) -> tuple:
         raise ValueError(f"plugins must be a list of file paths or module names (got {entries!r})")
     out = []
     for entry in entries:
-        if entry.endswith(".py"):
+        is_file = entry.endswith(".py")
+        if is_file:
             path = Path(entry).expanduser()
             if not path.is_absolute():
                 path = (base or Path.cwd()) / path
@@ -149,21 +153,22 @@ def load_plugins(entries, base: Path | None = None) -> tuple:
         try:
             load()
         except ModuleNotFoundError as e:
-            if resolved == entry and e.name is not None and entry.startswith(e.name):
+            if not is_file and e.name is not None and entry.startswith(e.name):
                 raise ValueError(f"plugins: {entry!r} cannot be imported ({e})") from None
-            raise ValueError(f"plugins: {entry!r}{_where(entry, resolved)} failed to load: "
+            raise ValueError(f"plugins: {entry!r}{_where(entry, is_file, resolved)} failed to load: "
                              f"{type(e).__name__}: {e}") from None
         except Exception as e:
-            raise ValueError(f"plugins: {entry!r}{_where(entry, resolved)} failed to load: "
+            raise ValueError(f"plugins: {entry!r}{_where(entry, is_file, resolved)} failed to load: "
                              f"{type(e).__name__}: {_one_line(e)}") from None
         out.append(resolved)
     return tuple(out)
 
 
-def _where(entry: str, resolved: str) -> str:
-    """`` (its file)`` for a module entry whose file is known, else nothing."""
-    if resolved != entry:
-        return f" ({resolved})" if resolved != entry and not Path(entry).is_absolute() else ""
+def _where(entry: str, is_file: bool, resolved: str) -> str:
+    """`` (its file)``: a file entry's resolved path, unless the entry is that path; a module entry's file, when
+    it can be found; else nothing."""
+    if is_file:
+        return "" if resolved == entry else f" ({resolved})"
     try:
         spec = importlib.util.find_spec(entry)
     except Exception:  # a parent package that fails to import

@@ -147,3 +147,19 @@ def test_a_well_declared_channel_passes_and_the_shipped_example_is_one():
     finally:
         sys.path.remove(str(CHANNEL.parent))
     check_channel(CHANNELS["block_kinetic_energy"])
+
+
+def test_a_file_plugin_answers_its_own_module_name_and_no_folder_name(tmp_path):
+    # the names numba's cache may ask for: the file's stem (and its package's dotted name), never a plain folder
+    import importlib
+
+    from engine_sim.plugins import load_plugins, plugin_name
+
+    path = _copy(CHANNEL, tmp_path / "plain_folder" / "alias_probe_chan.py", "alias_probe")
+    load_plugins([str(path)])
+    mod = sys.modules[plugin_name(path.resolve())]
+    assert importlib.import_module("alias_probe_chan") is mod
+    with pytest.raises(ModuleNotFoundError):
+        importlib.import_module("plain_folder")
+    assert plugin_name(path.resolve()) == plugin_name(path.resolve())
+    assert plugin_name(path.resolve()) != plugin_name((tmp_path / "other" / path.name).resolve())
