@@ -1,7 +1,9 @@
 """The one stepping loop of a scene: output step by output step, the recorder's sample, the maintenance and the
 pymunk steps. Everything that steps a scene steps it here: a run and its warm-up (:mod:`engine_sim.run`), the
 forecast's probe (:mod:`engine_sim.forecast`), the step costs (:mod:`engine_sim.timing`), the drawn frames
-(:mod:`engine_sim.frames`) and the benchmarks.
+(:mod:`engine_sim.frames`), the benchmarks and the studies. The few places that time or observe something inside
+an output step (a bare pymunk step, a part's stepping alone, each body before and after a step) step a scene
+themselves; tests/project/test_one_loop.py lists them, each with its reason.
 """
 from __future__ import annotations
 
