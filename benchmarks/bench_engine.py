@@ -42,6 +42,8 @@ def loop_ratio(sc, n_steps: int, repeat: int = 3, ratio: bool = False):
     project's loop pays for its maintenance and its recording.
     """
     scene = Scene(sc)
+    # steps the scene itself: the bare pymunk step is timed against the loop, its maintenance kept out of the bare
+    # chunks' timers; the warm-up is the lockstep base tree's (2000 steps unmaintained), so both trees time one state
     scene.advance(2000)
     n_sub = scene.n_sub
     chunk = MAINTAIN_EVERY

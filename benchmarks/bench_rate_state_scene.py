@@ -15,7 +15,7 @@ from dataclasses import replace
 from engine_sim import Scene, load_scenario
 from engine_sim.laws import FrictionSpec
 from engine_sim.record import Recorder
-from engine_sim.loop import Loop
+from engine_sim.loop import Loop, warm_up
 
 
 def linear_twin(sc):
@@ -41,7 +41,7 @@ def loop_cost(scenes, n_steps: int, repeat: int):
     built = []
     for sc in scenes:
         s = Scene(sc)
-        s.advance(2000)
+        warm_up(s, -(-2000 // s.n_sub))
         n_out = max(1, n_steps // s.n_sub)
         built.append((Loop(s, Recorder(s, n_out * repeat + 1)), n_out))
     best = [float("inf")] * len(built)
@@ -65,7 +65,7 @@ def test_rate_state_against_linear_law(benchmark, ratio, smoke):
     ratio("rate_state / log law, loop per step", rs_us / log_us)
     rounds = 3 if smoke else 20
     scene = Scene(sc)
-    scene.advance(200)
+    warm_up(scene, -(-200 // scene.n_sub))
     loop = Loop(scene, Recorder(scene, rounds + 2))
     benchmark.pedantic(loop.run, args=(1,), rounds=rounds, warmup_rounds=1)
 

@@ -21,7 +21,10 @@ import numpy as np
 import pymunk
 
 from engine_sim import Scene, scenario_from_dict, shipped_scenarios
+from engine_sim.loop import Loop, warm_up
 from engine_sim.record import Recorder
+
+WARM_STEPS = 2000  # pymunk steps of the scenes' unrecorded warm-up, maintained as a run's is (engine_sim.loop.warm_up)
 
 VIBRATIONS = {
     "substrate parallel": {"target": "substrate", "direction": "parallel", "amplitude": 2e-4, "frequency": 10.0},
@@ -40,44 +43,42 @@ def scenario(name: str, vibration: dict | None):
     return scenario_from_dict(data)
 
 
+def recording_loop(sc, capacity: int) -> Loop:
+    """The project's loop (:class:`engine_sim.loop.Loop`) recording a scene of ``sc`` into ``capacity`` samples,
+    after the warm-up (``WARM_STEPS``)."""
+    s = Scene(sc)
+    warm_up(s, -(-WARM_STEPS // s.n_sub))
+    return Loop(s, Recorder(s, capacity))
+
+
+def timed_chunk(loop: Loop, chunk: int) -> float:
+    """Microseconds per pymunk step (CPU) of ``chunk`` output steps of the project's loop: each a sample, the
+    maintenance every MAINTAIN_EVERY output steps, the pymunk steps."""
+    t0 = time.process_time()
+    loop.run(chunk)
+    return (time.process_time() - t0) / (chunk * loop.scene.n_sub) * 1e6
+
+
 def paired(sc_a, sc_b, chunks: int, chunk: int = 16):
-    """Microseconds per step of the project's loop (advance, sample, maintain) on two scenes, alternating chunks of
-    ``chunk`` output steps so that both see the same machine; the minimum and the median over the chunks of each
-    (the minimum is the figure least disturbed by other processes on a loaded machine). CPU time of this process
-    (time.process_time), not wall time: on a shared machine the wall clock counts other processes' turns."""
-    scenes = [Scene(sc_a), Scene(sc_b)]
-    recs = []
-    for s in scenes:
-        s.advance(2000)
-        recs.append(Recorder(s, chunks * chunk + 1))
-        recs[-1].sample()
+    """Microseconds per step of the project's loop (:class:`engine_sim.loop.Loop`: sample, maintain, advance) on
+    two scenes, alternating chunks of ``chunk`` output steps so that both see the same machine; the minimum and the
+    median over the chunks of each (the minimum is the figure least disturbed by other processes on a loaded
+    machine, and with 16-step chunks one in four holds a maintenance, so the minimum is a chunk without one). CPU
+    time of this process (time.process_time), not wall time: on a shared machine the wall clock counts other
+    processes' turns."""
+    loops = [recording_loop(sc_a, chunks * chunk), recording_loop(sc_b, chunks * chunk)]
     times = [[], []]
     for _ in range(chunks):
-        for i, (s, r) in enumerate(zip(scenes, recs)):
-            s.maintain()
-            t0 = time.process_time()
-            for _ in range(chunk):
-                s.advance(s.n_sub)
-                r.sample()
-            times[i].append((time.process_time() - t0) / (chunk * s.n_sub) * 1e6)
+        for i, loop in enumerate(loops):
+            times[i].append(timed_chunk(loop, chunk))
     return [(float(np.min(t)), float(np.median(t))) for t in times]
 
 
 def loop_cost(sc, chunks: int = 100, chunk: int = 16) -> float:
     """us per step (CPU, minimum over ``chunks`` chunks of ``chunk`` output steps) of the project's loop on a scene:
     the step cost a part's own work is set against (the minimum: the least disturbed, so the largest share)."""
-    s = Scene(sc)
-    s.advance(2000)
-    rec = Recorder(s, chunks * chunk + 1)
-    best = math.inf
-    for _ in range(chunks):
-        s.maintain()
-        t0 = time.process_time()
-        for _ in range(chunk):
-            s.advance(s.n_sub)
-            rec.sample()
-        best = min(best, (time.process_time() - t0) / (chunk * s.n_sub) * 1e6)
-    return best
+    loop = recording_loop(sc, chunks * chunk)
+    return min(timed_chunk(loop, chunk) for _ in range(chunks))
 
 
 def own_work(name: str, vib: dict, reps: int = 300):
@@ -86,13 +87,15 @@ def own_work(name: str, vib: dict, reps: int = 300):
     and a groove joint) is inside ``space.step`` and so not in these figures: the whole loop's are the ones to read."""
     scenes = [Scene(scenario(name, None)), before_scene(scenario(name, vib)), Scene(scenario(name, vib))]
     for s in scenes:
-        s.advance(100)
+        warm_up(s, -(-100 // s.n_sub))
     return stepping_minima(scenes, reps)
 
 
 def stepping_minima(scenes, reps: int) -> list:
     """Each scene's stepping work per pymunk step with ``space.step`` made a no-op (us, CPU, minimum over ``reps``
     output steps, the scenes in alternation)."""
+    # steps the scenes itself: it times the part's stepping (Scene.advance) alone, without the sample and the
+    # maintenance that engine_sim.loop.Loop puts in every output step
     best = [math.inf] * len(scenes)
     for s in scenes:
         s.space.step = lambda dt: None
@@ -109,10 +112,12 @@ def overhead(sc_vib, sc_base, reps: int = 300):
     recorder's extra channel, with ``space.step`` replaced by a no-op, so the figure carries none of the solver's
     noise. Returns (advance with, advance without, sample with, sample without, the separate momentum kernel the
     recorder called before the main kernel summed the momentum), the samples per output step."""
+    # steps the scenes itself: it times the stepping and the sample of one output step apart, which
+    # engine_sim.loop.Loop runs as one
     out = []
     for sc in (sc_vib, sc_base):
         scene = Scene(sc)
-        scene.advance(100)
+        warm_up(scene, -(-100 // scene.n_sub))
         rec = Recorder(scene, reps + 1)
         scene.space.step = lambda dt: None
         ta, ts, tk = [], [], []
@@ -201,22 +206,14 @@ def before_after(name: str, vib: dict, chunks: int, chunk: int = 16):
     the chunks and, for before and after, the median over the chunks of the ratio to the unshaken scene's chunk
     of the same turn (a burst of load hits the three chunks of a turn alike, so the paired ratio scatters less
     than the minima do)."""
-    scenes = [Scene(scenario(name, None)), before_scene(scenario(name, vib)), Scene(scenario(name, vib))]
-    recs = []
-    for s in scenes:
-        s.advance(2000)
-        recs.append(Recorder(s, chunks * chunk + 1))
-        recs[-1].sample()
+    loops = []
+    for s in (Scene(scenario(name, None)), before_scene(scenario(name, vib)), Scene(scenario(name, vib))):
+        warm_up(s, -(-WARM_STEPS // s.n_sub))
+        loops.append(Loop(s, Recorder(s, chunks * chunk)))
     times = [[], [], []]
     for c in range(chunks):
         for i in (c % 3, (c + 1) % 3, (c + 2) % 3):
-            s, r = scenes[i], recs[i]
-            s.maintain()
-            t0 = time.process_time()
-            for _ in range(chunk):
-                s.advance(s.n_sub)
-                r.sample()
-            times[i].append((time.process_time() - t0) / (chunk * s.n_sub) * 1e6)
+            times[i].append(timed_chunk(loops[i], chunk))
     t = np.array(times)
     return [float(x) for x in t.min(axis=1)], float(np.median(t[1] / t[0])), float(np.median(t[2] / t[0]))
 
@@ -242,24 +239,16 @@ def engine(rounds: int, steps: int = 50_000):
 
 
 def shaken_against_unshaken(benchmark, ratio, smoke, name):
-    """The harness's entry on a scene: one chunk of the loop (a maintenance, 16 output steps and their samples) on the scene
-    shaken along the sliding direction (10 Hz, 0.2 mm) timed by the harness, and in the same run the shaken loop's
-    cost per step over the unshaken one's (``paired``: chunks in turns, the ratio of the minima; 10 chunks at smoke
+    """The harness's entry on a scene: one chunk of the loop (16 output steps and their samples; a maintenance in
+    one chunk of four) on the scene shaken along the sliding direction (10 Hz, 0.2 mm) timed by the harness, and in
+    the same run the shaken loop's cost per step over the unshaken one's (``paired``: chunks in turns, the ratio of the minima; 10 chunks at smoke
     size, 200 at full size; the target: at most 1.05)."""
     vib, chunk = VIBRATIONS["substrate parallel"], 16
     (b, _), (f, _) = paired(scenario(name, None), scenario(name, vib), 10 if smoke else 200, chunk)
     ratio("shaken / unshaken loop per step", f / b)
     rounds = 5 if smoke else 50
-    scene = Scene(scenario(name, vib))
-    scene.advance(2000)
-    rec = Recorder(scene, (rounds + 2) * chunk + 1)
-
-    def one_chunk():
-        scene.maintain()
-        for _ in range(chunk):
-            scene.advance(scene.n_sub)
-            rec.sample()
-    benchmark.pedantic(one_chunk, rounds=rounds, warmup_rounds=1)
+    loop = recording_loop(scenario(name, vib), (rounds + 1) * chunk)
+    benchmark.pedantic(loop.run, args=(chunk,), rounds=rounds, warmup_rounds=1)
 
 
 # one entry per scene, without pytest's parametrize: compare.studies.step_ledger imports this module

@@ -61,7 +61,7 @@ def forecast(sc, duration: float | None = None, seed: int | None = None) -> Fore
         loop.step()  # output steps 1 .. 63: a sample and its steps, no maintenance
         times.append(time.perf_counter() - t0)
     t0 = time.perf_counter()
-    scene.maintain()
+    scene.maintain()  # outside the loop: one maintenance timed apart from the output steps, to project each
     k = len(times)
     # the median step: a moment of contention from other processes does not set the projection
     per_out = float(np.median(times)) + (time.perf_counter() - t0) / k

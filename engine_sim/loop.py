@@ -1,7 +1,9 @@
 """The one stepping loop of a scene: output step by output step, the recorder's sample, the maintenance and the
 pymunk steps. Everything that steps a scene steps it here: a run and its warm-up (:mod:`engine_sim.run`), the
 forecast's probe (:mod:`engine_sim.forecast`), the step costs (:mod:`engine_sim.timing`), the drawn frames
-(:mod:`engine_sim.frames`) and the benchmarks.
+(:mod:`engine_sim.frames`), the benchmarks and the studies. The few places that time or observe something inside
+an output step (a bare pymunk step, a part's stepping alone, each body before and after a step) step a scene
+themselves; tests/project/test_one_loop.py lists them, each with its reason.
 """
 from __future__ import annotations
 
@@ -40,10 +42,18 @@ class Loop:
         The first output step's index (a resumed recording's).
     on_maintain : callable, optional
         ``on_maintain(k)`` after each maintenance.
+    n_sub : int, optional
+        Pymunk steps per output step, a divisor of ``scene.n_sub`` (None: ``scene.n_sub``); with it the loop samples
+        ``scene.n_sub / n_sub`` times per output step of the scene (a study's fine recording, every step at 1) and
+        maintains every ``MAINTAIN_EVERY * scene.n_sub`` pymunk steps still, as a run does.
     """
 
-    def __init__(self, scene, recorder=None, n_out: int | None = None, k: int = 0, on_maintain=None):
+    def __init__(self, scene, recorder=None, n_out: int | None = None, k: int = 0, on_maintain=None,
+                 n_sub: int | None = None):
+        if n_sub is not None and (n_sub < 1 or scene.n_sub % n_sub):
+            raise ValueError(f"n_sub = {n_sub!r} does not divide the scene's {scene.n_sub} steps per output step")
         self.scene, self.recorder, self.n_out, self.k, self.on_maintain = scene, recorder, n_out, k, on_maintain
+        self.n_sub = n_sub
 
     def step(self) -> None:
         """One output step (class docstring)."""
@@ -62,6 +72,9 @@ class Loop:
         """
         scene, on_maintain = self.scene, self.on_maintain
         advance, n_sub = scene.advance, scene.n_sub
+        every = MAINTAIN_EVERY  # output steps between maintenances
+        if self.n_sub is not None:
+            every, n_sub = MAINTAIN_EVERY * n_sub // self.n_sub, self.n_sub
         sample = None if self.recorder is None else self.recorder.sample
         last = math.inf if self.n_out is None else self.n_out - 1  # the output step no pymunk step follows
         for k in range(self.k, self.k + n):
@@ -69,7 +82,7 @@ class Loop:
                 check()
             if sample is not None:
                 sample()
-            if k % MAINTAIN_EVERY == 0:
+            if k % every == 0:
                 scene.maintain()
                 if on_maintain is not None:
                     on_maintain(k)

@@ -107,6 +107,7 @@ def ledger(A=2.72e-6, duration=1.0, dt=2.5e-5):
     acc = dict.fromkeys(KEYS, 0.0)
     P, Pf = np.zeros(n + 1), np.zeros(n + 1)
     rec.sample()
+    # steps the scene itself: _step reads every body before and after each pymunk step, which Loop cannot hand out
     for k in range(n):
         P[k + 1], Pf[k + 1] = _step(scene, bodies, m, springs, acc)
         rec.sample()

@@ -39,7 +39,7 @@ from compare.analysis.spectra import band_average, force_series_spectrum
 from engine_sim import Scene, load_scenario, shipped_scenarios
 from engine_sim import units as U
 from engine_sim.record import Recorder
-from engine_sim.loop import MAINTAIN_EVERY, warm_up
+from engine_sim.loop import Loop, warm_up
 
 CHANNELS = ("F_t", "F_n", "F_drag", "F_drive", "pad_force", "micro_force")
 
@@ -72,22 +72,29 @@ def record_three(sc, duration: float, seed: int):
     fine = Recorder(scene, n_fine, forces="mean")
     point = Recorder(scene, n_fine, forces="point")
     c = scene.slider_terms[:, 1]
-    x_prev = v_prev = None
     bias = np.zeros((n_fine, len(scene.sliders)))  # c v_bias per step and slider (scene force units)
-    for k in range(n_out):
-        coarse.sample()
-        if k % MAINTAIN_EVERY == 0:
-            scene.maintain()
-        for j in range(n_sub if k + 1 < n_out else 1):
+    prev = []  # the sliders' (x, v) at the previous step
+
+    class Every:
+        """The loop's recorder at every pymunk step: the default recording every n_sub-th, the two every-step
+        recordings and the damper's bias at each."""
+
+        def __init__(self):
+            self.j = 0
+
+        def sample(self):
+            if self.j % n_sub == 0:
+                coarse.sample()
             row = fine.k
             fine.sample()
             point.sample()
             st = fine.means_state[1:]
-            if x_prev is not None:
-                bias[row] = c * ((st[:, 0] - x_prev) / scene.dt - v_prev)
-            x_prev, v_prev = st[:, 0].copy(), st[:, 2].copy()
-            if k + 1 < n_out:
-                scene.advance(1)
+            if prev:
+                bias[row] = c * ((st[:, 0] - prev[0]) / scene.dt - prev[1])
+            prev[:] = st[:, 0].copy(), st[:, 2].copy()
+            self.j += 1
+
+    Loop(scene, Every(), n_out=n_fine, n_sub=1).run(n_fine)
     meta = {"scenario": sc.name}
     law_after = scene.law.impulses_after_step
     if law_after:

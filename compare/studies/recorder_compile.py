@@ -20,7 +20,7 @@ import json, sys, time
 from engine_sim import Scene, load_scenario
 from engine_sim.record import Recorder
 scene = Scene(load_scenario(sys.argv[1]))
-scene.advance(scene.n_sub)
+scene.advance(scene.n_sub)  # not engine_sim.loop.Loop: this worker runs in older source trees too
 rec = Recorder(scene, 4)
 t0 = time.process_time()
 rec.sample()

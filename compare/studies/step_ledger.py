@@ -35,7 +35,7 @@ import pymunk.batch as B
 
 from engine_sim import Scene, scenario_from_dict, units as U
 from engine_sim.record import Recorder
-from engine_sim.loop import MAINTAIN_EVERY, warm_up
+from engine_sim.loop import Loop, warm_up
 from engine_sim.scenario import SCENARIO_DIR
 from engine_sim.vibration import Vibration
 
@@ -204,13 +204,8 @@ def residual(name, A, duration=0.5, every_step=False):
     n_sub = 1 if every_step else scene.n_sub
     n_out = int(round(duration / (sc.run.dt * n_sub)))
     rec = Recorder(scene, n_out + 1)
-    rec.sample()
     led = with_ledger(scene)
-    for k in range(n_out):
-        scene.advance(n_sub)
-        rec.sample()
-        if (k + 1) % (MAINTAIN_EVERY * scene.n_sub // n_sub) == 0:
-            scene.maintain()
+    Loop(scene, rec, n_out=n_out + 1, n_sub=n_sub).run(n_out + 1)  # n_out steps of n_sub, sampled at both ends
     tr = rec.trace({})
     W, Wv, D, E = tr.work_drive[-1], tr.work_vibration[-1], tr.dissipated[-1], tr.mech_energy[-1]
     Wd, Wf, Dx = led.totals()
@@ -230,7 +225,7 @@ def cost(name="pads_friction_patches", rounds=3, reps=300):
         a1, a0, s1, s0, _, n = overhead(scenario(name, vib), scenario(name, None))
         scenes = [Scene(scenario(name, vib)), Scene(scenario(name, vib))]
         for s in scenes:
-            s.advance(100)
+            warm_up(s, -(-100 // s.n_sub))
         with_ledger(scenes[1])
         best = stepping_minima(scenes, reps)
         out.append((a1 - a0 + (s1 - s0) / n, best[1] - best[0], loop_cost(scenario(name, None))))

@@ -111,3 +111,18 @@ def test_a_family_s_names_are_the_package_s_and_old_checkpoints_find_them(packag
     registry = next(getattr(mod, n) for n in mod.__all__ if n.isupper() and isinstance(getattr(mod, n), dict))
     kinds = {k.__module__ for k in registry.values() if k.__module__.startswith(f"engine_sim.{package}.")}
     assert kinds == {f"engine_sim.{package}.{m.name}" for m in pkgutil.iter_modules(pkg.__path__) if m.name != base}
+
+
+def test_the_loop_at_a_finer_step_samples_each_and_maintains_as_a_run_does():
+    # n_sub = 1 on a scene of 3 steps per output step: a sample before every pymunk step, the maintenance every
+    # MAINTAIN_EVERY * 3 pymunk steps (where a run's loop maintains), none between
+    from engine_sim.loop import MAINTAIN_EVERY, Loop
+
+    s = _Scene()
+    n = 3 * MAINTAIN_EVERY + 2
+    seen = []
+    Loop(s, _Recorder(s.log), n_out=n, on_maintain=seen.append, n_sub=1).run(n)
+    assert seen == [0, 3 * MAINTAIN_EVERY]
+    assert s.log.count("sample") == n and s.log.count("advance 1") == n - 1 and "advance 3" not in s.log
+    with pytest.raises(ValueError, match="n_sub = 2 does not divide the scene's 3"):
+        Loop(s, n_sub=2)
