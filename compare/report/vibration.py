@@ -195,6 +195,8 @@ def cells(tasks: list, sc: VibratedScene = VibratedScene()) -> list:
         q = {"C_ratio": [_level(d, sc.band) / _level(t, sc.band) for d, t in pairs],
              "gamma": [d["fit"].get("gamma", np.nan) for d, _ in pairs],
              "gamma_twin": [t["fit"].get("gamma", np.nan) for _, t in pairs],
+             # the seed's own shaken-minus-unshaken difference: the seeds' common scatter cancels in it
+             "gamma_rise": [d["fit"].get("gamma", np.nan) - t["fit"].get("gamma", np.nan) for d, t in pairs],
              "coulomb": [_coulomb(d, sc) / _coulomb(t, sc) for d, t in pairs],
              "coulomb_sq": [(_coulomb(d, sc) / _coulomb(t, sc)) ** 2 for d, t in pairs],
              "drive": [d["mean_F_drive"] / t["mean_F_drive"] for d, t in pairs],

@@ -43,17 +43,21 @@ def markdown(rows: list, sc: VibratedScene) -> str:
 
 def gamma_markdown(groups: dict) -> str:
     """gamma of each shaken cell and of its twin as their fits give them: the record model's fit of each task's
-    record with its own 95 % profile interval (the mean of the seeds' half-widths when a cell holds several), for a
-    sweep run with fewer seeds than a Student-t interval over the seeds needs. ``groups``: {drive name: rows}, the
-    drive named by the folders the rows came from (one seed's twins cannot show whether the drive force varied)."""
-    out = ["| f (Hz) | drive | A (um) | xi | A / A_onset | gamma (its 95 % half-width) | twin's gamma | seeds |",
-           "|---|---|---|---|---|---|---|---|"]
+    record with its own 95 % profile interval (the mean of the seeds' half-widths when a cell holds several), and
+    the rise against the twin of the same seed, its mean over the seeds with a Student-t 95 % interval (blank for one
+    seed). ``groups``: {drive name: rows}, the drive named by the folders the rows came from (one seed's twins cannot
+    show whether the drive force varied)."""
+    out = ["| f (Hz) | drive | A (um) | xi | A / A_onset | gamma (its 95 % half-width) | twin's gamma | "
+           "rise against the twin (paired) | seeds |",
+           "|---|---|---|---|---|---|---|---|---|"]
     for drive, rows in groups.items():
         for r in rows:
+            g = r["gamma_rise"] if abs(r["gamma_rise"]) >= 0.005 else 0.0  # no "-0.00" for a rise that rounds to 0
+            rise = f"{g:+.2f} +- {r['gamma_rise_ci']:.2f}" if r["gamma_rise_ci"] == r["gamma_rise_ci"] else f"{g:+.2f}"
             out.append(
                 f"| {r['frequency']:g} | {drive} | {r['amplitude'] * 1e6:.3g} | {r['xi']:.3g} | "
                 f"{r['amplitude'] / r['A_onset']:.2g} | {r['gamma']:.2f} +- {r['gamma_fit_err']:.2f} | "
-                f"{r['gamma_twin']:.2f} | {r['seeds']} |")
+                f"{r['gamma_twin']:.2f} | {rise} | {r['seeds']} |")
     return "\n".join(out)
 
 

@@ -124,4 +124,20 @@ def test_one_seed_gamma_table_quotes_each_fits_own_interval():
     (r,) = cells(one)
     assert r["seeds"] == 1 and math.isnan(r["gamma_ci"])
     row = gamma_markdown({"velocity": [r]}).splitlines()[2]
-    assert "| 4.00 +- 0.10 | 4.00 | 1 |" in row and row.startswith("| 1000 | velocity | 10 |")
+    assert "| 4.00 +- 0.10 | 4.00 | +0.00 | 1 |" in row and row.startswith("| 1000 | velocity | 10 |")
+
+
+def test_gamma_rise_is_paired_by_seed():
+    # the shaken cell's gamma 3.9, 4.0, 4.1 against twins of 4.0: rises -0.1, 0, +0.1, mean 0 with the Student-t
+    # half-width of their scatter; twins whose own gammas scatter by 1 leave the paired rise unchanged
+    from compare.studies.vibration_sweep import gamma_markdown
+
+    t = 4.302652729911275
+    tasks = _sweep()
+    (r,) = cells(tasks)
+    assert r["gamma_rise"] == pytest.approx(0.0, abs=1e-12) and r["gamma_rise_ci"] == pytest.approx(t * 0.1 / math.sqrt(3))
+    for d in tasks:
+        d["fit"]["gamma"] += d["seed"]  # the seed moves both runs of its pair alike
+    (s,) = cells(tasks)
+    assert s["gamma_ci"] > 2 and s["gamma_rise_ci"] == pytest.approx(r["gamma_rise_ci"])
+    assert "| +0.00 +- 0.25 | 3 |" in gamma_markdown({"force": [s]}).splitlines()[2]
