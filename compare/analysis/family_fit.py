@@ -539,7 +539,7 @@ _GAIN = 0.02  # a restart's gain below which a descent has stopped (the likeliho
 
 
 def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dict | None = None,
-               exact: bool = False, segments=()) -> FamilyFit:
+               nested: FamilyFit | None = None, exact: bool = False, segments=()) -> FamilyFit:
     """Maximum-likelihood fit of family ``fam`` plus a white floor to ``record``, with 95 % intervals.
 
     Parameters
@@ -552,6 +552,10 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         The record's mean sliding speed (Units: m/s).
     start_theta : dict, optional
         Name -> value to start from (e.g. the values a simulated record was built with); the grid otherwise.
+    nested : FamilyFit, optional
+        The fit of a family that ``fam`` nests (model I's, for model Ib and the ageing family) on the same record:
+        the descent also starts from its maximum mapped into ``fam`` at the nesting point (:func:`_nesting_start`),
+        and the better end is kept, so that ``fam`` never fits the record worse than the family it nests.
     exact : bool, optional
         Polish the maximum on the debiased likelihood (records of at most :data:`EXACT_N` samples; 5-15 s more per
         family on a loaded 2-core machine at 2e4 samples). Every family compared on one record must be fitted alike.
@@ -574,6 +578,9 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
 
     per = 1.0 / float(G.count.sum())
     res = _descend(grouped, q0, bounds, per)
+    q_nest = None if nested is None else _nesting_start(fam, nested, q0, bounds)
+    if q_nest is not None:
+        res = _better(res, _descend(grouped, q_nest, bounds, per))
     for i, p in enumerate(fam.params):
         if p.name in _RESTARTS:
             q1 = res.x.copy()
@@ -588,7 +595,7 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         if unseen:
             # a feature the record does not show: hold its amplitude at the neutral value, and the parameters that
             # share its feature (its corner) where they are, and fit the rest again
-            res, neutral = _hold(fam, v, grouped, res.x, bounds, unseen, neutral, per)
+            res, neutral = _hold(fam, v, grouped, res.x, bounds, unseen, neutral, per, q_nest)
         if exact and record.n <= EXACT_N:
             fit = maximum_likelihood(record, spectrum, res.x, bounds=bounds, images=None)
         else:
@@ -616,9 +623,11 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
                      tuple(fam.params[i].name for i in neutral))
 
 
-def _hold(fam: Family, v: float, grouped, q, bounds, unseen, neutral, per: float):
+def _hold(fam: Family, v: float, grouped, q, bounds, unseen, neutral, per: float, q_nest=None):
     """Hold the amplitudes ``unseen`` at their neutral values and the parameters sharing their features where they
-    are (narrowing ``bounds`` in place), and fit the rest again from ``q``. Returns (result, held indices)."""
+    are (narrowing ``bounds`` in place), and fit the rest again from ``q`` and, where given, from the nesting start
+    ``q_nest`` (:func:`_nesting_start`; its held parameters set as held), keeping the better end. Returns (result,
+    held indices)."""
     q = np.array(q, dtype=float)
     feats = fam.features(_to_theta(fam, q), v)
     names = {fam.params[i].name for i in unseen}
@@ -630,6 +639,40 @@ def _hold(fam: Family, v: float, grouped, q, bounds, unseen, neutral, per: float
         if i in unseen:
             q[i] = math.log10(p.neutral) if p.log else p.neutral
         bounds[i] = (q[i], q[i])
-    res = _descend(grouped, np.clip(q, [b[0] for b in bounds], [b[1] for b in bounds]), bounds, per)
+    lo, hi = [b[0] for b in bounds], [b[1] for b in bounds]
+    res = _descend(grouped, np.clip(q, lo, hi), bounds, per)
+    if q_nest is not None:
+        qn = np.array(q_nest, dtype=float)
+        qn[sorted(held)] = q[sorted(held)]
+        res = _better(res, _descend(grouped, np.clip(qn, lo, hi), bounds, per))
     return res, sorted(held)
+
+
+def _nesting_start(fam: Family, nested: FamilyFit, q0, bounds):
+    """The maximum of ``nested``'s fit mapped into ``fam`` at the nesting point, on the fitted scale (floor last):
+    the shared parameters and the floor at their fitted values, each amplitude with a neutral value (model Ib's
+    micro level, the ageing step) at it, the parameters placing those features (their corners: where the amplitude
+    is neutral the family does not depend on them) from ``q0``, the start of ``fam``'s own descent; clipped to
+    ``bounds``. There ``fam``'s spectrum is ``nested``'s wherever ``nested``'s parameters that ``fam`` lacks do not
+    act on the band (model I's contacts' inertia, which the ageing family lacks, above it: :func:`compare.analysis.
+    identify._nests`). None where ``nested`` shares no parameter with ``fam``."""
+    names = [p.name for p in fam.params]
+    if not any(n in nested.theta for n in names):
+        return None
+    q = np.array(q0, dtype=float)
+    for i, p in enumerate(fam.params):
+        if p.name in nested.theta:
+            val = nested.theta[p.name]
+        elif p.neutral is not None:
+            val = p.neutral
+        else:
+            continue
+        q[i] = math.log10(val) if p.log else val
+    q[-1] = math.log10(nested.floor)
+    return np.clip(q, [b[0] for b in bounds], [b[1] for b in bounds])
+
+
+def _better(a, b):
+    """The descent (scipy result) with the lower negative log-likelihood; ``a`` on a tie."""
+    return b if b.fun < a.fun else a
 

@@ -62,7 +62,8 @@ from .family_fit import (FamilyFit, Grouped, cell_of, fit_family, record_for, sa
 
 __all__ = ["Mechanism", "NestedGains", "identify", "holm", "nested_gains", "vuong", "stationarity"]
 
-_BASE = ("model_I",)  # fitted first: the families below extend its spectrum and start from its fit
+_BASE = ("model_I",)  # fitted first: the families below extend its spectrum and start from its fit, and from its
+#   maximum at their nesting point, so that their gain over it is never negative (fit_family's ``nested``)
 _EXTENDS_I = ("model_Ib", "model_ageing")
 _TIE = 1.0  # information criteria closer than this rank as equal (a difference of 1 is no evidence either way)
 
@@ -480,11 +481,12 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
         fam: Family = FAMILIES[n]
         key = id(fam.shape)
         if key not in shared:
-            start = base.theta if base is not None and n in _EXTENDS_I else None
+            nested = base if n in _EXTENDS_I else None
             t0 = time.perf_counter()
             if progress is not None:
                 progress(f"fitting {n}'s family ({len(shared) + 1}/{distinct}, {len(rec.omega)} ordinates)")
-            shared[key] = fit_family(rec, fam, v, start_theta=start, segments=segments)
+            shared[key] = fit_family(rec, fam, v, start_theta=None if nested is None else nested.theta,
+                                     nested=nested, segments=segments)
             if progress is not None:
                 progress(f"{n}'s family fitted in {time.perf_counter() - t0:.1f} s")
             if n in _BASE:

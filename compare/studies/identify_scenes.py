@@ -5,7 +5,8 @@ scene was built with against those fitted (compare.analysis.scene_mechanism.judg
 
 Default: pads_friction_patches for its scenario's duration (60 s at 1 kHz) and seed. Prints the ranking, then for a
 scene built as a registered model (pads on patch tracks: model I; an asperity field: model III) each identified
-parameter built and fitted, and whether the fitted 95 % interval holds the built value.
+parameter built and fitted, and whether the fitted 95 % interval holds the built value; for a patch scene, what its
+built level rests on, measured on the trace without a fit (compare.analysis.scene_mechanism.level_checks).
 """
 import argparse
 import time
@@ -47,6 +48,16 @@ def main(argv=None):
                 got = r["fitted"] if isinstance(r["fitted"], str) else f"{r['fitted']:.4g} +- {r['half_width']:.2g}"
                 within = "" if r["within"] is None else (" within" if r["within"] else " OUTSIDE")
                 print(f"    {k:8s} built {r['built']:.4g}, fitted {got}{within}")
+            c = j.get("checks")
+            if c:
+                lr = c["level_ratio"]
+                inside = {None: "L not identified", True: "within", False: "OUTSIDE"}[c["within_trace_alpha"]]
+                print(f"  what the built level rests on, measured without a fit: the patches' spread alpha "
+                      f"{c['alpha']['trace']:.4f} (built {c['alpha']['built']:.4g}), so L at the record's own spread "
+                      f"{c['level_trace_alpha']:.4g} ({inside} the fitted interval); N c answered "
+                      f"{c['slope']['trace']:.5g} N s/m (built {c['slope']['built']:.5g}); the periodogram over the "
+                      f"built spectrum on {lr['band'][0]:.3g}-{lr['band'][1]:.3g} rad/s: {lr['ratio']:.4f} +- "
+                      f"{lr['se']:.4f} (1 s.e.)")
 
 
 if __name__ == "__main__":

@@ -4,16 +4,16 @@
     python -m compare.studies.null_tables combine [FILE ...] [--write] [--keep]
 
 ``run`` simulates ``best``'s records at parameter point POINT (:data:`POINTS`) with the point's sensor, seeds A to
-B - 1, fits ``best``'s family and every family nesting it as :func:`~compare.analysis.identify.identify` fits them
-(the nesting ones started from ``best``'s fit), and appends one JSON line per record to FILE (default
-study-results/null_tables/null_<POINT>_<S>s_<Hz>Hz[_<sensor>].jsonl, the name ``combine`` reads): the seed,
-``nll_<best>``, T = 2 (nll_best - nll_other) per nesting
-model, the parameters each held neutral and the seconds the record cost. ``combine`` reads such files (one per
-point; the files of one record length and step form one table per pair), compares the points' T by a two-sample
-Kolmogorov-Smirnov test and their 90 and 95 % quantiles, reads each point's records against the other point's table
-(the fraction of p < 0.05, with its binomial interval: a calibrated table gives 5 %), and prints the page; with
-``--write`` it writes compare/analysis/null_tables.json (the points pooled) and the generated part of
-docs/results/null_tables.md (the text after it is kept); ``--keep`` keeps the shipped tables of the record
+B - 1, fits ``best``'s family and every family nesting it as :func:`~compare.analysis.identify.identify` fits them (the
+nesting ones started from ``best``'s fit and from its maximum at their nesting point), and appends one JSON line per
+record to FILE (default study-results/null_tables/null_<POINT>_<S>s_<Hz>Hz[_<sensor>].jsonl, the name ``combine``
+reads): the seed, ``nll_<best>``, T = 2 (nll_best - nll_other) per nesting model (0 where negative:
+:func:`compare.analysis.null_tables.statistic`), the parameters each held neutral and the seconds the record cost.
+``combine`` reads such files (one per point; the files of one record length and step form one table per pair), compares
+the points' T by a two-sample Kolmogorov-Smirnov test and their 90 and 95 % quantiles, reads each point's records
+against the other point's table (the fraction of p < 0.05, with its binomial interval: a calibrated table gives 5 %),
+and prints the page; with ``--write`` it writes compare/analysis/null_tables.json (the points pooled) and the generated
+part of docs/results/null_tables.md (the text after it is kept); ``--keep`` keeps the shipped tables of the record
 lengths and steps no file covers.
 Run under ``nice -n 10``, one process per core.
 """
@@ -76,7 +76,7 @@ def one_record(point: str, duration: float, dt: float, seed: int, sensor: str) -
     fb = fit_family(rec, FAMILIES[best], v)
     row = {"seed": seed, f"nll_{best}": fb.nll}
     for m in NESTING:
-        f = fit_family(rec, FAMILIES[m], v, start_theta=fb.theta)
+        f = fit_family(rec, FAMILIES[m], v, start_theta=fb.theta, nested=fb)
         row[m] = null_tables.statistic(fb.nll, f.nll)
         row[m + "_held"] = list(f.held)
     row["sec"] = time.time() - t0

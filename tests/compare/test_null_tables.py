@@ -40,3 +40,9 @@ def test_the_table_gives_a_calibrated_p_value_on_fresh_model_I_records():
     rows = [one_record("reference", 200.0, 0.01, seed, "round") for seed in range(1000, 1020)]
     count = sum(table.p_value(r["model_Ib"]) < 0.05 for r in rows)
     assert count <= 3
+
+
+def test_the_statistic_is_the_doubled_gain_and_never_negative():
+    assert null_tables.statistic(10.0, 7.5) == pytest.approx(5.0)
+    # a richer family ending below the best (the ageing family without model I's unidentified inertia): no gain
+    assert null_tables.statistic(10.0, 10.28) == 0.0

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import frictionnoise as fn
-from compare.analysis.scene_mechanism import built_point, judge
+from compare.analysis.scene_mechanism import built_point, judge, level_checks
 
 
 @pytest.fixture(scope="module")
@@ -35,3 +35,22 @@ def test_judge_reports_each_identified_parameter_against_its_built_value(patches
         else:
             assert row["half_width"] > 0 and isinstance(row["within"], bool)
     assert "eq. A11" in j["cannot_separate"]
+    assert set(j["checks"]) >= {"alpha", "slope", "level_ratio", "level_trace_alpha", "within_trace_alpha"}
+
+
+def test_level_checks_measure_what_the_built_level_rests_on(patches_trace):
+    model, theta, v = built_point(patches_trace)
+    c = level_checks(patches_trace, theta, v)
+    # below the resonance model I's block answers the summed pad force as dv = -F / (N c): the scene's linear law,
+    # N = 30 pads of c = 10 N s/m (measured 299.94-299.96 on 60 s traces; 4 s hold 80 blocks of 50 ms)
+    assert c["slope"]["built"] == pytest.approx(300.0)
+    assert c["slope"]["trace"] == pytest.approx(300.0, rel=0.01)
+    # the record's own spread: 30 pads cross 20 patches each in 4 s; alpha^2's relative scatter over 600 patches is
+    # sqrt(1.8 / 600) = 5.5 %, so alpha lies within 15 % of the substrate's (more than five standard deviations)
+    assert c["alpha"]["built"] == 1.0 and c["alpha"]["trace"] == pytest.approx(1.0, rel=0.15)
+    assert c["level_trace_alpha"] == pytest.approx(theta["L"] * c["alpha"]["trace"] ** 2)
+    # the periodogram over the built spectrum between 2 v / a and omega_c / 2: about 300 ordinates, each exponential
+    # about its mean (s.e. ~6 %), and the level's own scatter over 600 patches (5.5 %): within 30 % of 1
+    lr = c["level_ratio"]
+    assert lr["band"] == pytest.approx([2 * v / 1e-3, theta["omega_c"] / 2])
+    assert 0.03 < lr["se"] < 0.1 and lr["ratio"] == pytest.approx(1.0, abs=0.3)
