@@ -110,7 +110,7 @@ def test_the_answers_measured_numbers_are_the_tables(page):
     bullets = text[text.index("The answer"):]
     start = bullets.index("\n- **")
     bullets = bullets[start:min(i for i in (bullets.find("\n- Not run"), bullets.find("\n## ")) if i > start)]
-    quoted = re.findall(r"\d[\d.e+-]* ± \d[\d.e+-]*\d", bullets)
+    quoted = re.findall(r"[+-]?\d[\d.e+-]* ± \d[\d.e+-]*\d", bullets)  # a paired rise keeps its sign
     assert len(quoted) >= 40, quoted
     assert [q for q in quoted if q not in cells] == []
 
