@@ -66,6 +66,8 @@ _BASE = ("model_I",)  # fitted first: the families below extend its spectrum and
 #   maximum at their nesting point, so that their gain over it is never negative (fit_family's ``nested``)
 _EXTENDS_I = ("model_Ib", "model_ageing")
 _TIE = 1.0  # information criteria closer than this rank as equal (a difference of 1 is no evidence either way)
+MIN_SAMPLES = 4096  # the shortest record ranked: 2^12 samples, the shortest length at which the exponent's coverage is
+# measured (docs/results/exponent_coverage.md); a level's scatter comes from eight segments of 512 samples each
 
 
 @dataclass(frozen=True)
@@ -411,6 +413,12 @@ def stationarity(x, dt: float, bands: int = 8, level: float = 0.01) -> dict:
             "bands": [[float(edges[i]), float(edges[i + 1])] for i in range(bands)]}
 
 
+def too_short(n: int) -> str:
+    """Why a record of ``n`` samples is not ranked, and what would help."""
+    return (f"the record holds {n} samples; the mechanism ranking needs at least {MIN_SAMPLES} (its families' corners "
+            f"and a level's scatter over eight segments): record longer, or at a higher sampling rate")
+
+
 def identify(x, dt: float | None = None, v: float | None = None, *, models=None, alpha: float = 0.05,
              stationary: bool | None = None, progress=None) -> list:
     """The registered models ranked for a displacement record, best first, with verdicts and parameters.
@@ -451,6 +459,8 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
     if dt is None or not (dt > 0 and math.isfinite(dt)):
         raise ValueError(f"the sampling step dt must be positive, in s (got {dt!r})")
     x = np.asarray(x, dtype=float)
+    if len(x) < MIN_SAMPLES:
+        raise ValueError(too_short(len(x)))
     if v is None and len(x) > 1:
         v = float((x[-1] - x[0]) / (dt * (len(x) - 1)))
     if len(x) > 4 * lines_mod.WINDOW:

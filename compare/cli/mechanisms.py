@@ -28,7 +28,7 @@ def mechanisms_of(data, v: float, flags=(), progress=None) -> dict:
     dict
         ``mechanisms`` (list), ``stationarity`` (dict or None) and ``mechanisms_note`` (str).
     """
-    from ..analysis.identify import identify, stationarity
+    from ..analysis.identify import MIN_SAMPLES, identify, stationarity, too_short
 
     if getattr(data, "segmented", False):
         return {"mechanisms": [], "stationarity": None,
@@ -37,6 +37,8 @@ def mechanisms_of(data, v: float, flags=(), progress=None) -> dict:
     if not v > 0:
         return {"mechanisms": [], "stationarity": None,
                 "mechanisms_note": _backward(v)}
+    if len(data.x) < MIN_SAMPLES:
+        return {"mechanisms": [], "stationarity": None, "mechanisms_note": f"no mechanism named: {too_short(len(data.x))}"}
     split = [f for f in flags if f.startswith("not stationary")]
     if split:
         return {"mechanisms": [], "stationarity": None, "mechanisms_note": f"no mechanism named: {split[0]}"}

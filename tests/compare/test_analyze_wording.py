@@ -35,3 +35,21 @@ def test_the_ranking_is_the_first_section_of_the_page_text():
     assert sec.title.startswith("Mechanisms")
     for line in ranking_lines(summary):
         assert line.replace("<", "&lt;").replace(">", "&gt;") in sec.html
+
+
+def test_a_record_too_short_for_the_ranking_gets_its_length_and_the_minimum():
+    # 200 samples (a tribometer's short stroke) used to end in numpy's broadcast error from the families' start
+    import numpy as np
+    import pytest
+
+    from compare.analysis.identify import MIN_SAMPLES, identify
+
+    class Record:
+        segmented = False
+        t = np.arange(200) * 1e-3
+        x = 1e-4 * t + 1e-9 * np.cumsum(np.cumsum(np.random.default_rng(0).standard_normal(200)))
+
+    note = mechanisms_of(Record(), 1e-4)["mechanisms_note"]
+    assert note.startswith("no mechanism named: the record holds 200 samples") and str(MIN_SAMPLES) in note
+    with pytest.raises(ValueError, match=f"holds 200 samples.*at least {MIN_SAMPLES}"):
+        identify(Record.x, 1e-3, 1e-4)
