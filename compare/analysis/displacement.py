@@ -48,7 +48,8 @@ class DisplacementAnalysis:
     fit_mu : PowerLawFit
         C_mu ~ omega^-(gamma - 4), fitted over the band of ``fit``.
     mu_rms : float
-        rms of mu over the resolved band (dimensionless).
+        rms of mu over the exponent's fitted band (dimensionless): omega^4 C_x weighs a sensor's white floor as
+        omega^4, so above the band, where the floor takes over, it would measure the sensor, not the friction.
     g : float
         Gravitational acceleration used for C_mu (m/s^2).
     mass : float or None
@@ -58,7 +59,7 @@ class DisplacementAnalysis:
     fit_F : PowerLawFit or None
         C_F ~ omega^-(gamma - 4), fitted over the band of ``fit``, when a mass was given.
     F_rms : float or None
-        rms of the force over the resolved band (N), when a mass was given.
+        rms of the force over the exponent's fitted band (N), when a mass was given (as ``mu_rms``).
     segments : SegmentSpectra or None
         The per-segment spectra of a record whose time stamps break (C_x is their combination), else None.
     segment_fits : list or None
@@ -85,6 +86,11 @@ class DisplacementAnalysis:
         """What was not computed, and why."""
         return [] if self.mass is not None else [C_F_NEEDS_MASS]
 
+    @property
+    def rms_band(self) -> list:
+        """The band (rad/s) ``mu_rms`` and ``F_rms`` integrate: the fitted band within the spectrum's frequencies."""
+        return [max(self.fit.band[0], self.C_x.omega_min), min(self.fit.band[1], self.C_x.omega_max)]
+
     def summary(self) -> dict:
         """The analysis as JSON-ready numbers.
 
@@ -93,13 +99,14 @@ class DisplacementAnalysis:
         dict
             ``gamma``, ``gamma_err``, ``band`` (rad/s), ``fit`` (C_x), ``fit_mu``, ``mean_velocity`` (m/s),
             ``zeta_rms_m`` (m) with ``zeta_rms_band`` (rad/s: the resolved band it integrates, from the Welch
-            segment's frequency step to the Nyquist frequency), ``mu_rms``; ``fit_F`` and ``F_rms_N`` (N) only when a
-            mass was given.
+            segment's frequency step to the Nyquist frequency), ``mu_rms`` with ``mu_rms_band`` (rad/s: the fitted band
+            within the spectrum's, which ``F_rms_N`` integrates too); ``fit_F`` and ``F_rms_N`` (N) only when a mass was
+            given.
         """
         s = {"kind": "displacement", "mass_kg": self.mass, "gamma": self.fit.gamma, "gamma_err": self.fit.gamma_err,
              "band": list(self.fit.band), "fit": self.fit.to_dict(), "mean_velocity": self.mean_velocity,
              "zeta_rms_m": self.zeta_rms, "zeta_rms_band": [self.C_x.omega_min, self.C_x.omega_max],
-             "fit_mu": self.fit_mu.to_dict(), "mu_rms": self.mu_rms, "g_m_per_s2": self.g,
+             "fit_mu": self.fit_mu.to_dict(), "mu_rms": self.mu_rms, "mu_rms_band": self.rms_band, "g_m_per_s2": self.g,
              "spectrum_steps": list(self.C_x.provenance["steps"]), "notes": self.notes}
         if self.fit_F is not None:
             s["fit_F"] = self.fit_F.to_dict()
@@ -107,6 +114,15 @@ class DisplacementAnalysis:
         if self.segment_fits is not None:
             s["segment_fits"] = self.segment_fits
         return s
+
+
+def _band_rms(spectrum, band) -> float:
+    """rms over ``band`` (rad/s, eq. 4), NaN where the band holds fewer than two of the spectrum's frequencies (a fit
+    whose band collapsed onto one ordinate)."""
+    try:
+        return rms_from_spectrum(spectrum, band=band)
+    except ValueError:
+        return float("nan")
 
 
 def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, method: str | None = None,
@@ -175,13 +191,15 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
     C_mu = friction_coefficient_spectrum(C_x, g)
     if fit_mu is None:
         fit_mu = with_line_flag(fit_power_law(C_mu, band=fit.band, method=fit.method), C_mu)
-    C_F = fit_F = F_rms = None
+    rb = (max(fit.band[0], C_x.omega_min), min(fit.band[1], C_x.omega_max))  # mu_rms's band: the fitted band within
+    C_F = fit_F = F_rms = None                                                 # the Welch spectrum's frequencies
     if mass is not None:
         C_F = force_spectrum(C_x, mass)
         fit_F = (fit.derived(4.0, mass**2, "F") if fit.method == "record" else
                  with_line_flag(fit_power_law(C_F, band=fit.band, method=fit.method), C_F))
-        F_rms = rms_from_spectrum(C_F)
+        F_rms = _band_rms(C_F, rb)
     return DisplacementAnalysis(C_x=C_x, fit=fit, mean_velocity=float(C_x.provenance["mean_velocity"]),
-                                zeta_rms=rms_from_spectrum(C_x), C_mu=C_mu, fit_mu=fit_mu, mu_rms=rms_from_spectrum(C_mu),
+                                zeta_rms=rms_from_spectrum(C_x), C_mu=C_mu, fit_mu=fit_mu,
+                                mu_rms=_band_rms(C_mu, rb),
                                 g=g, mass=mass, C_F=C_F, fit_F=fit_F, F_rms=F_rms, segments=segs,
                                 segment_fits=None if segs is None else segment_fits(segs, band=band, method=method))

@@ -111,7 +111,7 @@ def build_measured_report(an: DisplacementAnalysis, data):
     if data.timeline is not None:
         summary["timeline"] = data.timeline.summary()
     relation = (f"C_F = M^2 omega^4 C_x assumes the block is free (inertial relation, eq. 3), with M = {an.mass:g} kg: "
-                f"C_F ~ omega^-({fit_text(an.fit_F, 3)}), F_rms = {an.F_rms:.4g} N."
+                f"C_F ~ omega^-({fit_text(an.fit_F, 3)}), F_rms = {an.F_rms:.4g} N over the fitted band."
                 if an.mass is not None else esc(C_F_NEEDS_MASS) + ".")
     every = "in uniform segments (below)" if segs is not None else f"every {spec.provenance['dt']:.4g} s"
     text = paragraphs([
@@ -120,8 +120,9 @@ def build_measured_report(an: DisplacementAnalysis, data):
         f"gamma = {fit_text(fit, 3)} (95 %, {fit.method}) over "
         f"{span(fit.band[0], fit.band[1])} rad/s{' (automatic band)' if fit.band_auto else ''}"
         + (f" <b>not a power law: {esc('; '.join(fit.flags))}</b>" if fit.flags else "")
-        + f"; zeta_rms = {an.zeta_rms:.4g} m and mu_rms = {an.mu_rms:.4g} (dimensionless, C_mu = omega^4 C_x / g^2 "
-        "of a free block, whatever its mass) over the resolved band (eq. 4).",
+        + f"; zeta_rms = {an.zeta_rms:.4g} m over the resolved band (eq. 4) and mu_rms = {an.mu_rms:.4g} "
+        f"(dimensionless, C_mu = omega^4 C_x / g^2 of a free block, whatever its mass) over {span(*an.rms_band)} rad/s, "
+        "the fitted band (omega^4 weighs a sensor's white floor above it, which is not friction).",
         relation,
         "Processing: " + esc("; ".join(spec.provenance["steps"])) + ".",
     ]) + (timeline_html(data.timeline, an.segment_fits, segs.notes) if segs is not None else "")
@@ -133,7 +134,8 @@ def build_measured_report(an: DisplacementAnalysis, data):
         Figure("measured_Cmu", plots.figure_png_bytes(plots.spectrum_figure([(an.C_mu, "C_mu = omega^4 C_x / g^2")],
                                                                            ylabel=r"$C_\mu$ (s)",
                                                                            title="Friction coefficient spectrum")),
-               f"C_mu (s) = omega^4 C_x / g^2; mu_rms = {an.mu_rms:.3g} over the resolved band (eq. 4)."),
+               f"C_mu (s) = omega^4 C_x / g^2; mu_rms = {an.mu_rms:.3g} over {span(*an.rms_band)} rad/s, the fitted band "
+               "(eq. 4)."),
     ]
     if an.C_F is not None:
         figures.insert(1, Figure(

@@ -292,7 +292,7 @@ def test_a_mass_adds_C_F_and_changes_nothing_else():
     assert heavy.zeta_rms == bare.zeta_rms and heavy.mu_rms == bare.mu_rms and heavy.notes == []
     np.testing.assert_allclose(heavy.C_F.C, 4.0 * heavy.C_x.omega**4 * heavy.C_x.C, rtol=1e-12)
     assert heavy.fit_F.gamma == pytest.approx(bare.fit.gamma - 4, abs=1e-9)
-    assert heavy.F_rms == rms_from_spectrum(heavy.C_F)
+    assert heavy.F_rms == rms_from_spectrum(heavy.C_F, band=heavy.rms_band)  # over the fitted band, as mu_rms
     assert "fit_F" in heavy.summary() and "fit_F" not in bare.summary()
     with pytest.raises(ValueError, match="mass must be positive"):
         analyze_displacement(t, x, mass=float("nan"))

@@ -53,3 +53,27 @@ def test_a_record_too_short_for_the_ranking_gets_its_length_and_the_minimum():
     assert note.startswith("no mechanism named: the record holds 200 samples") and str(MIN_SAMPLES) in note
     with pytest.raises(ValueError, match=f"holds 200 samples.*at least {MIN_SAMPLES}"):
         identify(Record.x, 1e-3, 1e-4)
+
+
+def test_mu_rms_measures_the_friction_not_the_sensors_floor():
+    # omega^4 C_x weighs a white floor as omega^4: integrated to Nyquist, a 3 nm floor on an omega^-4 record of
+    # 2^14 samples at 1 kHz reads several times the floor-free mu_rms. Over the fitted band, which ends where the
+    # floor takes over, mu_rms is the friction's: C_mu of an omega^-4 record is flat, so the floor-free record's
+    # mu_rms over the noisy record's band is its own times sqrt of the bands' widths' ratio; within 15 % (two
+    # records' Welch scatter over ~900 rad/s).
+    import numpy as np
+
+    from compare.analysis.displacement import analyze_displacement
+    from compare.analysis.spectra import rms_from_spectrum
+    from compare.analysis.synthetic import power_law_record
+
+    n, dt = 2**14, 1e-3
+    t = np.arange(n) * dt
+    a = {floor: analyze_displacement(t, 1e-4 * t + power_law_record(n, dt, 4.0, prefactor=1e-9, floor_rms=floor, seed=3))
+         for floor in (0.0, 3e-9)}
+    clean, noisy = a[0.0], a[3e-9]
+    assert noisy.rms_band[1] < clean.rms_band[1] and noisy.summary()["mu_rms_band"] == noisy.rms_band
+    width = (noisy.rms_band[1] - noisy.rms_band[0]) / (clean.rms_band[1] - clean.rms_band[0])
+    assert abs(noisy.mu_rms / (clean.mu_rms * width**0.5) - 1) < 0.15, (clean.mu_rms, noisy.mu_rms, width)
+    to_nyquist = rms_from_spectrum(noisy.C_mu) / rms_from_spectrum(clean.C_mu)
+    assert to_nyquist > 2, to_nyquist  # what the floor made of mu_rms over the whole resolved range
