@@ -6,7 +6,7 @@ import pytest
 
 from compare.cli import main
 from compare.report.build import run_studies
-from compare.report.studies import model_II, model_III
+from compare.report.studies import model_ageing, model_III
 from engine_sim import load_scenario, shipped_scenarios
 from engine_sim.timing import step_costs
 
@@ -27,14 +27,21 @@ def _flat(d, prefix=""):
 
 @pytest.mark.slow  # report studies in worker processes
 def test_studies_in_workers_match_one_process():
-    studies = [model_III.STUDY, model_II.STUDY]
+    # Two seeded studies: model I with ageing contacts (about 1 s) listed before model III (tens of seconds, two
+    # results: N = 30 and N = 300). The pool starts the costlier first, so the results must come back in the listed
+    # order, not in the pool's; model III's two results test a study that returns several. Any seeded study tests
+    # "the same numbers": the cheapest pair that also tests the order and the several results is this one.
+    studies = [model_ageing.STUDY, model_III.STUDY]
+    labels = [st.label for st in studies]
     serial_events, pooled_events = [], []
     serial = run_studies(studies, True, 0, 1, lambda label, ev, wall=None: serial_events.append((label, ev)))
     pooled = run_studies(studies, True, 0, 2, lambda label, ev, wall=None: pooled_events.append((label, ev)))
-    assert serial_events == [("model III", "start"), ("model III", "done"), ("model II", "start"), ("model II", "done")]
+    assert serial_events == [(labels[0], "start"), (labels[0], "done"), (labels[1], "start"), (labels[1], "done")]
     assert sorted(pooled_events) == sorted(serial_events)
-    assert [r.key for rs in serial for r in rs] == ["model_III", "model_III_N300", "model_II"]
-    for res_a, res_b in zip(serial, pooled):
+    assert pooled_events[0] == (labels[1], "start")  # the costliest first
+    assert [r.key for rs in serial for r in rs] == ["models/model_ageing", "model_III", "model_III_N300"]
+    for res_a, res_b in zip(serial, pooled, strict=True):
+        assert len(res_a) == len(res_b)
         for a_, b_ in zip(res_a, res_b):
             assert (a_.key, a_.title) == (b_.key, b_.title)
             a, b = _flat(a_.numbers), _flat(b_.numbers)

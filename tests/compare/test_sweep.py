@@ -25,7 +25,9 @@ def _small(tmp_path, n_v=3, duration=60.0, seeds=(0, 1)):
 
 @pytest.mark.slow  # dask cluster / long model I runs
 def test_dask_local_cluster_equals_serial_bit_for_bit(tmp_path):
-    spec = load_sweep(_small(tmp_path))
+    # 30 s tasks (about 2 s each with their fits): what is compared is every number a task stores, and a task of
+    # any length has the same ones (its spectrum and its record-model fit)
+    spec = load_sweep(_small(tmp_path, duration=30.0))
     a = run_sweep(spec, tmp_path / "serial", serial=True)
     b = run_sweep(spec, tmp_path / "dask", workers=2)
     assert a["done"] == b["done"] == len(expand(spec)) == 6 and a["failed"] == b["failed"] == 0
@@ -38,9 +40,10 @@ def test_dask_local_cluster_equals_serial_bit_for_bit(tmp_path):
 
 @pytest.mark.slow  # dask cluster / long model I runs
 def test_killed_sweep_reruns_only_missing_tasks(tmp_path):
-    # 60 s tasks (6e4 samples: a few seconds each with their record-model fits) are long enough for the kill to land
-    # between the second and the last task; the claim is the resume's bookkeeping, not the physics
-    spec_path = _small(tmp_path, n_v=6, duration=60.0, seeds=(0,))
+    # 30 s tasks (3e4 samples: about 2 s each with their record-model fits) leave the kill, sent within 0.05 s of
+    # the second task's file, seconds before the last task ends; the claim is the resume's bookkeeping, not the
+    # physics, so the tasks need be no longer than that
+    spec_path = _small(tmp_path, n_v=6, duration=30.0, seeds=(0,))
     out = tmp_path / "out"
     cmd = [sys.executable, "-m", "compare.cli", "sweep", str(spec_path), "--serial", "-o", str(out)]
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

@@ -1,8 +1,8 @@
 """The speed harness's comparison of two trees (``--benchmark-against``, benchmarks/conftest.py): the two trees'
 workers run each entry round by round, and an entry is flagged when the median over its paired rounds of new / base
-CPU time exceeds 1.10 (docs/explanation/benchmarks.md). Compared with itself, the tree passes; with one benchmark
-made 20 % slower (FRICTIONNOISE_BENCH_SLOWDOWN, in the new tree's worker only) that benchmark alone is flagged. No
-quiet machine is needed: both trees see the same load within a round.
+CPU time exceeds 1.10 (docs/explanation/benchmarks.md). The tree is compared with itself, one benchmark made 20 %
+slower (FRICTIONNOISE_BENCH_SLOWDOWN, in the new tree's worker only): that benchmark alone is flagged, the unchanged
+one beside it passes. No quiet machine is needed: both trees see the same load within a round.
 
 Measured on this 2-core machine while other sessions ran (load average 9-21; a comparison of the two entries took
 2-7 min at that load): unchanged, the entries' medians read 0.966-1.015 (6 comparisons, 12 entries, none flagged);
@@ -39,15 +39,16 @@ def compare_with_itself(slowdown=None):
     return r, {m[1]: tuple(float(x) for x in m.groups()[1:]) for m in LINE.finditer(r.stdout)}
 
 
-@pytest.mark.slow  # four worker processes per entry and comparison (2-6 min in all at load 9-21)
+@pytest.mark.slow  # four worker processes per entry
 def test_unchanged_passes_and_an_injected_20_percent_slowdown_is_flagged():
-    same, ratios = compare_with_itself()
-    assert same.returncode == 0 and set(ratios) == {"test_model_III", "test_model_II"}, same.stdout[-3000:]
-    assert all(m <= 1.10 for m, _, _ in ratios.values()), ratios  # the rule: flagged above 1.10
+    # One comparison of the tree with itself, model III slowed by 20 % in the new tree's worker: model II beside it
+    # is the unchanged comparison (the same code on both sides, its own worker pairs, the same machine), so one run
+    # shows both halves of the rule. A second run with nothing slowed would start four more workers per entry and
+    # test nothing model II does not: the entries are compared one after the other, each by its own workers.
     slow, ratios = compare_with_itself("test_model_III=0.2")
     out = slow.stdout
     assert slow.returncode == 1 and set(ratios) == {"test_model_III", "test_model_II"}, out[-3000:]
-    assert ratios["test_model_III"][0] > 1.10 and ratios["test_model_II"][0] <= 1.10, ratios
+    assert ratios["test_model_III"][0] > 1.10 and ratios["test_model_II"][0] <= 1.10, ratios  # flagged above 1.10
     assert "FAILED benchmarks/bench_models_2_3.py::test_model_III " in out
     assert "FAILED benchmarks/bench_models_2_3.py::test_model_II " not in out
 
