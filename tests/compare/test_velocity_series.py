@@ -1,5 +1,6 @@
 """A velocity series of measured displacement records: C_x(omega) against v, its exponent, the q = omega / v collapse
-and model I's level (eq. 6), on synthetic records with C_x = K v^beta omega^-4 exactly."""
+and model I's level (eq. 6), on synthetic records with C_x = K v^beta omega^-4 exactly (the sampled process, folded at
+Nyquist)."""
 import json
 
 import numpy as np
@@ -12,11 +13,13 @@ SPEEDS = (2e-4, 5e-4, 1.25e-3)  # m/s, a factor 6.25 in v
 
 
 def _records(beta, seed0=0):
-    """Three records x = v t + zeta, zeta with C_x = K v^beta omega^-4 (Fourier synthesis, one K for all)."""
-    from tests.synthetic import power_law_record
+    """Three records x = v t + zeta, zeta the sampled process of C_x = K (v / v0)^beta omega^-4 exactly (folded at
+    Nyquist, circulant embedding: compare.analysis.synthetic.power_law_record), K = 1e-19 m^2 s (rad/s)^4 (0.1 um
+    rms) and v0 = 0.5 mm/s for all three."""
+    from compare.analysis.synthetic import power_law_record
 
     t = np.arange(N) * DT
-    return [(t, v * t + np.sqrt(1e-12 * (v / 5e-4) ** beta) * power_law_record(N, DT, 4.0, seed=seed0 + i))
+    return [(t, v * t + power_law_record(N, DT, 4.0, prefactor=1e-19 * (v / 5e-4) ** beta, seed=seed0 + i))
             for i, v in enumerate(SPEEDS)]
 
 
