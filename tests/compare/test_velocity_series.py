@@ -44,8 +44,7 @@ def test_velocity_exponent_is_recovered_within_its_interval(beta, analyses):
     # truth must lie in the 95 % interval (a 5 % chance per case if the interval is honest; the band-averaging
     # error counts only half the Welch ordinates as independent, so it is conservative). Measured over 30 other seed
     # sets (seed0 = 100, 103, ..., 187) at beta = 5/3: mean 1.663, sd 0.023, median half-width 0.022 (omega* from
-    # 12 to 64 rad/s: the sets far from the mean have wider intervals); 30/30 covered; none took the
-    # residual-scatter interval; each record's gamma 3.998 +- 0.033 (sd).
+    # 12 to 64 rad/s); 30/30 covered; none took the residual-scatter interval; each record's gamma 3.998, sd 0.033.
     from compare.analysis.velocity_series import velocity_series
 
     s = velocity_series(analyses(beta))
