@@ -3,8 +3,6 @@ export as they are read, then the lines that close ``frictionnoise analyze`` (st
 fits; everything is also in summary.json)."""
 from __future__ import annotations
 
-from compare.analysis.record_model import band_end_words
-
 __all__ = ["print_breaks", "force_lines", "displacement_lines"]
 
 
@@ -37,6 +35,8 @@ def _floor_text(f: dict) -> str:
     law in another shape (a resonance's approach, a corner), named as such and not as a floor."""
     if "floor" not in f:
         return ""
+    from compare.analysis.record_model import band_end_words  # here: the CLI starts without scipy.stats
+
     rms, cross = f.get("floor_rms") or 0.0, f.get("crossover")
     end = f.get("band_end") or ("floor" if rms > 0 and cross is not None and cross <= f["band"][1] * (1 + 1e-9)
                                 else "last frequency")
