@@ -40,12 +40,14 @@ from scipy import stats
 from .power_floor import PowerFloorProfile, above_rounding, bend_p, interval, keep_band, level_cov, minimum
 from .whittle import MAX_ORDER, WhittleRecord, order_for
 
-__all__ = ["RecordFit", "fit_record", "fit_series", "expected_gamma", "split_p", "TEST_LEVEL", "SCREEN_LEVEL", "GAMMA_MIN", "check_record"]
+__all__ = ["RecordFit", "fit_record", "fit_series", "expected_gamma", "split_p", "TEST_LEVEL", "SCREEN_LEVEL",
+           "GAMMA_MIN", "check_record", "band_end_words", "BAND_ENDS"]
 
 TEST_LEVEL = 0.01  # the bend, split and split-half tests flag a record (or cut a band) below it
 SCREEN_LEVEL = 0.1  # below it the bend test (a score test: no refit) hands the band to the split test (refits)
 GAMMA_MIN = 1.05  # a sampled omega^-gamma with gamma <= 1 has infinite variance (its folded sum diverges)
 _HEADROOM = 0.95  # gamma < 2k + 0.95: the differenced spectrum's zero-frequency peak omega^-0.95 is still integrable
+BAND_ENDS = ("floor", "departure", "last frequency", "given")  # what ends the identified band (RecordFit.band_end)
 
 
 @dataclass(frozen=True)
@@ -59,7 +61,12 @@ class RecordFit:
     p-value; ``bend_p``: the bend test's. ``segments``: when the band was searched, every band kept as one power law,
     (low, high, gamma, gamma_low, gamma_high, differencing order), in rising frequency; the fit is the one of them
     with the most Fourier ordinates. ``fit_band``: the band whose ordinates were fitted (rad/s; given or searched;
-    empty when every ordinate was), the one to hand :func:`expected_gamma`.
+    empty when every ordinate was), the one to hand :func:`expected_gamma`. ``band_end``: what ends the identified
+    band at its top (:data:`BAND_ENDS`): ``"floor"`` when the fitted floor crosses the power law inside the fitted
+    ordinates (the flat ordinates above the crossover were fitted as white); ``"departure"`` when the band search cut
+    the band below the record's highest frequency (the spectrum above departs from this power law in another shape:
+    a resonance's approach, a corner; a floor term fitted inside the band lies below the power law there);
+    ``"last frequency"`` when the band reaches the highest Fourier frequency; ``"given"`` when the band was given.
     """
 
     gamma: float
@@ -84,6 +91,7 @@ class RecordFit:
     level_cov: tuple = ()
     segments: tuple = ()
     fit_band: tuple = ()
+    band_end: str = "last frequency"
 
     @property
     def gamma_err(self) -> float:
@@ -175,16 +183,57 @@ class RecordFit:
                 "band_auto": self.band_auto, "n_points": self.n_points,
                 "segments": [{"band": [a, b], "gamma": g, "gamma_interval": [lo, hi], "differencing_order": k}
                              for a, b, g, lo, hi, k in self.segments],
-                "fit_band": list(self.fit_band) if self.fit_band else None}
+                "fit_band": list(self.fit_band) if self.fit_band else None, "band_end": self.band_end}
 
     def __str__(self) -> str:
         flag = f" [NOT A POWER LAW: {'; '.join(self.flags)}]" if self.flags else ""
-        floor = (f"; floor {self.floor_rms:.3g} rms, over the power law above {self.crossover:.3g} rad/s"
-                 if self.floor > 0 and math.isfinite(self.crossover) else
-                 f"; floor {self.floor_rms:.3g} rms" if self.floor > 0 else "; no floor resolved")
+        floor = band_end_words(self.band_end, self.floor_rms, self.crossover, self.band[1], self.gamma,
+                               [s[:3] for s in self.segments])
         return (f"gamma = {self.gamma:.3f} +- {self.gamma_err:.3f} (95 % [{self.gamma_low:.3f}, {self.gamma_high:.3f}], "
                 f"debiased Whittle) over {self.band[0]:.3g}-{self.band[1]:.3g} rad/s ({self.decades:.1f} decades)"
                 f"{floor}{flag}")
+
+
+def band_end_words(end: str, floor_rms: float, crossover, top: float, gamma: float, segments=(), unit: str = "") -> str:
+    """The floor and what ends the identified band, as the clause that follows an exponent ("; ...").
+
+    Parameters
+    ----------
+    end : str
+        :attr:`RecordFit.band_end` (one of :data:`BAND_ENDS`).
+    floor_rms : float
+        The fitted floor's rms (the record's unit; 0 without a floor).
+    crossover : float or None
+        Where the power law meets the floor (Units: rad/s; None or inf without a floor).
+    top : float
+        The identified band's upper end (Units: rad/s).
+    gamma : float
+        The fitted exponent, compared with the next kept band's.
+    segments : sequence of (low, high, gamma), optional
+        The kept bands of the band search (rad/s): the first one starting at ``top`` or above is named as what
+        follows a departure.
+    unit : str, optional
+        The floor's unit, with its leading space (``" m"``).
+
+    Returns
+    -------
+    str
+        ``"; white floor ..., over the power law above ... rad/s: the floor ends the band"``, or the floor below the
+        power law (or none) followed, for a departure, by where and how the spectrum leaves the power law.
+    """
+    if end == "floor":
+        return (f"; white floor {floor_rms:.3g}{unit} rms, over the power law above {crossover:.3g} rad/s: the floor "
+                "ends the band")
+    if end != "departure":
+        return (f"; white floor {floor_rms:.3g}{unit} rms, below the power law over the whole band" if floor_rms > 0
+                else "; no white floor detected")
+    nxt = next((s for s in segments if s[0] >= top * (1 - 1e-9)), None)
+    shape = ("no band of a decade above it holds one power law" if nxt is None else
+             f"{'steeper' if nxt[2] > gamma else 'flatter'} above: {nxt[2]:.2f} over {nxt[0]:.3g}-{nxt[1]:.3g} rad/s")
+    floor = (f"; a floor term of {floor_rms:.3g}{unit} rms fitted inside the band, below the power law there"
+             if floor_rms > 0 else "; no white floor detected")
+    return (f"{floor}; the band ends at {top:.3g} rad/s, where the spectrum departs from this power law in another "
+            f"shape, not at a white floor ({shape})")
 
 
 def _pilot(x: np.ndarray, dt: float) -> float:
@@ -407,7 +456,7 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
         rec, prof, res = _fit_order(x, dt, k, floor, band)
     g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
     bend = bend_p(prof, g, t)
-    searched, split_flag, segments = False, None, ()
+    searched, split_flag, segments, cut_above = False, None, (), False
     if band is None and bend < SCREEN_LEVEL:
         searched = True
         whole = (float(rec.omega[0]), float(rec.omega[-1]))
@@ -420,6 +469,7 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
             rec, prof, res, bend, trimmed, segments = narrowed
             g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
             k = rec.order
+            cut_above = trimmed[1] < whole[1]
             notes.append(f"one power law does not fit every frequency (bend test p = {bend_whole:.2g}); "
                          f"fitted over {trimmed[0]:.3g}-{trimmed[1]:.3g} rad/s, of the bands where a split test "
                          f"(likelihood ratio at knots every quarter decade, Bonferroni, p >= {TEST_LEVEL:g}) finds "
@@ -436,6 +486,7 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
     w0, w1 = float(prof.omega[0]), float(prof.omega[-1])
     cross = (A / B) ** (1.0 / g) if B > 0 else math.inf
     band_out = (w0, float(min(cross, w1)))
+    end = ("floor" if cross < w1 else "given" if not auto else "departure" if cut_above else "last frequency")
     flags = []
     if (wall_lo and g - lo < 1e-3 and lo > GAMMA_MIN) or (wall_hi and hi - g < 1e-3):
         flags.append(f"gamma is not identified: the estimate sits at the fitted range's limit {lo if wall_lo else hi:.2f} "
@@ -455,7 +506,7 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
                      n_samples=len(x), nll=nll, stationarity_p=p, bend_p=bend, quantity=quantity,
                      flags=tuple(flags), notes=tuple(notes), band_auto=auto, n_points=prof.m,
                      level_cov=level_cov(prof, g, t), segments=segments,
-                     fit_band=tuple(map(float, band)) if band is not None else ())
+                     fit_band=tuple(map(float, band)) if band is not None else (), band_end=end)
 
 
 def expected_gamma(spectrum, fit: RecordFit, dt: float, band=None, floor: bool = True, sampled: bool = True) -> float:

@@ -29,16 +29,19 @@ def _fit_text(f: dict) -> str:
 
 
 def _floor_text(f: dict) -> str:
-    """The record model's white floor in words: none detected, below the power law over the whole band, or over it
-    above its crossover."""
+    """The record model's white floor and what ends its band, in words
+    (:func:`compare.analysis.record_model.band_end_words`): no floor detected, a floor below the power law over the
+    whole band, a floor that ends the band at its crossover, or a band cut where the spectrum departs from the power
+    law in another shape (a resonance's approach, a corner), named as such and not as a floor."""
     if "floor" not in f:
         return ""
+    from compare.analysis.record_model import band_end_words  # here: the CLI starts without scipy.stats
+
     rms, cross = f.get("floor_rms") or 0.0, f.get("crossover")
-    if not rms > 0:
-        return "; no white floor detected"
-    if cross is None or not cross < float("inf"):
-        return f"; white floor {rms:.3g} m rms, below the power law over the whole band"
-    return f"; white floor {rms:.3g} m rms, over the power law above {cross:.3g} rad/s"
+    end = f.get("band_end") or ("floor" if rms > 0 and cross is not None and cross <= f["band"][1] * (1 + 1e-9)
+                                else "last frequency")
+    segments = [(s["band"][0], s["band"][1], s["gamma"]) for s in f.get("segments") or []]
+    return band_end_words(end, rms, cross, f["band"][1], f["gamma"], segments, " m")
 
 
 def _flags_text(f: dict) -> str:

@@ -10,8 +10,26 @@ def test_a_floor_that_is_absent_or_never_reached_is_said_so():
     assert "no white floor detected" in _fit_text({**FIT, "floor": 0.0, "floor_rms": 0.0, "crossover": None})
     below = _fit_text({**FIT, "floor": 1e-30, "floor_rms": 1e-12, "crossover": None})
     assert "below the power law over the whole band" in below and "inf" not in below
-    assert "over the power law above 250 rad/s" in _fit_text({**FIT, "floor": 1e-24, "floor_rms": 7.9e-11,
-                                                              "crossover": 250.0})
+    ends = _fit_text({**FIT, "band": [1.0, 250.0], "floor": 1e-24, "floor_rms": 7.9e-11, "crossover": 250.0,
+                      "band_end": "floor"})
+    assert "over the power law above 250 rad/s: the floor ends the band" in ends
+
+
+def test_a_band_cut_below_a_resonance_is_not_said_to_end_at_a_floor():
+    # The band search cut the band at 166 rad/s (a resonance's approach above it); the floor term fitted inside the
+    # band would cross the power law only at 611 rad/s, beyond the band: the words name the departure and the band
+    # above it, not a floor taking over.
+    fit = {**FIT, "gamma": 3.96, "band": [1.66, 166.0], "floor": 1e-26, "floor_rms": 1.2e-10, "crossover": 611.0,
+           "band_end": "departure", "segments": [
+               {"band": [1.66, 166.0], "gamma": 3.96, "gamma_interval": [3.9, 4.0], "differencing_order": 2},
+               {"band": [166.0, 3140.0], "gamma": 9.31, "gamma_interval": [9.1, 9.5], "differencing_order": 5}]}
+    text = _fit_text(fit)
+    assert "over the power law above" not in text and "611" not in text, text
+    assert "the band ends at 166 rad/s, where the spectrum departs from this power law" in text, text
+    assert "not at a white floor (steeper above: 9.31 over 166-3.14e+03 rad/s)" in text, text
+    assert "floor term of 1.2e-10 m rms fitted inside the band, below the power law there" in text, text
+    alone = _fit_text({**fit, "floor": 0.0, "floor_rms": 0.0, "segments": fit["segments"][:1]})
+    assert "no white floor detected" in alone and "no band of a decade above it holds one power law" in alone
 
 
 def test_the_exponent_and_the_ranking_label_their_plus_minus_alike():

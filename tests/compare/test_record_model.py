@@ -50,6 +50,8 @@ def test_levels_of_a_long_record():
     assert f.crossover == pytest.approx((rms**2 * DT / (2 * math.pi)) ** (-1 / 4), rel=0.1)
     assert f.band[1] == pytest.approx(f.crossover)
     assert f.order == 2 and f.power_law
+    assert f.band_end == "floor"
+    assert f"over the power law above {f.crossover:.3g} rad/s: the floor ends the band" in str(f)
 
 
 def test_a_clean_power_law_is_identified_over_every_frequency():
@@ -57,6 +59,7 @@ def test_a_clean_power_law_is_identified_over_every_frequency():
     # 3.3 at 2^12 samples (the band must span a decade from 2^12 samples on).
     f = fit_record(power_law_record(4096, DT, 6.0, seed=2), DT)
     assert f.decades > 3.0 and f.order == 3
+    assert f.band_end == "last frequency" and "departs" not in str(f) and "ends the band" not in str(f)
 
 
 def test_given_band_restricts_the_ordinates():
@@ -65,6 +68,7 @@ def test_given_band_restricts_the_ordinates():
     w = 2 * math.pi / (4094 * DT) * np.arange(1, 2047)  # twice differenced: 4094 samples
     assert f.n_points == int(np.sum((w >= 10.0) & (w <= 100.0)))
     assert not f.band_auto and 10.0 <= f.band[0] < f.band[1] <= 100.0
+    assert f.band_end == "given"
     with pytest.raises(ValueError, match="holds 0 Fourier frequencies"):
         fit_record(x, DT, band=(1000.0, 1000.5))
 
@@ -187,6 +191,12 @@ def test_a_searched_band_is_fitted_at_its_own_differencing_order():
     tr = spring_block.simulate(p, 30.0, 1e-3, seed=1)
     f = fit_record(tr.x, 1e-3, stationarity=False)
     assert f.power_law and f.fit_band and f.fit_band[1] < spring_block.crossover_frequency(p)
+    # What ends the band is the resonance's approach, a departure of another shape: the words say so and name the
+    # band above, and do not call it a floor taking over (a floor term may be fitted inside the band, below it).
+    text = str(f)
+    assert f.band_end == "departure" and f.band[1] == pytest.approx(f.fit_band[1], rel=0.01), (f.band, f.crossover)
+    assert f"the band ends at {f.band[1]:.3g} rad/s, where the spectrum departs" in text, text
+    assert "not at a white floor" in text and "over the power law above" not in text, text
     for _, _, g, lo, hi, k in f.segments:  # no kept band's interval at its order's limits
         assert 2 * k - 3 + 1e-3 < lo or k == 1, f.segments
         assert hi < 2 * k + 0.95 - 1e-3, f.segments
