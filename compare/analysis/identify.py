@@ -66,8 +66,9 @@ _BASE = ("model_I",)  # fitted first: the families below extend its spectrum and
 #   maximum at their nesting point, so that their gain over it is never negative (fit_family's ``nested``)
 _EXTENDS_I = ("model_Ib", "model_ageing")
 _TIE = 1.0  # information criteria closer than this rank as equal (a difference of 1 is no evidence either way)
-MIN_SAMPLES = 4096  # the shortest record ranked: 2^12 samples, the shortest length at which the exponent's coverage is
-# measured (docs/results/exponent_coverage.md); a level's scatter comes from eight segments of 512 samples each
+MIN_SAMPLES = 4000  # the shortest record ranked: 4 s at 1 kHz, about the shortest length at which the exponent's
+# coverage is measured (2^12 = 4096, docs/results/exponent_coverage.md); a level's scatter comes from eight segments
+# of 500 samples each
 
 
 @dataclass(frozen=True)
