@@ -89,7 +89,7 @@ class DisplacementAnalysis:
     @property
     def rms_band(self) -> list:
         """The band (rad/s) ``mu_rms`` and ``F_rms`` integrate: the fitted band within the spectrum's frequencies."""
-        return [max(self.fit.band[0], self.C_x.omega_min), min(self.fit.band[1], self.C_x.omega_max)]
+        return list(_rms_band(self.fit, self.C_x))
 
     def summary(self) -> dict:
         """The analysis as JSON-ready numbers.
@@ -114,6 +114,11 @@ class DisplacementAnalysis:
         if self.segment_fits is not None:
             s["segment_fits"] = self.segment_fits
         return s
+
+
+def _rms_band(fit, C_x) -> tuple:
+    """The fitted band within the Welch spectrum's frequencies (rad/s): what mu_rms and F_rms integrate."""
+    return max(fit.band[0], C_x.omega_min), min(fit.band[1], C_x.omega_max)
 
 
 def _band_rms(spectrum, band) -> float:
@@ -191,8 +196,8 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
     C_mu = friction_coefficient_spectrum(C_x, g)
     if fit_mu is None:
         fit_mu = with_line_flag(fit_power_law(C_mu, band=fit.band, method=fit.method), C_mu)
-    rb = (max(fit.band[0], C_x.omega_min), min(fit.band[1], C_x.omega_max))  # mu_rms's band: the fitted band within
-    C_F = fit_F = F_rms = None                                                 # the Welch spectrum's frequencies
+    rb = _rms_band(fit, C_x)
+    C_F = fit_F = F_rms = None
     if mass is not None:
         C_F = force_spectrum(C_x, mass)
         fit_F = (fit.derived(4.0, mass**2, "F") if fit.method == "record" else
