@@ -88,18 +88,10 @@ def installed(tmp_path_factory):
 
 
 @pytest.fixture(scope="session")
-def installed_quick_report(installed):
-    """(folder, wall s) of `frictionnoise report --quick` (the README's main job: the models and the headline
-    scenes) from the installed package, once per session: read by tests/project/test_install.py."""
-    from tests.installed import quick_report
-
-    return quick_report(installed)
-
-
-@pytest.fixture(scope="session")
 def installed_all_scenes_report(installed):
-    """(folder, wall s) of `frictionnoise report --quick --all-scenes` (every shipped scene at its quick length)
-    from the installed package, once per session: read by tests/project/test_install.py and tests/compare/test_report_cli.py."""
+    """(folder, wall s) of `frictionnoise report --quick --all-scenes` (the README's quick report with every shipped
+    scene at its quick length) from the installed package, once per session: read by tests/project/test_install.py
+    and tests/compare/test_report_cli.py."""
     from tests.installed import quick_report
 
     return quick_report(installed, "--all-scenes", out="rep-all")
@@ -126,6 +118,12 @@ def pytest_collection_modifyitems(config, items):
     if stray:
         raise pytest.UsageError(f"tests marked timing but not slow (the timing group is part of the slow tier): "
                                 f"{', '.join(stray)}")
+    # The extended tests (full-size re-measurements of a study, left out of CI's run: README, .ci/run) are part of the
+    # slow tier and of its group on both cores: one marked timing would run in no group.
+    stray = [it.nodeid for it in items if it.get_closest_marker("extended")
+             and (not it.get_closest_marker("slow") or it.get_closest_marker("timing"))]
+    if stray:
+        raise pytest.UsageError(f"tests marked extended must be slow and not timing: {', '.join(stray)}")
     # Under pytest-xdist with --dist loadgroup: tests that share a module- or session-scoped fixture of this folder
     # (a 60 s scene run, the install, a quick report) go to one worker, so the fixture is built once, not once
     # per worker. Groups are the connected sets of tests linked by such fixtures (found, not listed by hand).

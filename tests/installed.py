@@ -1,6 +1,7 @@
-"""A non-editable install of this checkout into a fresh venv, and its quick report: built once per test session
-(the fixtures ``installed`` and ``installed_quick_report`` in conftest.py), shared by tests/project/test_install.py and
-tests/compare/test_report_cli.py (one quick report per CI run instead of two: it costs about 2 min on 2 cores)."""
+"""A non-editable install of this checkout into a fresh venv, and its quick report of every scene: built once per
+test session (the fixtures ``installed`` and ``installed_all_scenes_report`` in conftest.py), shared by
+tests/project/test_install.py and tests/compare/test_report_cli.py (one installed report per CI run: it keeps both
+cores busy for one to two minutes)."""
 import shutil
 import site
 import subprocess

@@ -67,6 +67,15 @@ def test_page_has_contents_anchors_and_numbered_captions():
     assert "(figures/stub_b.png)" in html
 
 
+def test_a_quick_page_says_how_to_get_every_other_scene():
+    # `report --quick` runs the headline scenes only; its page names `--quick --all-scenes` for the others (the
+    # installed report's test reads an all-scenes run, which has no such line)
+    quick = page(_stub(True, 0), {"version": "v", "seed": 0, "quick": True, "all_scenes": False})
+    every = page(_stub(True, 0), {"version": "v", "seed": 0, "quick": True, "all_scenes": True})
+    assert "<code>--quick --all-scenes</code> adds every other shipped scene" in quick
+    assert "--all-scenes" not in every and "quick mode (shorter runs)" in every
+
+
 def test_build_report_with_stub_study_writes_every_file(tmp_path):
     events = []
     results, summary = build_report(quick=True, seed=2, studies=[STUB],

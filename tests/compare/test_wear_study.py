@@ -143,6 +143,8 @@ def _paired_rise(track, seed=0):
 
 
 @pytest.mark.slow
+@pytest.mark.extended  # four 12 s scene runs with grains (about 2 min of CPU); CI runs the same cell against its twin
+# at 3.5 s in tests/project/test_study_pages.py::test_wear_quick_study_rows_rebuild
 @pytest.mark.parametrize("track", ["smooth", "cavities"])
 def test_cell_with_particles_against_its_twin(track):
     d, err, ratio, cell, twin = _paired_rise(track)

@@ -36,6 +36,8 @@ def test_grain_step_rule_is_the_measured_clean_branch():
 
 
 @pytest.mark.slow
+@pytest.mark.extended  # the grain scene at three iteration counts and two steps (about a minute of CPU); CI checks
+# the step rule it rests on above
 def test_shipped_grain_mass_is_converged_in_iterations_and_dt():
     sc = load_scenario(shipped_scenarios()["pads_with_wear"]).with_run(duration=4.0, warmup=1.0)
     assert sc.wear.min_mass == 1e-4 and sc.run.iterations == 20 and grain_step(sc)["dt_step"] == 5e-5  # the measured setting

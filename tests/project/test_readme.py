@@ -62,3 +62,43 @@ def test_plain_install_sentence_matches_what_is_installed():
     assert "compare.studies*" in found["exclude"], found
     assert (root / "benchmarks/__init__.py").exists()
     assert "def install_non_editable" in (root / "tests/installed.py").read_text()
+
+
+def _extended_tests(root: Path) -> list:
+    """(file, line, count) of each test function marked ``extended`` under tests/: its count of collected tests is
+    the product of its ``parametrize`` lists' lengths."""
+    import ast
+
+    out = []
+    for path in sorted((root / "tests").rglob("test_*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if not isinstance(node, ast.FunctionDef):
+                continue
+            marks = [d for d in node.decorator_list if isinstance(d, (ast.Attribute, ast.Call))]
+            names = [ast.unparse(d.func if isinstance(d, ast.Call) else d) for d in marks]
+            if "pytest.mark.extended" in names:
+                count = 1
+                for d in marks:
+                    if isinstance(d, ast.Call) and ast.unparse(d.func) == "pytest.mark.parametrize":
+                        count *= len(d.args[1].elts)
+                line = next(d.lineno for d, n in zip(marks, names) if n == "pytest.mark.extended")
+                out.append((path, line, count))
+    return out
+
+
+def test_readme_names_the_extended_tests_ci_leaves_out():
+    # The README's test command leaves the `extended` tests out and says how many there are and how to run them;
+    # CI runs the README's command (.ci/run), and every extended test says which smaller test CI runs in its place
+    # (a comment on its marker line or the one below).
+    text = README.read_text(encoding="utf-8")
+    root = README.parent
+    words = {"Five": 5, "Six": 6, "Seven": 7, "Eight": 8, "Nine": 9, "Ten": 10}
+    m = re.search(r"(\w+) tests that re-measure a study at full size", text)
+    assert m and m.group(1) in words, "the README names the count of extended tests"
+    assert '-m "slow and not timing and not extended"' in text and "-m extended" in text
+    assert '-m "slow and not timing and not extended"' in (root / ".ci" / "run").read_text()
+    found = _extended_tests(root)
+    assert sum(c for _, _, c in found) == words[m.group(1)], found
+    for path, line, _ in found:
+        lines = path.read_text().splitlines()
+        assert "CI" in lines[line - 1] + " " + lines[line], (path, line)

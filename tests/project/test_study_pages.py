@@ -16,6 +16,8 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.mark.slow  # 200 record-model fits of 4096 samples and the spectrum-and-band fits beside them (1-2 min)
+@pytest.mark.extended  # CI runs the same cells on 20 other seeds against the page's claims
+# (tests/compare/test_exponent_coverage.py) and the table's layout at smoke size
 def test_exponent_coverage_row_rebuilds():
     from compare.studies import exponent_coverage as ec
 

@@ -179,6 +179,8 @@ def test_averaged_record_block_means():
 
 
 @pytest.mark.slow
+@pytest.mark.extended  # two 600 s model Ib runs (about 2 min of CPU); CI runs the same study part on the
+# pads_multiscale scene in the installed quick report (tests/compare/test_report_cli.py) and on 2 s traces above
 @pytest.mark.parametrize("case", ["reference", "strong"])
 def test_study_part_reads_model_Ib_built_from_its_own_run(case):
     # End to end: a "scene" that is model Ib itself (600 s), measured by the builder, compared by the study part.
