@@ -189,7 +189,7 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
     if method in (None, "record") and segs is None:
         z = x - np.polyval(np.polyfit(t - t[0], x, 1), t - t[0])
         fit = with_line_flag(fit_record(z, float(C_x.provenance["dt"]), band=band), C_x)
-        fit_mu = fit.derived(4.0, 1.0 / g**2, "mu")
+        fit_mu = fit.derived(4.0, 1.0 / g**2, "mu", "s")
     else:
         fit = with_line_flag(fit_power_law(C_x, band=band, method=method), C_x)
         fit_mu = None
@@ -200,7 +200,7 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
     C_F = fit_F = F_rms = None
     if mass is not None:
         C_F = force_spectrum(C_x, mass)
-        fit_F = (fit.derived(4.0, mass**2, "F") if fit.method == "record" else
+        fit_F = (fit.derived(4.0, mass**2, "F", "N^2 s") if fit.method == "record" else
                  with_line_flag(fit_power_law(C_F, band=fit.band, method=fit.method), C_F))
         F_rms = _band_rms(C_F, rb)
     return DisplacementAnalysis(C_x=C_x, fit=fit, mean_velocity=float(C_x.provenance["mean_velocity"]),
