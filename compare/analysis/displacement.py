@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .fits import PowerLawFit, fit_power_law
-from .record_model import RecordFit, check_record, fit_record
+from .record_model import RecordFit, check_record, fit_record, processing_steps
 from .segments import SegmentSpectra, segment_fits, segment_spectra, with_line_flag
 from .spectra import (G_STANDARD, Spectrum, displacement_spectrum, force_spectrum, friction_coefficient_spectrum,
                       rms_from_spectrum)
@@ -107,7 +107,7 @@ class DisplacementAnalysis:
              "band": list(self.fit.band), "fit": self.fit.to_dict(), "mean_velocity": self.mean_velocity,
              "zeta_rms_m": self.zeta_rms, "zeta_rms_band": [self.C_x.omega_min, self.C_x.omega_max],
              "fit_mu": self.fit_mu.to_dict(), "mu_rms": self.mu_rms, "mu_rms_band": self.rms_band, "g_m_per_s2": self.g,
-             "spectrum_steps": list(self.C_x.provenance["steps"]), "notes": self.notes}
+             "spectrum_steps": processing_steps(self.C_x.provenance["steps"], self.fit), "notes": self.notes}
         if self.fit_F is not None:
             s["fit_F"] = self.fit_F.to_dict()
             s["F_rms_N"] = self.F_rms

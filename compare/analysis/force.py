@@ -15,7 +15,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .fits import PowerLawFit, fit_power_law
-from .record_model import RecordFit
+from .record_model import RecordFit, processing_steps
 from .segments import SegmentSpectra, piece_spectra, segment_fits, with_line_flag
 from .spectra import Spectrum, rescaled, rms_from_spectrum
 from .strokes import Strokes, find_strokes, stroke_pieces, stroke_spectrum
@@ -71,7 +71,8 @@ class ForceAnalysis:
             "band": list(self.fit_F.band), "fit_F": self.fit_F.to_dict(),
             "F_rms_N": rms_from_spectrum(self.C_F),
             "mean_abs_F_N": float(np.mean(np.abs(d.F))),
-            "spectrum_steps": self.C_F.provenance["steps"], "notes": list(self.notes),
+            "spectrum_steps": processing_steps(self.C_F.provenance["steps"], self.fit_F, integrated=True),
+            "notes": list(self.notes),
         }
         if self.pieces is not None:
             s["timeline"] = d.timeline.summary()

@@ -38,10 +38,10 @@ import numpy as np
 from scipy import stats
 
 from .power_floor import PowerFloorProfile, above_rounding, bend_p, interval, keep_band, level_cov, minimum
-from .whittle import MAX_ORDER, WhittleRecord, order_for
+from .whittle import MAX_ORDER, TAPER, WhittleRecord, order_for
 
 __all__ = ["RecordFit", "fit_record", "fit_series", "expected_gamma", "split_p", "TEST_LEVEL", "SCREEN_LEVEL",
-           "GAMMA_MIN", "check_record", "band_end_words", "BAND_ENDS", "RECORD_UNITS", "spectrum_unit_of"]
+           "GAMMA_MIN", "check_record", "band_end_words", "BAND_ENDS", "RECORD_UNITS", "spectrum_unit_of", "processing_steps"]
 
 TEST_LEVEL = 0.01  # the bend, split and split-half tests flag a record (or cut a band) below it
 SCREEN_LEVEL = 0.1  # below it the bend test (a score test: no refit) hands the band to the split test (refits)
@@ -230,6 +230,34 @@ def spectrum_unit_of(unit: str) -> str:
     if not unit:
         return "s"
     return f"({unit})^2 s" if " " in unit else f"{unit}^2 s"
+
+
+def processing_steps(steps, fit, integrated: bool = False) -> list:
+    """A spectrum's processing steps (its provenance, for the figure's Welch estimate) as they concern ``fit``: for
+    the record model, the raw rectangular-window periodogram the band fits use is replaced by what the record model
+    fits, the periodogram of the differenced record under the Tukey taper (:data:`compare.analysis.whittle.TAPER`).
+
+    Parameters
+    ----------
+    steps : list of str
+        The spectrum's ``provenance["steps"]``.
+    fit : RecordFit or PowerLawFit
+        The exponent's fit.
+    integrated : bool, optional
+        The record was fitted through its running sum.
+
+    Returns
+    -------
+    list of str
+        The steps, the last one naming the fit's own periodogram.
+    """
+    if getattr(fit, "method", None) != "record":
+        return list(steps)
+    kept = [s for s in steps if not s.startswith("raw periodogram")]
+    what = "the running sum of the record" if integrated else "the record"
+    return kept + [f"exponent: the record model, fitted to the periodogram of {what} differenced {fit.order}x under "
+                   f"a Tukey taper (a cosine over {100 * TAPER / 2:g} % of the record at each end) by the debiased "
+                   "Whittle likelihood; the Welch estimate above is the figure's"]
 
 
 def band_end_words(end: str, floor_rms: float, crossover, top: float, gamma: float, segments=(), unit: str = "") -> str:

@@ -81,3 +81,4 @@ def test_default_band_fit_of_a_short_one_stroke_record_points_to_the_record_meth
     assert any("method 'record'" in n for n in fit.notes)
     # the note on the band's range states no width of its own beside the flag's
     assert not any("decades resolved" in n for n in fit.notes)
+
