@@ -12,10 +12,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from frictionnoise.base import STANDARD_GRAVITY
+
 from .fits import PowerLawFit, fit_power_law
 from .record_model import RecordFit, check_record, fit_record, processing_steps
 from .segments import SegmentSpectra, segment_fits, segment_spectra, with_line_flag
-from .spectra import (G_STANDARD, Spectrum, displacement_spectrum, force_spectrum, friction_coefficient_spectrum,
+from .spectra import (Spectrum, displacement_spectrum, force_spectrum, friction_coefficient_spectrum,
                       rms_from_spectrum)
 
 __all__ = ["DisplacementAnalysis", "analyze_displacement", "C_F_NEEDS_MASS", "METHODS"]
@@ -131,7 +133,7 @@ def _band_rms(spectrum, band) -> float:
 
 
 def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, method: str | None = None,
-                         g: float = G_STANDARD, timeline=None) -> DisplacementAnalysis:
+                         g: float = STANDARD_GRAVITY, timeline=None) -> DisplacementAnalysis:
     """C_x, its exponent gamma, the velocity and C_mu of a displacement record; C_F when the mass is known.
 
     Parameters
@@ -154,7 +156,8 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
         exponents follow as gamma - 4). ``"whittle"`` and ``"lsq"`` fit the Welch spectrum over a band
         (:func:`compare.analysis.fits.fit_power_law`); a record in uniform segments is fitted that way.
     g : float, optional
-        Gravitational acceleration for C_mu (m/s^2).
+        Gravitational acceleration for C_mu (m/s^2); default standard gravity, 9.80665 (the value the reader
+        converts a gram-force by), for a record measured on Earth; the paper's models use 9.81 (``frictionnoise.G``).
     timeline : compare.analysis.timeline.Timeline, optional
         The breaks of ``t``: each uniform segment is estimated on its own and their spectra combined
         (:func:`compare.analysis.segments.segment_spectra`).
