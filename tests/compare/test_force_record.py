@@ -82,3 +82,15 @@ def test_default_band_fit_of_a_short_one_stroke_record_points_to_the_record_meth
     # the note on the band's range states no width of its own beside the flag's
     assert not any("decades resolved" in n for n in fit.notes)
 
+
+
+def test_help_states_the_defaults_the_output_shows():
+    # --method: record for displacement, whittle for force, record for a one-stroke force; --band: the band fits'
+    # automatic band spans all there is, flagged, when under a decade is resolved (as the force output above says)
+    from compare.cli.parser import build_parser
+
+    an = next(a for a in build_parser()._subparsers._group_actions[0].choices.values() if a.prog.endswith("analyze"))
+    text = " ".join(an.format_help().split())
+    assert "the default for displacement; force data of one stroke with unbroken time stamps" in text
+    assert "the default for force data and records in segments" in text
+    assert "or all of that range, flagged, when it spans less" in text
