@@ -20,8 +20,8 @@ import os
 from importlib import metadata as _metadata
 from pathlib import Path
 
-__all__ = ["G", "STANDARD_GRAVITY", "package_version", "atomic_write", "InputError", "input_file", "sniff", "read_toml", "check_number",
-           "check_fields", "check_seconds", "check_seed"]
+__all__ = ["G", "STANDARD_GRAVITY", "package_version", "atomic_write", "InputError", "input_file", "sniff", "read_toml",
+           "check_number", "check_fields", "check_seconds", "check_seed"]
 
 G = 9.81  # m/s^2: the paper's g (standard gravity rounded as in Xu, Zhou & Persson 2025), for its models
 STANDARD_GRAVITY = 9.80665  # m/s^2: standard gravity, which defines the gram-force; a measured record's g

@@ -94,7 +94,8 @@ def _slope_message(fit, expected: float, tol: float, counted: str, off: bool, fl
     if isinstance(fit, RecordFit):
         low, high, how = fit.gamma_low, fit.gamma_high, "record model, debiased Whittle, profile likelihood"
     else:
-        low, high, how = fit.gamma - fit.gamma_err, fit.gamma + fit.gamma_err, f"band fit of a Welch spectrum, {fit.method}"
+        low, high = fit.gamma - fit.gamma_err, fit.gamma + fit.gamma_err
+        how = f"band fit of a Welch spectrum, {fit.method}"
     why = []
     if off:
         why.append(f"gamma is off by {fit.gamma - expected:+.3f} (tolerance {tol:g})")

@@ -41,7 +41,8 @@ from .power_floor import PowerFloorProfile, above_rounding, bend_p, interval, ke
 from .whittle import MAX_ORDER, TAPER, WhittleRecord, order_for
 
 __all__ = ["RecordFit", "fit_record", "fit_series", "expected_gamma", "split_p", "TEST_LEVEL", "SCREEN_LEVEL",
-           "GAMMA_MIN", "check_record", "band_end_words", "BAND_ENDS", "RECORD_UNITS", "spectrum_unit_of", "processing_steps"]
+           "GAMMA_MIN", "check_record", "band_end_words", "BAND_ENDS", "RECORD_UNITS", "spectrum_unit_of",
+           "processing_steps"]
 
 TEST_LEVEL = 0.01  # the bend, split and split-half tests flag a record (or cut a band) below it
 SCREEN_LEVEL = 0.1  # below it the bend test (a score test: no refit) hands the band to the split test (refits)

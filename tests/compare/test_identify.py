@@ -336,7 +336,8 @@ def test_model_I_records_keep_model_I_first_at_the_tables_false_alarm_rate():
 
     p = rm.spring_block.SpringBlockParams.reference()
     models = ("model_I", "model_Iv", "model_Ib", "model_ageing")
-    first = [identify(x=record("model_I", p, 60.0, seed), dt=DT, v=p.v, models=models)[0].model for seed in range(100, 110)]
+    first = [identify(x=record("model_I", p, 60.0, seed), dt=DT, v=p.v, models=models)[0].model
+             for seed in range(100, 110)]
     k = sum(f in ("model_I", "model_Iv") for f in first)
     assert binomial_interval(k, len(first))[1] >= 0.95, first
 
