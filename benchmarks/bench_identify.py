@@ -59,7 +59,7 @@ def test_identify_400s(benchmark, ratio, smoke):
     """The harness's entry: one identification of a 400 s record at 1 kHz (10 s under --bench-smoke), every
     registered model's family; the compiled shapes' speed-up over array operations stated in the same run."""
     x, v = record(10.0 if smoke else 400.0)
-    identify(x[:4096], DT, v)  # warm-up: numba's kernels
+    identify(x=x[:4096], dt=DT, v=v)  # warm-up: numba's kernels
     c0 = time.process_time()
     ranking = benchmark.pedantic(identify, args=(x, DT, v), rounds=1 if not smoke else 2, iterations=1)
     ratio("CPU / wall of the timed calls", (time.process_time() - c0) / benchmark.stats.stats.total)
@@ -75,9 +75,9 @@ def main(argv=None):
     a = ap.parse_args(argv)
     T = 10.0 if a.smoke else 400.0
     x, v = record(T)
-    identify(x[:8192], DT, v)  # warm-up
+    identify(x=x[:8192], dt=DT, v=v)  # warm-up
     w0, c0 = time.perf_counter(), time.process_time()
-    ranking = identify(x, DT, v)
+    ranking = identify(x=x, dt=DT, v=v)
     wall, cpu = time.perf_counter() - w0, time.process_time() - c0
     print(f"identify, {T:g} s at 1 kHz ({len(x)} samples), {len(ranking)} models: wall {wall:.2f} s, CPU {cpu:.2f} s "
           f"(load average {os.getloadavg()[0]:.1f}); best {ranking[0].model} ({ranking[0].verdict}); model I's "

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 __all__ = ["Unit", "UnitError", "parse_unit", "split_header", "ROLES", "STANDARD_GRAVITY"]
 
-STANDARD_GRAVITY = 9.80665  # m/s^2 (the conventional value defining gram-force and kilogram-force)
+from frictionnoise.base import STANDARD_GRAVITY  # noqa: E402  (m/s^2: defines gram-force and kilogram-force)
 
 # a role's dimension, as pint's dimensionality: exponents of [mass], [length], [time]
 ROLES = {

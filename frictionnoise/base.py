@@ -1,4 +1,5 @@
-"""The helpers the physics and the application share: the paper's g (:data:`G`), the installed version
+"""The helpers the physics and the application share: the paper's g (:data:`G`) and standard gravity
+(:data:`STANDARD_GRAVITY`, a measured record's and the gram-force's), the installed version
 (:func:`package_version`), the atomic file write (:func:`atomic_write`), the checks of an input file's kind and format
 by content (:func:`input_file`, :func:`sniff`, :func:`read_toml`: a scenario file read by ``engine_sim.load_scenario``,
 a sweep or measured data read by the command line) and the one number check of every parameter field
@@ -19,10 +20,11 @@ import os
 from importlib import metadata as _metadata
 from pathlib import Path
 
-__all__ = ["G", "package_version", "atomic_write", "InputError", "input_file", "sniff", "read_toml", "check_number",
-           "check_fields", "check_seconds", "check_seed"]
+__all__ = ["G", "STANDARD_GRAVITY", "package_version", "atomic_write", "InputError", "input_file", "sniff", "read_toml",
+           "check_number", "check_fields", "check_seconds", "check_seed"]
 
-G = 9.81  # m/s^2: the paper's g (standard gravity rounded as in Xu, Zhou & Persson 2025)
+G = 9.81  # m/s^2: the paper's g (standard gravity rounded as in Xu, Zhou & Persson 2025), for its models
+STANDARD_GRAVITY = 9.80665  # m/s^2: standard gravity, which defines the gram-force; a measured record's g
 
 _counter = itertools.count()
 

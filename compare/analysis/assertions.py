@@ -7,6 +7,8 @@ Example
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .fits import METHODS, PowerLawFit, fit_power_law
@@ -25,11 +27,13 @@ class SpectralAssertionError(AssertionError):
 
 
 def assert_spectral_slope(t, x, expected: float, tol: float, band=None, method: str = "record",
-                          **spectrum_kwargs) -> RecordFit | PowerLawFit:
-    """Assert that C_x of x(t) falls as omega^-gamma with ``abs(gamma - expected) <= tol``.
+                          allow_flagged: bool = False, **spectrum_kwargs) -> RecordFit | PowerLawFit:
+    """Assert that C_x of x(t) falls as omega^-gamma with ``abs(gamma - expected) <= tol`` and that the fit carries
+    no flag (the spectrum is one power law over the band).
 
-    For pytest: on failure it raises :class:`SpectralAssertionError`, an AssertionError whose message carries the
-    measured gamma, its 95 % interval, the band and the method.
+    For pytest: on failure it raises :class:`SpectralAssertionError`, an AssertionError whose message of a few lines
+    gives the measured gamma with its 95 % interval, the expected value and tolerance, the band and the fit's flags;
+    pytest shows the caller's line, not this helper's source.
 
     Parameters
     ----------
@@ -52,6 +56,10 @@ def assert_spectral_slope(t, x, expected: float, tol: float, band=None, method: 
         ``"lsq"``: a band fit of the Welch spectrum (:func:`compare.fits.fit_power_law`), faster on long records
         (about 30x on 3e5 samples: 0.1 s against 2.8 s of CPU), but its automatic band needs 32768 samples for a
         decade and a sensor's white floor biases it.
+    allow_flagged : bool, optional
+        False (default): a fit flagged as not a power law (``fit.flags``: band under a decade, curved residuals, not
+        stationary, a bend, gamma at the fit's limit) fails, whatever its gamma, because its gamma describes no single
+        power law. True: only gamma is checked; the flags still appear in a failure's message.
     **spectrum_kwargs
         With a band fit only: passed to :func:`compare.spectra.displacement_spectrum` (``detrend``, ``prewhiten``,
         ``nperseg``).
@@ -61,6 +69,7 @@ def assert_spectral_slope(t, x, expected: float, tol: float, band=None, method: 
     RecordFit or PowerLawFit
         The fit, when the assertion holds.
     """
+    __tracebackhide__ = True  # pytest: the failure points at the caller's line
     if method not in SLOPE_METHODS:
         raise ValueError(f"method {method!r}: choose one of {', '.join(SLOPE_METHODS)}")
     if method == "record":
@@ -72,13 +81,35 @@ def assert_spectral_slope(t, x, expected: float, tol: float, band=None, method: 
     else:
         fit = fit_power_law(displacement_spectrum(t, x, **spectrum_kwargs), band=band, method=method)
         counted = "periodogram ordinates" if fit.method == "whittle" else "log bins"
-    if not abs(fit.gamma - expected) <= tol:
-        raise SpectralAssertionError(
-            f"spectral slope: measured gamma = {fit.gamma:.3f} +- {fit.gamma_err:.3f} (95 % CI, {fit.method}) over "
-            f"{fit.band[0]:.4g}-{fit.band[1]:.4g} rad/s ({'auto' if fit.band_auto else 'given'} band, "
-            f"{fit.n_points} {counted}); expected {expected:g} +- {tol:g}; off by {fit.gamma - expected:+.3f}"
-        )
+    off = not abs(fit.gamma - expected) <= tol
+    flagged = bool(fit.flags) and not allow_flagged
+    if off or flagged:
+        raise SpectralAssertionError(_slope_message(fit, expected, tol, counted, off, flagged))
     return fit
+
+
+def _slope_message(fit, expected: float, tol: float, counted: str, off: bool, flagged: bool) -> str:
+    """The failure of :func:`assert_spectral_slope` in a few lines: why, the exponent with its interval against the
+    expectation, the band, the flags."""
+    if isinstance(fit, RecordFit):
+        low, high, how = fit.gamma_low, fit.gamma_high, "record model, debiased Whittle, profile likelihood"
+    else:
+        low, high = fit.gamma - fit.gamma_err, fit.gamma + fit.gamma_err
+        how = f"band fit of a Welch spectrum, {fit.method}"
+    why = []
+    if off:
+        why.append(f"gamma is off by {fit.gamma - expected:+.3f} (tolerance {tol:g})")
+    if flagged:
+        why.append("the fit is flagged NOT A POWER LAW (pass allow_flagged=True to check gamma alone)")
+    flags = "; ".join(fit.flags) if fit.flags else "none"
+    return "\n".join([
+        f"spectral slope: {' and '.join(why)}",
+        f"  measured gamma = {fit.gamma:.3f} +- {fit.gamma_err:.3f}, 95 % interval [{low:.3f}, {high:.3f}] ({how})",
+        f"  expected gamma = {expected:g} +- {tol:g}",
+        f"  band {fit.band[0]:.4g}-{fit.band[1]:.4g} rad/s ({math.log10(fit.band[1] / fit.band[0]):.2f} decades, "
+        f"{'auto' if fit.band_auto else 'given'}, {fit.n_points} {counted})",
+        f"  flags: {flags}",
+    ])
 
 
 def assert_spectrum_matches(spectrum: Spectrum, theory, edges, rtol: float) -> np.ndarray:
@@ -103,6 +134,7 @@ def assert_spectrum_matches(spectrum: Spectrum, theory, edges, rtol: float) -> n
     numpy.ndarray
         The per-band ratios spectrum / theory.
     """
+    __tracebackhide__ = True  # pytest: the failure points at the caller's line
     vals = theory(spectrum.omega) if callable(theory) else np.asarray(theory)
     ratio = band_average(spectrum, edges) / band_average(spectrum, edges, vals)
     bad = np.flatnonzero(np.abs(ratio - 1.0) > rtol)

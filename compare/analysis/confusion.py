@@ -158,7 +158,7 @@ def run_cell(cell: Cell, seeds) -> dict:
            "covered": 0, "intervals": 0, "best": {}, "cpu_s": 0.0, "by_parameter": {}}
     for seed in seeds:
         c0 = time.process_time()
-        ranking = identify(_record(cell, seed), DT, v)
+        ranking = identify(x=_record(cell, seed), dt=DT, v=v)
         out["cpu_s"] += time.process_time() - c0
         out["n"] += 1
         if not ranking:

@@ -12,10 +12,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from frictionnoise.base import STANDARD_GRAVITY
+
 from .fits import PowerLawFit, fit_power_law
-from .record_model import RecordFit, check_record, fit_record
+from .record_model import RecordFit, check_record, fit_record, processing_steps
 from .segments import SegmentSpectra, segment_fits, segment_spectra, with_line_flag
-from .spectra import (G_STANDARD, Spectrum, displacement_spectrum, force_spectrum, friction_coefficient_spectrum,
+from .spectra import (Spectrum, displacement_spectrum, force_spectrum, friction_coefficient_spectrum,
                       rms_from_spectrum)
 
 __all__ = ["DisplacementAnalysis", "analyze_displacement", "C_F_NEEDS_MASS", "METHODS"]
@@ -107,7 +109,7 @@ class DisplacementAnalysis:
              "band": list(self.fit.band), "fit": self.fit.to_dict(), "mean_velocity": self.mean_velocity,
              "zeta_rms_m": self.zeta_rms, "zeta_rms_band": [self.C_x.omega_min, self.C_x.omega_max],
              "fit_mu": self.fit_mu.to_dict(), "mu_rms": self.mu_rms, "mu_rms_band": self.rms_band, "g_m_per_s2": self.g,
-             "spectrum_steps": list(self.C_x.provenance["steps"]), "notes": self.notes}
+             "spectrum_steps": processing_steps(self.C_x.provenance["steps"], self.fit), "notes": self.notes}
         if self.fit_F is not None:
             s["fit_F"] = self.fit_F.to_dict()
             s["F_rms_N"] = self.F_rms
@@ -131,7 +133,7 @@ def _band_rms(spectrum, band) -> float:
 
 
 def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, method: str | None = None,
-                         g: float = G_STANDARD, timeline=None) -> DisplacementAnalysis:
+                         g: float = STANDARD_GRAVITY, timeline=None) -> DisplacementAnalysis:
     """C_x, its exponent gamma, the velocity and C_mu of a displacement record; C_F when the mass is known.
 
     Parameters
@@ -154,7 +156,8 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
         exponents follow as gamma - 4). ``"whittle"`` and ``"lsq"`` fit the Welch spectrum over a band
         (:func:`compare.analysis.fits.fit_power_law`); a record in uniform segments is fitted that way.
     g : float, optional
-        Gravitational acceleration for C_mu (m/s^2).
+        Gravitational acceleration for C_mu (m/s^2); default standard gravity, 9.80665 (the value the reader
+        converts a gram-force by), for a record measured on Earth; the paper's models use 9.81 (``frictionnoise.G``).
     timeline : compare.analysis.timeline.Timeline, optional
         The breaks of ``t``: each uniform segment is estimated on its own and their spectra combined
         (:func:`compare.analysis.segments.segment_spectra`).
@@ -189,7 +192,7 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
     if method in (None, "record") and segs is None:
         z = x - np.polyval(np.polyfit(t - t[0], x, 1), t - t[0])
         fit = with_line_flag(fit_record(z, float(C_x.provenance["dt"]), band=band), C_x)
-        fit_mu = fit.derived(4.0, 1.0 / g**2, "mu")
+        fit_mu = fit.derived(4.0, 1.0 / g**2, "mu", "s")
     else:
         fit = with_line_flag(fit_power_law(C_x, band=band, method=method), C_x)
         fit_mu = None
@@ -200,7 +203,7 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
     C_F = fit_F = F_rms = None
     if mass is not None:
         C_F = force_spectrum(C_x, mass)
-        fit_F = (fit.derived(4.0, mass**2, "F") if fit.method == "record" else
+        fit_F = (fit.derived(4.0, mass**2, "F", "N^2 s") if fit.method == "record" else
                  with_line_flag(fit_power_law(C_F, band=fit.band, method=fit.method), C_F))
         F_rms = _band_rms(C_F, rb)
     return DisplacementAnalysis(C_x=C_x, fit=fit, mean_velocity=float(C_x.provenance["mean_velocity"]),

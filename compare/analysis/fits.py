@@ -295,7 +295,9 @@ def _automatic_band(spectrum: Spectrum, bins_per_decade: int, min_decades: float
         raise ValueError("too few log bins for an automatic band; give the band (band=, --band LO HI)")
     md = min(min_decades, avail)
     if md < min_decades:
-        notes.append(f"only {avail:.2f} decades resolved; fitted over all of them")
+        # no width here: the band's own width (from its end ordinates) is the one the flag states
+        notes.append(f"under a decade lies between 4 Welch frequency steps and a sixteenth of the Nyquist frequency "
+                     f"({lo:.3g}-{hi:.3g} rad/s); fitted over all of it")
     ii, jj, ok = _auto_band(lnw[idx], lnC[idx], var[idx], b.n_avg[idx].astype(float), md)
     if not ok:
         notes.append("no band of the requested width is a straight power law within its scatter; "

@@ -10,11 +10,12 @@ longest piece. Pure numerics: ``data`` is any record with the attributes of comp
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from .fits import PowerLawFit, fit_power_law
+from .record_model import RecordFit, processing_steps
 from .segments import SegmentSpectra, piece_spectra, segment_fits, with_line_flag
 from .spectra import Spectrum, rescaled, rms_from_spectrum
 from .strokes import Strokes, find_strokes, stroke_pieces, stroke_spectrum
@@ -32,11 +33,11 @@ class ForceAnalysis:
     data: object
     strokes: Strokes
     C_F: Spectrum
-    fit_F: PowerLawFit
+    fit_F: PowerLawFit | RecordFit
     C_mu: Spectrum | None = None
-    fit_mu: PowerLawFit | None = None
+    fit_mu: PowerLawFit | RecordFit | None = None
     C_x_equiv: Spectrum | None = None
-    fit_x_equiv: PowerLawFit | None = None
+    fit_x_equiv: PowerLawFit | RecordFit | None = None
     C_F_distance: Spectrum | None = None
     mass: float | None = None
     speed: float | None = None
@@ -70,7 +71,8 @@ class ForceAnalysis:
             "band": list(self.fit_F.band), "fit_F": self.fit_F.to_dict(),
             "F_rms_N": rms_from_spectrum(self.C_F),
             "mean_abs_F_N": float(np.mean(np.abs(d.F))),
-            "spectrum_steps": self.C_F.provenance["steps"], "notes": list(self.notes),
+            "spectrum_steps": processing_steps(self.C_F.provenance["steps"], self.fit_F, integrated=True),
+            "notes": list(self.notes),
         }
         if self.pieces is not None:
             s["timeline"] = d.timeline.summary()
@@ -181,6 +183,27 @@ def _spectra(data, strokes, prewhiten, nperseg, band, method):
     return ss.combined, C_mu, ss, _piece_rows(t, ss, numbers, band, method), notes + list(ss.notes)
 
 
+def _record_fits(data, strokes, band, mass):
+    """(fit_F, fit_mu or None, fit_x_equiv or None) by the record model of the one uninterrupted stroke: a force
+    spectrum is flatter than the record model's least exponent (omega^-1.05; model I's force is white), so each
+    series is fitted through its running sum, whose spectrum is omega^-2 times the series' (as the wear study
+    does), and the exponent is given back less 2 (:func:`compare.analysis.record_model.fit_series`)."""
+    from .record_model import fit_series
+
+    if getattr(data, "segmented", False) or len(strokes.segments) != 1:
+        why = ("its time stamps break" if getattr(data, "segmented", False) else
+               f"it holds {len(strokes.segments)} strokes")
+        raise ValueError(f"method 'record' fits one uninterrupted stroke (a constant-velocity record) and {why}; "
+                         "use method 'whittle' (the default for force data), which averages the strokes' spectra")
+    a, b = strokes.segments[0]
+    t = np.asarray(data.t, float)[a:b]
+    fit_F = fit_series(t, np.asarray(data.F, float)[a:b], band=band, quantity="F", integrate=True)
+    mu = _mu(data)
+    fit_mu = None if mu is None else fit_series(t, mu[a:b], band=band, quantity="mu", integrate=True)
+    fit_x = None if mass is None else fit_F.derived(-4.0, 1.0 / mass**2, "x", "m^2 s")
+    return fit_F, fit_mu, fit_x
+
+
 def analyze_force(data, *, band=None, mass: float | None = None, speed: float | None = None,
                   cut: float | None = None, method: str | None = None, prewhiten="auto",
                   nperseg: int | None = None) -> ForceAnalysis:
@@ -204,9 +227,12 @@ def analyze_force(data, *, band=None, mass: float | None = None, speed: float | 
         Imposed sliding speed (Units: m/s).
     cut : float, optional
         Seconds removed at each end of a stroke (Units: s); default 10 % of the median stroke.
-    method : {"whittle", "lsq"}, optional
-        Fit method (see :func:`compare.analysis.fits.fit_power_law`); the combined spectrum of a record whose
-        stamps break carries no raw periodogram and is fitted by least squares.
+    method : {"whittle", "lsq", "record"}, optional
+        Fit method: a band fit of the stroke-averaged Welch spectrum (:func:`compare.analysis.fits.fit_power_law`;
+        default ``"whittle"``; the combined spectrum of a record whose stamps break carries no raw periodogram and
+        is fitted by least squares), or ``"record"``: the record model (C = A omega^-gamma plus a white floor, the
+        debiased Whittle likelihood of the whole record) of the running sum of F (and of mu), the exponent less 2,
+        for a record of one stroke with unbroken time stamps (a constant-velocity rig); a ValueError otherwise.
     prewhiten, nperseg
         As in :func:`compare.analysis.spectra.series_spectrum` (``nperseg`` in samples of the longest piece).
 
@@ -223,20 +249,28 @@ def analyze_force(data, *, band=None, mass: float | None = None, speed: float | 
     if speed is not None and not speed > 0:
         raise ValueError(f"speed must be positive (got {speed!r})")
     strokes = find_strokes(data, cut=cut)
-    C_F, C_mu, pieces, rows, notes = _spectra(data, strokes, prewhiten, nperseg, band, method)
-    fit_F = with_line_flag(fit_power_law(C_F, band=band, method=method), C_F)
-    fit_mu = None
-    if C_mu is not None:
-        fit_mu = with_line_flag(fit_power_law(C_mu, band=band, method=method), C_mu)
-    elif data.N is not None:
+    record = method == "record"
+    if record:
+        fit_F, fit_mu, fit_x = _record_fits(data, strokes, band, mass)
+    C_F, C_mu, pieces, rows, notes = _spectra(data, strokes, prewhiten, nperseg, band, None if record else method)
+    if not record:
+        fit_F = with_line_flag(fit_power_law(C_F, band=band, method=method), C_F)
+        if fit_F.flags and len(strokes.segments) == 1 and pieces is None:
+            fit_F = replace(fit_F, notes=list(fit_F.notes) + [
+                "one uninterrupted stroke: method 'record' (analyze --method record) fits the whole record, the "
+                "record model through the force's running sum, over every Fourier frequency"])
+        fit_mu = None if C_mu is None else with_line_flag(fit_power_law(C_mu, band=band, method=method), C_mu)
+        fit_x = None
+    if C_mu is None and data.N is not None:
         notes.append("the normal force is zero somewhere; C_mu not computed")
-    else:
+    elif C_mu is None:
         notes.append("no normal-force or friction-coefficient column: C_mu not computed")
-    C_x = fit_x = None
+    C_x = None
     if mass is not None:
         C_x = rescaled(C_F, lambda w: 1.0 / (mass**2 * w**4), "x", "m^2 s",
                        f"equivalent free-block C_x = C_F / (M^2 omega^4), M = {mass:g} kg  [eq. (3)]")
-        fit_x = fit_power_law(C_x, band=band, method=method)
+        if not record:
+            fit_x = fit_power_law(C_x, band=band, method=method)
     C_q = None
     if speed is not None:
         prov = dict(C_F.provenance)

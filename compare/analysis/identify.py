@@ -414,24 +414,61 @@ def stationarity(x, dt: float, bands: int = 8, level: float = 0.01) -> dict:
             "bands": [[float(edges[i]), float(edges[i + 1])] for i in range(bands)]}
 
 
+_FORMS = "identify(t, x) with times (s) and positions (m), identify(record), or identify(x=x, dt=dt)"
+
+
+def _record_arrays(t, x, positional, dt):
+    """(positions, sampling step) of the forms :func:`identify` takes; a ValueError naming them for any other."""
+    if positional or (x is not None and np.ndim(x) == 0):
+        raise ValueError(f"identify takes the record as analyze_displacement does: {_FORMS}; "
+                         "identify(x, dt, v) is not one of them (v is a keyword: v=...)")
+    if t is not None and hasattr(t, "t") and hasattr(t, "x"):
+        if x is not None:
+            raise ValueError(f"a record carries its own positions: give identify(record) alone, or {_FORMS}")
+        if getattr(t, "segmented", False):
+            raise ValueError("the record's time stamps break into segments: identification needs one uniform record "
+                             "(resample it, or pass one segment)")
+        times = np.asarray(t.t, dtype=float)
+        return t.x, float(np.median(np.diff(times))) if dt is None else dt
+    if x is None:
+        raise ValueError(f"no positions: {_FORMS}")
+    if t is None:
+        return x, dt
+    if dt is not None:
+        raise ValueError(f"give the times t or the step dt, not both: {_FORMS}")
+    times = np.asarray(t, dtype=float)
+    if times.shape != np.shape(x):
+        raise ValueError(f"t holds {times.size} times and x {np.size(x)} positions: {_FORMS}")
+    steps = np.diff(times)
+    if times.size > 1 and not np.allclose(steps, steps[0], rtol=1e-6, atol=0.0):
+        raise ValueError("the times are not uniform: identification needs one uniform record (resample it)")
+    return x, float(steps[0]) if times.size > 1 else None
+
+
 def too_short(n: int) -> str:
     """Why a record of ``n`` samples is not ranked, and what would help."""
     return (f"the record holds {n} samples; the mechanism ranking needs at least {MIN_SAMPLES} (its families' corners "
             f"and a level's scatter over eight segments): record longer, or at a higher sampling rate")
 
 
-def identify(x, dt: float | None = None, v: float | None = None, *, models=None, alpha: float = 0.05,
-             stationary: bool | None = None, progress=None) -> list:
+def identify(t=None, x=None, *positional, dt: float | None = None, v: float | None = None, models=None,
+             alpha: float = 0.05, stationary: bool | None = None, progress=None) -> list:
     """The registered models ranked for a displacement record, best first, with verdicts and parameters.
+
+    The record is given as :func:`compare.analysis.displacement.analyze_displacement` takes it: ``identify(t, x)``
+    (times, then positions), or ``identify(record)``; or by keywords, ``identify(x=x, dt=dt)``. A call in the order
+    ``identify(x, dt, v)`` (a number second, or a third positional argument) is refused with a ValueError that
+    names these forms.
 
     Parameters
     ----------
-    x : array_like or record
-        Displacement record (Units: m), uniformly sampled, the slide included (twice differenced away); or a record
-        with attributes ``t`` (s) and ``x`` (m) (a :class:`~compare.io.measured.MeasuredData`, a model's or a
-        scene's trace), then ``dt`` is read from ``t``.
-    dt : float
-        Sampling step (Units: s).
+    t : array_like or record
+        Sample times (Units: s), uniform; or a record with attributes ``t`` (s) and ``x`` (m) (a
+        :class:`~compare.io.measured.MeasuredData`, a model's or a scene's trace).
+    x : array_like, optional
+        Positions (Units: m) at ``t`` (or at steps of ``dt``), the slide included (twice differenced away).
+    dt : float, optional
+        Sampling step (Units: s), with ``x`` and no ``t``.
     v : float, optional
         Mean sliding speed (Units: m/s); default (x[-1] - x[0]) / duration.
     models : iterable of str, optional
@@ -450,13 +487,7 @@ def identify(x, dt: float | None = None, v: float | None = None, *, models=None,
     list of Mechanism
         Best first.
     """
-    if hasattr(x, "t") and hasattr(x, "x"):
-        t = np.asarray(x.t, dtype=float)
-        if getattr(x, "segmented", False):
-            raise ValueError("the record's time stamps break into segments: identification needs one uniform record "
-                             "(resample it, or pass one segment)")
-        dt = float(np.median(np.diff(t))) if dt is None else dt
-        x = x.x
+    x, dt = _record_arrays(t, x, positional, dt)
     if dt is None or not (dt > 0 and math.isfinite(dt)):
         raise ValueError(f"the sampling step dt must be positive, in s (got {dt!r})")
     x = np.asarray(x, dtype=float)

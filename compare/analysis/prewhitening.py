@@ -17,8 +17,11 @@ def detrended(t, y, detrend: str, quantity: str, name: str, steps: list):
     if detrend == "linear":
         v, y0 = line_fit(t - t[0], y)
         z = y - (y0 + v * (t - t[0]))
-        rate_unit = {"x": "m/s", "F": "N/s", "mu": "1/s"}.get(quantity, "per s")
-        steps.append(f"removed fitted line {name}0 + v t, v = {v:.6g} {rate_unit}")
+        if quantity == "x":  # a position's slope is the mean sliding velocity
+            steps.append(f"removed fitted line {name}0 + v t, mean velocity v = {v:.6g} m/s")
+        else:  # a force's or mu's slope is a drift rate, not a velocity
+            rate_unit = {"F": "N/s", "mu": "1/s"}.get(quantity, "per s")
+            steps.append(f"removed fitted line {name}0 + r t, drift rate r = {v:.6g} {rate_unit}")
     elif detrend == "constant":
         v = 0.0
         z = y - y.mean()

@@ -38,10 +38,11 @@ import numpy as np
 from scipy import stats
 
 from .power_floor import PowerFloorProfile, above_rounding, bend_p, interval, keep_band, level_cov, minimum
-from .whittle import MAX_ORDER, WhittleRecord, order_for
+from .whittle import MAX_ORDER, TAPER, WhittleRecord, order_for
 
 __all__ = ["RecordFit", "fit_record", "fit_series", "expected_gamma", "split_p", "TEST_LEVEL", "SCREEN_LEVEL",
-           "GAMMA_MIN", "check_record", "band_end_words", "BAND_ENDS"]
+           "GAMMA_MIN", "check_record", "band_end_words", "BAND_ENDS", "RECORD_UNITS", "spectrum_unit_of",
+           "processing_steps"]
 
 TEST_LEVEL = 0.01  # the bend, split and split-half tests flag a record (or cut a band) below it
 SCREEN_LEVEL = 0.1  # below it the bend test (a score test: no refit) hands the band to the split test (refits)
@@ -67,6 +68,9 @@ class RecordFit:
     the band below the record's highest frequency (the spectrum above departs from this power law in another shape:
     a resonance's approach, a corner; a floor term fitted inside the band lies below the power law there);
     ``"last frequency"`` when the band reaches the highest Fourier frequency; ``"given"`` when the band was given.
+    ``record_unit``: the unit of the fitted record (``"m"``; ``"N s"`` for a force fitted through its running sum),
+    the unit of ``floor_rms``; ``floor`` is in its square times s; ``spectrum_unit`` the unit of the spectrum
+    ``level`` gives (``"m^2 s"``; a derived fit's: ``"s"`` for C_mu, ``"N^2 s"`` for C_F) (:meth:`units`).
     """
 
     gamma: float
@@ -92,6 +96,8 @@ class RecordFit:
     segments: tuple = ()
     fit_band: tuple = ()
     band_end: str = "last frequency"
+    record_unit: str = ""
+    spectrum_unit: str = ""
 
     @property
     def gamma_err(self) -> float:
@@ -144,7 +150,7 @@ class RecordFit:
         vgg, vga, vaa = self.level_cov
         return value, math.sqrt(max(vgg * lw * lw - 2.0 * vga * lw + vaa, 0.0))
 
-    def derived(self, power: float, factor: float, quantity: str) -> "RecordFit":
+    def derived(self, power: float, factor: float, quantity: str, spectrum_unit: str = "") -> "RecordFit":
         """The fit of factor * omega^power * C (e.g. C_mu = omega^4 C_x / g^2): gamma and its interval less
         ``power``, the prefactor times ``factor``; floor, crossover and band stay those of the fitted record.
 
@@ -156,6 +162,8 @@ class RecordFit:
             The constant multiplying it (its unit converts the prefactor's).
         quantity : str
             What the derived spectrum is of (``"mu"``, ``"F"``, ...).
+        spectrum_unit : str, optional
+            The derived spectrum's unit (``"s"`` for C_mu, ``"N^2 s"`` for C_F), the prefactor's with (rad/s)^gamma.
 
         Returns
         -------
@@ -163,10 +171,29 @@ class RecordFit:
             The derived fit.
         """
         return replace(self, gamma=self.gamma - power, gamma_low=self.gamma_low - power,
-                       gamma_high=self.gamma_high - power, prefactor=self.prefactor * factor, quantity=quantity)
+                       gamma_high=self.gamma_high - power, prefactor=self.prefactor * factor, quantity=quantity,
+                       spectrum_unit=spectrum_unit,
+                       segments=tuple((a, b, g - power, lo - power, hi - power, k)
+                                      for a, b, g, lo, hi, k in self.segments))
+
+    def units(self) -> dict:
+        """The unit of every dimensional number of :meth:`to_dict` (SI; frequencies in rad/s; the prefactor's in
+        terms of the fitted record's spectrum at the derived exponent).
+
+        Returns
+        -------
+        dict
+            Field name -> unit, e.g. ``{"floor": "m^2 s", "floor_rms": "m", "crossover": "rad/s", ...}``; the floor's
+            entries empty when the record's unit is not known.
+        """
+        u = self.record_unit
+        return {"floor": spectrum_unit_of(u), "floor_rms": u,
+                "prefactor": f"{self.spectrum_unit} (rad/s)^gamma" if self.spectrum_unit else "",
+                "crossover": "rad/s", "band": "rad/s", "fit_band": "rad/s", "segments.band": "rad/s"}
 
     def to_dict(self) -> dict:
-        """JSON-ready: every field plus ``gamma_err``, ``power_law``, ``decades`` and ``confidence``.
+        """JSON-ready: every field plus ``gamma_err``, ``power_law``, ``decades``, ``confidence`` and ``units`` (the
+        unit of each dimensional field, :meth:`units`).
 
         Returns
         -------
@@ -183,15 +210,55 @@ class RecordFit:
                 "band_auto": self.band_auto, "n_points": self.n_points,
                 "segments": [{"band": [a, b], "gamma": g, "gamma_interval": [lo, hi], "differencing_order": k}
                              for a, b, g, lo, hi, k in self.segments],
-                "fit_band": list(self.fit_band) if self.fit_band else None, "band_end": self.band_end}
+                "fit_band": list(self.fit_band) if self.fit_band else None, "band_end": self.band_end,
+                "record_unit": self.record_unit, "units": self.units()}
 
     def __str__(self) -> str:
         flag = f" [NOT A POWER LAW: {'; '.join(self.flags)}]" if self.flags else ""
         floor = band_end_words(self.band_end, self.floor_rms, self.crossover, self.band[1], self.gamma,
-                               [s[:3] for s in self.segments])
+                               [s[:3] for s in self.segments], f" {self.record_unit}" if self.record_unit else "")
         return (f"gamma = {self.gamma:.3f} +- {self.gamma_err:.3f} (95 % [{self.gamma_low:.3f}, {self.gamma_high:.3f}], "
                 f"debiased Whittle) over {self.band[0]:.3g}-{self.band[1]:.3g} rad/s ({self.decades:.1f} decades)"
                 f"{floor}{flag}")
+
+
+RECORD_UNITS = {"x": "m", "F": "N", "mu": ""}  # a record's unit by what it is of (SI; mu is dimensionless)
+
+
+def spectrum_unit_of(unit: str) -> str:
+    """The unit of the spectrum (eq. 2 convention) of a record in ``unit``: "m" -> "m^2 s", "N s" -> "(N s)^2 s",
+    "" (dimensionless) -> "s"."""
+    if not unit:
+        return "s"
+    return f"({unit})^2 s" if " " in unit else f"{unit}^2 s"
+
+
+def processing_steps(steps, fit, integrated: bool = False) -> list:
+    """A spectrum's processing steps (its provenance, for the figure's Welch estimate) as they concern ``fit``: for
+    the record model, the raw rectangular-window periodogram the band fits use is replaced by what the record model
+    fits, the periodogram of the differenced record under the Tukey taper (:data:`compare.analysis.whittle.TAPER`).
+
+    Parameters
+    ----------
+    steps : list of str
+        The spectrum's ``provenance["steps"]``.
+    fit : RecordFit or PowerLawFit
+        The exponent's fit.
+    integrated : bool, optional
+        The record was fitted through its running sum.
+
+    Returns
+    -------
+    list of str
+        The steps, the last one naming the fit's own periodogram.
+    """
+    if getattr(fit, "method", None) != "record":
+        return list(steps)
+    kept = [s for s in steps if not s.startswith("raw periodogram")]
+    what = "the running sum of the record" if integrated else "the record"
+    return kept + [f"exponent: the record model, fitted to the periodogram of {what} differenced {fit.order}x under "
+                   f"a Tukey taper (a cosine over {100 * TAPER / 2:g} % of the record at each end) by the debiased "
+                   "Whittle likelihood; the Welch estimate above is the figure's"]
 
 
 def band_end_words(end: str, floor_rms: float, crossover, top: float, gamma: float, segments=(), unit: str = "") -> str:
@@ -408,7 +475,7 @@ def check_record(x, name: str = "x", unit: str = "", *, resolution: bool = True)
 
 
 def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, band=None, quantity: str = "x",
-               stationarity: bool = True) -> RecordFit:
+               stationarity: bool = True, unit: str | None = None) -> RecordFit:
     """Fit C_x = A omega^-gamma + B to a uniformly sampled record by the debiased Whittle likelihood.
 
     Parameters
@@ -430,6 +497,9 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
         What the record is of (``"x"``, ``"F"``, ...), carried to the result.
     stationarity : bool, optional
         Run the split-half test (three more fits on the halves).
+    unit : str, optional
+        The record's unit (SI); default from ``quantity`` (:data:`RECORD_UNITS`: ``"m"`` for x, ``"N"`` for F, ``""``
+        for mu), carried to the result as ``record_unit``.
 
     Returns
     -------
@@ -438,6 +508,7 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
     """
     x = np.asarray(x, dtype=float)
     check_record(x, quantity)
+    u = RECORD_UNITS.get(quantity, "") if unit is None else unit
     notes = []
     auto = band is None
     if order is None:
@@ -506,7 +577,8 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
                      n_samples=len(x), nll=nll, stationarity_p=p, bend_p=bend, quantity=quantity,
                      flags=tuple(flags), notes=tuple(notes), band_auto=auto, n_points=prof.m,
                      level_cov=level_cov(prof, g, t), segments=segments,
-                     fit_band=tuple(map(float, band)) if band is not None else (), band_end=end)
+                     fit_band=tuple(map(float, band)) if band is not None else (), band_end=end,
+                     record_unit=u, spectrum_unit=spectrum_unit_of(u))
 
 
 def expected_gamma(spectrum, fit: RecordFit, dt: float, band=None, floor: bool = True, sampled: bool = True) -> float:
@@ -584,4 +656,9 @@ def fit_series(t, y, *, band=None, quantity: str = "x", stationarity: bool = Tru
     # simulator's) is not a rounded file
     check_record(y, quantity, resolution=False)
     z = np.cumsum(y - y.mean()) * dt
-    return fit_record(z, dt, band=band, quantity=quantity, stationarity=stationarity).derived(2.0, 1.0, quantity)
+    u = RECORD_UNITS.get(quantity, "")
+    fit = fit_record(z, dt, band=band, quantity=quantity, stationarity=stationarity, unit=f"{u} s".strip())
+    return replace(fit.derived(2.0, 1.0, quantity, spectrum_unit_of(u)),
+                   notes=fit.notes + ("fitted through the record's running sum (its spectrum omega^-2 times the "
+                                      "record's): the floor and the exponents in the notes above are the sum's (2 "
+                                      "above the record's); gamma and its segments are the record's",))

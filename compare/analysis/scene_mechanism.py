@@ -143,7 +143,7 @@ def judge(trace, ranking=None) -> dict:
     dt = float(np.median(np.diff(t)))
     v_rec = float((trace.x[-1] - trace.x[0]) / (t[-1] - t[0]))
     if ranking is None:
-        ranking = identify(trace.x, dt, v_rec)
+        ranking = identify(x=trace.x, dt=dt, v=v_rec)
     out = {"best": ranking[0].model if ranking else None, "verdict": ranking[0].verdict if ranking else None,
            "built_as": None, "rank": None, "built_verdict": None, "parameters": {}, "cannot_separate": ""}
     point = built_point(trace)

@@ -47,7 +47,7 @@ def mechanisms_of(data, v: float, flags=(), progress=None) -> dict:
     if not st["stationary"]:
         return {"mechanisms": [], "stationarity": st,
                 "mechanisms_note": "no mechanism named: the record's two halves have different spectra (not stationary)"}
-    ranking = identify(data.x, dt, v, stationary=True, progress=progress)
+    ranking = identify(x=data.x, dt=dt, v=v, stationary=True, progress=progress)
     return {"mechanisms": [m.to_dict() for m in ranking], "stationarity": st, "mechanisms_note": ""}
 
 

@@ -157,14 +157,19 @@ def build_parser() -> argparse.ArgumentParser:
     an.add_argument("--cut", type=float, default=None, metavar="S",
                     help="seconds cut at each end of a stroke (default: 10 %% of the median stroke)")
     an.add_argument("--method", default=None, choices=["record", "whittle", "lsq"],
-                    help="exponent fit: record (displacement: the power law plus a white floor fitted to the whole "
-                         "record by the debiased Whittle likelihood; the default there), whittle (the Whittle "
-                         "likelihood over a band of the Welch spectrum; the default for force data and records in "
-                         "segments) or lsq (least squares on the log-binned spectrum)")
+                    help="exponent fit: record (the power law plus a white floor fitted to the whole record by the "
+                         "debiased Whittle likelihood; the default for displacement; force data of one stroke with "
+                         "unbroken time stamps, a constant-velocity rig: fitted through the force's running sum), "
+                         "whittle (the Whittle likelihood over a band of the stroke-averaged Welch spectrum; the "
+                         "default for force data and records in segments) or lsq (least squares on the log-binned "
+                         "spectrum)")
     an.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"),
-                    help="fit band (rad/s); default: every Fourier frequency of the record (record), or the "
-                         "straightest stretch of at least a decade between four frequency steps and a sixteenth of "
-                         "the Nyquist frequency (whittle, lsq); printed with the fit")
+                    help="fit band (rad/s); default (record): searched over every Fourier frequency, the band with the "
+                         "most frequencies where one power law holds, ended where a white floor takes over; default "
+                         "(whittle, lsq): "
+                         "the straightest stretch of a decade between four Welch frequency steps and a sixteenth of "
+                         "the Nyquist frequency, or all of that range, flagged, when it spans less (a record under "
+                         "about 32768 samples); printed with the fit")
     an.add_argument("--resample", type=float, default=None, metavar="DT",
                     help="time stamps that change rate, skip, repeat or step back: put the record on one grid of DT "
                          "seconds (faster segments low-passed first; the filter is stated) instead of analysing its "

@@ -41,7 +41,8 @@ def _floor_text(f: dict) -> str:
     end = f.get("band_end") or ("floor" if rms > 0 and cross is not None and cross <= f["band"][1] * (1 + 1e-9)
                                 else "last frequency")
     segments = [(s["band"][0], s["band"][1], s["gamma"]) for s in f.get("segments") or []]
-    return band_end_words(end, rms, cross, f["band"][1], f["gamma"], segments, " m")
+    unit = f.get("record_unit", "m")  # the fitted record's unit (a force fitted through its sum: N s)
+    return band_end_words(end, rms, cross, f["band"][1], f["gamma"], segments, f" {unit}" if unit else "")
 
 
 def _flags_text(f: dict) -> str:

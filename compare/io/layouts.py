@@ -192,5 +192,11 @@ class _Delimited:
             sep, dc, records, first = detect_separator(lines)
         except ValueError as e:
             raise SheetError(f"{src}: {e}") from None
-        return tabulate(src, "delimited", records, first, dc, lambda key, col=None: f"line {key}",
+        sheet = tabulate(src, "delimited", records, first, dc, lambda key, col=None: f"line {key}",
                          {"separator": SEPARATOR_NAMES[sep], "decimal_comma": dc})
+        # the preamble as the file holds it: every non-blank line above the header, "#" comment lines included
+        # (the table's records leave those out)
+        above = [line for line in lines[:sheet.header_key - 1] if line.strip()]
+        sheet.info.update(preamble_lines=len(above),
+                          comment_lines=sum(1 for line in above if line.strip().startswith("#")))
+        return sheet

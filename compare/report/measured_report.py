@@ -60,7 +60,7 @@ def build_force_report(an: ForceAnalysis):
                      f"({summary['used_stroke_length_m']:.4g} m used); distance-domain spectrum over "
                      f"q = {span(an.C_F_distance.omega_min, an.C_F_distance.omega_max)} rad/m.")
     paras += [esc(n) for n in an.notes]
-    paras.append("Processing: " + esc("; ".join(an.C_F.provenance["steps"])) + ".")
+    paras.append("Processing: " + esc("; ".join(summary["spectrum_steps"])) + ".")
     figures = [Figure("measured_force_CF", plots.figure_png_bytes(plots.spectrum_figure(
         [(an.C_F, "C_F (measured)")], fits=[(f, "")], band=f.band, ylabel=r"$C_F$ (N$^2$ s)",
         title="Friction-force spectrum")),
@@ -124,7 +124,7 @@ def build_measured_report(an: DisplacementAnalysis, data):
         f"(dimensionless, C_mu = omega^4 C_x / g^2 of a free block, whatever its mass) over {span(*an.rms_band)} rad/s, "
         "the fitted band (omega^4 weighs a sensor's white floor above it, which is not friction).",
         relation,
-        "Processing: " + esc("; ".join(spec.provenance["steps"])) + ".",
+        "Processing: " + esc("; ".join(summary["spectrum_steps"])) + ".",
     ]) + (timeline_html(data.timeline, an.segment_fits, segs.notes) if segs is not None else "")
     figures = [
         Figure("measured_Cx", plots.figure_png_bytes(plots.spectrum_figure([(spec, "C_x")], fits=[(fit, "")], band=fit.band,

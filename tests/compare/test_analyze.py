@@ -423,3 +423,34 @@ def test_a_record_in_pieces_says_why_it_is_fitted_by_least_squares(tmp_path, cap
     assert "lsq" in out and "fitted by least squares" in out and "pieces or strokes" in out
     fit = json.loads((tmp_path / "out" / "summary.json").read_text())["fit"]
     assert fit["method"] == "lsq" and any("least squares" in note for note in fit["notes"])
+
+
+def test_summary_units_preamble_and_gravity(tmp_path):
+    # an instrument export: six "#" comment lines, the header, a units row; the layout counts the comment lines as
+    # the preamble the file holds; the record fit's dimensional fields carry their units; C_mu's g is standard
+    # gravity, the constant the reader converts a gram-force by
+    from compare.analysis.synthetic import power_law_record
+    from engine_sim.quantities import STANDARD_GRAVITY as READER_G, parse_unit
+    from frictionnoise.base import STANDARD_GRAVITY
+
+    n = 4096
+    x = power_law_record(n, 1e-3, 4.0, prefactor=1e-10, seed=0)
+    f = tmp_path / "rig.csv"
+    head = ["# TriboRig export", "# Operator: lab", "# Date: today", "# Sample rate: 1000 Hz", "# Channel 1: LVDT", "#"]
+    f.write_text("\n".join(head + ["Time,Displacement", "s,um"]
+                           + [f"{i * 1e-3:.3f},{v * 1e6:.6f}" for i, v in enumerate(x)]) + "\n")
+    d = read_measured(f)
+    assert d.layout["preamble_lines"] == 6 and d.layout["comment_lines"] == 6 and d.layout["header_line"] == 7
+    assert units_line(d).endswith("; 6 non-blank preamble lines above the header (line 7) skipped")
+    out = tmp_path / "out"
+    assert main(["analyze", str(f), "-o", str(out)]) == 0
+    s = json.loads((out / "summary.json").read_text())
+    units = s["fit"]["units"]
+    assert units["floor"] == "m^2 s" and units["floor_rms"] == "m" and units["crossover"] == "rad/s"
+    assert units["prefactor"] == "m^2 s (rad/s)^gamma" and s["fit_mu"]["units"]["prefactor"] == "s (rad/s)^gamma"
+    assert s["g_m_per_s2"] == STANDARD_GRAVITY == READER_G == 9.80665
+    assert parse_unit("g", ("force",)).factor == pytest.approx(1e-3 * s["g_m_per_s2"], rel=1e-12)
+    from compare.analysis.displacement import analyze_displacement
+
+    fit = analyze_displacement(d).fit
+    assert " m rms" in str(fit) or "no white floor" in str(fit)

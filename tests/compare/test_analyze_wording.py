@@ -70,7 +70,7 @@ def test_a_record_too_short_for_the_ranking_gets_its_length_and_the_minimum():
     note = mechanisms_of(Record(), 1e-4)["mechanisms_note"]
     assert note.startswith("no mechanism named: the record holds 200 samples") and str(MIN_SAMPLES) in note
     with pytest.raises(ValueError, match=f"holds 200 samples.*at least {MIN_SAMPLES}"):
-        identify(Record.x, 1e-3, 1e-4)
+        identify(Record.t, Record.x, v=1e-4)
 
 
 def test_mu_rms_measures_the_friction_not_the_sensors_floor():

@@ -274,9 +274,10 @@ def test_analyze_help_names_the_default_fit_and_report_help_the_quick_selection(
         main(["analyze", "--help"])
     out = " ".join(capsys.readouterr().out.split())
     # the record model is the displacement default (METHODS[0]); the band fit's default the force data's
-    assert f"{METHODS[0]} (displacement:" in out and "the default there" in out
-    assert f"{DEFAULT_METHOD} (the Whittle likelihood over a band of the Welch spectrum; the default for force" in out
-    assert "--band LO HI fit band (rad/s); default: every Fourier frequency of the record (record)" in out
+    assert f"{METHODS[0]} (the power law plus a white floor" in out and "the default for displacement" in out
+    assert (f"{DEFAULT_METHOD} (the Whittle likelihood over a band of the stroke-averaged Welch spectrum; the default "
+            "for force") in out
+    assert "--band LO HI fit band (rad/s); default (record): searched over every Fourier frequency" in out
     with pytest.raises(SystemExit):
         main(["report", "--help"])
     out = " ".join(capsys.readouterr().out.split())

@@ -52,7 +52,7 @@ def test_grouped_likelihood_is_the_whittle_sum_for_a_flat_mean(model_I_record):
 
 
 def test_model_I_record_is_named_model_I(model_I_record):
-    ranking = identify(model_I_record, DT, v=5e-4)
+    ranking = identify(x=model_I_record, dt=DT, v=5e-4)
     assert ranking[0].model == "model_I" and ranking[0].verdict == "fits"
     verdicts = {m.model: m.verdict for m in ranking}
     assert verdicts["model_II"] == verdicts["model_III"] == "rejected"
@@ -65,13 +65,13 @@ def test_model_II_record_is_named_model_II():
     # 120 s: at 60 s the ageing family, its step near 200 rad/s and its resonance overdamped, follows model II's
     # omega^-(7 - s) range closely enough that Vuong's test leaves it indistinguishable (p = 0.09 at seed 12)
     p = rm.wear_particle.WearParticleParams()
-    ranking = identify(record("model_II", p, 120.0, 12), DT, v=p.v)
+    ranking = identify(x=record("model_II", p, 120.0, 12), dt=DT, v=p.v)
     assert ranking[0].model == "model_II" and ranking[0].verdict == "fits"
     assert {m.model: m.verdict for m in ranking}["model_I"] == "rejected"
 
 
 def test_a_record_not_stationary_gets_no_mechanism(model_I_record):
-    assert identify(model_I_record, DT, v=5e-4, stationary=False) == []
+    assert identify(x=model_I_record, dt=DT, v=5e-4, stationary=False) == []
 
 
 def test_stationarity_flags_a_record_whose_level_jumps(model_I_record):
@@ -82,7 +82,7 @@ def test_stationarity_flags_a_record_whose_level_jumps(model_I_record):
     zeta = model_I_record - 5e-4 * t
     jumped = 5e-4 * t + np.where(t < t[-1] / 2, zeta, 2 * zeta)
     assert not stationarity(jumped, DT)["stationary"]
-    assert identify(jumped, DT, v=5e-4) == []
+    assert identify(x=jumped, dt=DT, v=5e-4) == []
 
 
 def test_holm_adjusts_as_the_step_down_method():
@@ -101,9 +101,9 @@ def test_vuong_of_coinciding_models_is_one_and_of_a_clear_lead_small():
 
 def test_identify_rejects_an_unknown_model_and_a_bad_speed(model_I_record):
     with pytest.raises(ValueError, match="model_X"):
-        identify(model_I_record, DT, v=5e-4, models=["model_X"])
+        identify(x=model_I_record, dt=DT, v=5e-4, models=["model_X"])
     with pytest.raises(ValueError, match="speed"):
-        identify(model_I_record, DT, v=-1.0)
+        identify(x=model_I_record, dt=DT, v=-1.0)
 
 
 def test_analyze_prints_the_ranking_first_and_writes_mechanisms(tmp_path, capsys):
@@ -175,7 +175,7 @@ def closed_form_record(model, theta, v, seed):
 @pytest.fixture(scope="module")
 def model_I_closed_form_ranking():
     theta, v = FAMILIES["model_I"].from_model(rm.spring_block.SpringBlockParams.reference())
-    return identify(closed_form_record("model_I", theta, v, seed=0), DT_FILE, v=v)
+    return identify(x=closed_form_record("model_I", theta, v, seed=0), dt=DT_FILE, v=v)
 
 
 def test_families_nesting_model_I_coincide_with_it_on_model_I_records(model_I_closed_form_ranking):
@@ -229,7 +229,7 @@ def test_a_family_nesting_model_I_never_fits_a_record_worse_than_model_I():
 
 def test_identify_reports_its_progress_family_by_family(model_I_record):
     lines = []
-    identify(model_I_record, DT, v=5e-4, progress=lines.append)
+    identify(x=model_I_record, dt=DT, v=5e-4, progress=lines.append)
     fitted = [ln for ln in lines if "family fitted in" in ln]
     # one fit per distinct family: model_Iv shares model I's
     assert len(fitted) == len({id(FAMILIES[n].shape) for n in rm.MODELS}) and lines[0].startswith("fitting model_I")
@@ -240,7 +240,7 @@ def test_a_micro_level_inside_the_band_is_model_Ib_not_model_I():
     # omega3 = 100 rad/s, a decade inside the 0.03-314 rad/s band: model I cannot make the step
     theta, v = FAMILIES["model_I"].from_model(rm.spring_block.SpringBlockParams.reference())
     theta = {**theta, "L2": 2 * theta["L"], "a2": 5e-5, "omega3": 100.0}
-    ranking = identify(closed_form_record("model_Ib", theta, v, seed=0), DT_FILE, v=v)
+    ranking = identify(x=closed_form_record("model_Ib", theta, v, seed=0), dt=DT_FILE, v=v)
     r = {m.model: m for m in ranking}
     assert ranking[0].model == "model_Ib" and r["model_Ib"].verdict == "fits"
     assert r["model_I"].verdict == "rejected" and r["model_I"].coincides_with is None
@@ -314,7 +314,7 @@ def test_a_strong_ageing_step_ranks_the_ageing_model_first_and_rejects_model_I()
     # over model I is judged against the 200 s null table; the information criterion alone may keep model I first
     # (it charges the step's two parameters ln(n) / 2 each), the calibrated test does not
     theta, v = FAMILIES["model_ageing"].from_model(rm.ageing.AgeingParams(alpha=0.1))
-    ranking = identify(closed_form_record("model_ageing", theta, v, seed=0), DT_FILE, v=v)
+    ranking = identify(x=closed_form_record("model_ageing", theta, v, seed=0), dt=DT_FILE, v=v)
     r = {m.model: m for m in ranking}
     assert ranking[0].model == "model_ageing", [(m.model, m.verdict, m.nested_test) for m in ranking]
     assert r["model_I"].verdict == r["model_Iv"].verdict == "rejected"
@@ -336,7 +336,8 @@ def test_model_I_records_keep_model_I_first_at_the_tables_false_alarm_rate():
 
     p = rm.spring_block.SpringBlockParams.reference()
     models = ("model_I", "model_Iv", "model_Ib", "model_ageing")
-    first = [identify(record("model_I", p, 60.0, seed), DT, v=p.v, models=models)[0].model for seed in range(100, 110)]
+    first = [identify(x=record("model_I", p, 60.0, seed), dt=DT, v=p.v, models=models)[0].model
+             for seed in range(100, 110)]
     k = sum(f in ("model_I", "model_Iv") for f in first)
     assert binomial_interval(k, len(first))[1] >= 0.95, first
 
@@ -351,7 +352,7 @@ def test_the_ageing_record_the_criterion_kept_below_model_I_now_ranks_first():
     from compare.analysis.confusion import CELLS, _record
 
     cell = next(c for c in CELLS if c.model == "model_ageing" and c.duration == 60.0)
-    ranking = identify(_record(cell, 0), DT, v=cell.params.v)
+    ranking = identify(x=_record(cell, 0), dt=DT, v=cell.params.v)
     r = {m.model: m for m in ranking}
     assert ranking[0].model == "model_ageing", [(m.model, m.verdict, m.nested_test) for m in ranking]
     assert r["model_ageing"].verdict == "fits" and r["model_I"].verdict == r["model_Iv"].verdict == "rejected"
@@ -377,7 +378,34 @@ def test_model_Iv_whose_contacts_slide_throughout_has_model_I_resonance():
     assert _slide_margin(p) > 0.03
     assert _slide_margin(rm.vibrating_block.VibratingBlockParams.reference()) < -0.2
     truth, V = FAMILIES["model_Iv"].from_model(p)
-    m = identify(rm.MODELS["model_Iv"].simulate(p, 60.0, DT, seed=0).x, DT, v=V, models=("model_Iv",))[0]
+    m = identify(x=rm.MODELS["model_Iv"].simulate(p, 60.0, DT, seed=0).x, dt=DT, v=V, models=("model_Iv",))[0]
     lo, hi = m.fit.intervals["omega_c"]
     assert lo <= truth["omega_c"] <= hi
     assert any(abs(ln.omega - p.omega_v) < 1.0 for ln in m.lines)
+
+
+def test_every_form_of_the_record_ranks_alike(model_I_record):
+    # identify(t, x), identify(x=x, dt=dt) and identify(record) are one record: the same ranking to the last digit
+    # (two families keep it short; the forms differ only in how dt is read)
+    class Trace:
+        t = np.arange(len(model_I_record)) * DT
+        x = model_I_record
+
+    models = ("model_I", "model_II")
+    forms = [identify(Trace.t, Trace.x, v=5e-4, models=models), identify(x=Trace.x, dt=DT, v=5e-4, models=models),
+             identify(Trace, v=5e-4, models=models)]
+    rows = [[(m.model, m.verdict, m.p_value) for m in r] for r in forms]
+    assert rows[0] == rows[1] == rows[2] and len(rows[0]) == 2
+
+
+def test_the_order_x_dt_v_is_refused_naming_the_forms(model_I_record):
+    for call in (lambda: identify(model_I_record, DT), lambda: identify(model_I_record, DT, 5e-4)):
+        with pytest.raises(ValueError, match=r"identify\(t, x\) with times \(s\) and positions \(m\).*"
+                                             r"identify\(x, dt, v\) is not one of them") as e:
+            call()
+        assert "\n" not in str(e.value)
+    t = np.arange(len(model_I_record)) * DT
+    with pytest.raises(ValueError, match="not both"):
+        identify(t, model_I_record, dt=DT)
+    with pytest.raises(ValueError, match="not uniform"):
+        identify(t ** 1.01, model_I_record)

@@ -275,3 +275,25 @@ def test_an_interpolant_off_the_exact_profile_is_not_used(monkeypatch):
     fallback = fit()
     monkeypatch.setattr(power_floor, "INTERPOLATE_FROM", 2**40)
     assert fallback == fit()
+
+
+def test_the_taper_the_docs_state_is_the_one_the_processing_line_names():
+    # whittle_vs_lsq.md: the record model's periodogram is under a Tukey taper of 5 % cosine ends; the band fits'
+    # under a rectangular window. The code's taper, the page and each fit's Processing step say the same.
+    from pathlib import Path
+
+    from compare.analysis.fits import fit_power_law
+    from compare.analysis.record_model import processing_steps
+    from compare.analysis.spectra import displacement_spectrum
+    from compare.analysis.whittle import TAPER
+
+    page = (Path(__file__).resolve().parents[2] / "docs" / "explanation" / "whittle_vs_lsq.md").read_text()
+    assert f"Tukey window with {100 * TAPER / 2:g} % cosine ends" in page and "rectangular window" in page
+    n = 4096
+    x = power_law_record(n, DT, 4.0, seed=0)
+    spec = displacement_spectrum(np.arange(n) * DT, x)
+    rec = processing_steps(spec.provenance["steps"], fit_record(x, DT, stationarity=False))
+    band = processing_steps(spec.provenance["steps"], fit_power_law(spec, band=(30.0, 1000.0), method="whittle"))
+    assert f"under a Tukey taper (a cosine over {100 * TAPER / 2:g} % of the record at each end)" in rec[-1]
+    assert not any("rectangular" in s for s in rec)
+    assert band[-1].startswith("raw periodogram (rectangular window)") and not any("Tukey" in s for s in band)

@@ -1,25 +1,33 @@
 """compare.testing: the helpers users call in their own suites."""
+import os
+import subprocess
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
 from scipy import stats
 
 from compare.analysis.fits import fit_power_law
+from compare.analysis.record_model import fit_series
 from compare.analysis.spectra import displacement_spectrum
 from compare.analysis.synthetic import power_law_record
 from compare.testing import SpectralAssertionError, assert_spectral_slope
 from tests.synthetic import power_law_series
 
 DT = 1e-3
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _covered(n_seeds: int, gamma: float, n: int, band, floor_rms: float = 0.0) -> int:
     """How many of ``n_seeds`` exact sampled omega^-gamma records (compare.analysis.synthetic) the helper's default
-    fit covers: gamma within the fit's 95 % half-width, i.e. the assertion with tol = gamma_err holds."""
+    fit covers: gamma within the fit's 95 % half-width, i.e. the assertion with tol = gamma_err holds (a fit a test
+    flags by chance, such as the bend test at its 1 % level, is counted too: the coverage is the interval's)."""
     t = np.arange(n) * DT
     hits = 0
     for seed in range(n_seeds):
         x = power_law_record(n, DT, gamma, floor_rms=floor_rms, seed=seed)
-        fit = assert_spectral_slope(t, x, expected=gamma, tol=np.inf, band=band)
+        fit = assert_spectral_slope(t, x, expected=gamma, tol=np.inf, band=band, allow_flagged=True)
         hits += abs(fit.gamma - gamma) <= fit.gamma_err  # what the assertion with tol = gamma_err checks
     return hits
 
@@ -58,7 +66,53 @@ def test_assert_spectral_slope_passes_and_fails_with_numbers():
         assert_spectral_slope(t, x, expected=5.0, tol=0.2, band=(2.0, 100.0))
     msg = str(err.value)
     assert "measured gamma = 3.9" in msg or "measured gamma = 4.0" in msg
-    assert "expected 5 +- 0.2" in msg and "given band" in msg and "Fourier ordinates" in msg and "record" in msg
+    assert "expected gamma = 5 +- 0.2" in msg and "given" in msg and "Fourier ordinates" in msg and "record" in msg
+    assert "off by -1.0" in msg or "off by -0.9" in msg
+    # a few lines a user reads: why, exponent with its interval, expectation, band, flags
+    lines = msg.splitlines()
+    assert len(lines) == 5 and lines[-1] == "  flags: none"
+    ref = fit_series(t, x, band=(2.0, 100.0), stationarity=False)
+    assert f"95 % interval [{ref.gamma_low:.3f}, {ref.gamma_high:.3f}]" in lines[1]
+
+
+def test_a_flagged_fit_fails_by_default_and_names_its_flag():
+    # 2^12 samples: the Welch band fit's automatic band spans well under a decade, a flag; the exponent itself is
+    # right (tol = inf), so only the flag can fail the assertion
+    n = 4096
+    t = np.arange(n) * DT
+    x = power_law_series(4, n, 3)
+    with pytest.raises(SpectralAssertionError) as err:
+        assert_spectral_slope(t, x, expected=4.0, tol=np.inf, method="whittle")
+    msg = str(err.value)
+    fit = fit_power_law(displacement_spectrum(t, x), method="whittle")
+    assert fit.flags, "the record was chosen to give a flagged band fit"
+    assert "NOT A POWER LAW" in msg and "allow_flagged=True" in msg
+    assert f"  flags: {'; '.join(fit.flags)}" in msg.splitlines()
+    assert len(msg.splitlines()) == 5
+    # the opt-out checks gamma alone and returns the flagged fit
+    ok = assert_spectral_slope(t, x, expected=4.0, tol=np.inf, method="whittle", allow_flagged=True)
+    assert ok.flags == fit.flags
+    # off and flagged: both reasons on the first line
+    with pytest.raises(SpectralAssertionError, match="gamma is off by .* and the fit is flagged NOT A POWER LAW"):
+        assert_spectral_slope(t, x, expected=7.0, tol=0.1, method="whittle")
+
+
+def test_pytest_shows_a_failure_in_a_few_lines(tmp_path):
+    # the helper hides its own frame (__tracebackhide__): pytest's report of a failing user test shows the user's
+    # line and the message, not the helper's source and its array arguments
+    (tmp_path / "test_user.py").write_text(
+        "import numpy as np\n"
+        "from compare.testing import assert_spectral_slope\n"
+        "from compare.analysis.synthetic import power_law_record\n"
+        "def test_slope():\n"
+        "    x = power_law_record(4096, 1e-3, 4.0, seed=0)\n"
+        "    assert_spectral_slope(np.arange(4096) * 1e-3, x, expected=5.0, tol=0.2)\n")
+    out = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-p", "no:randomly",
+                          str(tmp_path / "test_user.py")], capture_output=True, text=True, cwd=tmp_path,
+                         env={**os.environ, "PYTHONPATH": str(ROOT)}).stdout
+    report = out.split("= FAILURES =", 1)[1].split("short test summary", 1)[0].splitlines()
+    assert "spectral slope: gamma is off by" in out and "def assert_spectral_slope" not in out
+    assert len(report) <= 16, out
 
 
 def test_band_fit_stays_reachable():

@@ -53,8 +53,10 @@ def test_analyze_displacement_needs_no_mass_and_reads_the_speed():
     assert a.mean_velocity == pytest.approx(np.polyfit(tr.t, tr.x, 1)[0], rel=1e-9)
     assert a.mean_velocity == pytest.approx(p.v, rel=0.01)
     assert a.C_F is None and a.mass is None
-    # C_mu = omega^4 C_x / g^2 exactly (eq. 3 over (M g)^2); C_F = M^2 omega^4 C_x with the mass
-    np.testing.assert_allclose(a.C_mu.C, a.C_x.omega**4 * a.C_x.C / fn.G**2, rtol=1e-12)
+    # C_mu = omega^4 C_x / g^2 exactly (eq. 3 over (M g)^2), g standard gravity for a record measured on Earth
+    # (the gram-force's constant; the paper's models round it to fn.G = 9.81); C_F = M^2 omega^4 C_x with the mass
+    assert a.g == 9.80665
+    np.testing.assert_allclose(a.C_mu.C, a.C_x.omega**4 * a.C_x.C / a.g**2, rtol=1e-12)
     b = fn.analyze_displacement(tr.t, tr.x, mass=2.0)
     np.testing.assert_allclose(b.C_F.C, 4.0 * b.C_x.omega**4 * b.C_x.C, rtol=1e-12)
     assert b.fit.gamma == a.fit.gamma
