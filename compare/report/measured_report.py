@@ -163,9 +163,10 @@ def _binned_periodogram(C_x, top: float, per_decade: int = 20):
 
 
 def displacement_figure(an: DisplacementAnalysis):
-    """The displacement spectrum's figure and caption: the Welch C_x, the record's periodogram below and across it
-    (log-binned, reaching the band's lowest frequency), the fitted model A omega^-gamma + B (the record model; its
-    power law alone over the identified band) and the band the fit summed over, shaded.
+    """The displacement spectrum's figure and caption: the Welch C_x; for the record model, which fits every Fourier
+    ordinate of the record, the record's periodogram below the Welch average (log-binned, down to the band's lowest
+    frequency) and the fitted model A omega^-gamma + B (its power law alone over the identified band); the band the
+    fit summed over, shaded.
 
     Returns
     -------
@@ -179,13 +180,13 @@ def displacement_figure(an: DisplacementAnalysis):
     fit, spec = an.fit, an.C_x
     fitted = _fitted_band(fit, spec)
     measured = [(spec, f"C_x, Welch (segments of {spec.provenance.get('nperseg', '?')} samples)")]
+    record = getattr(fit, "method", "") == "record"
     join = 2.0 * spec.omega_min  # the periodogram below the Welch average, overlapping it by an octave
-    has_pgram = spec.periodogram is not None and spec.periodogram_omega[0] < spec.omega_min
+    has_pgram = record and spec.periodogram is not None and spec.periodogram_omega[0] < spec.omega_min
     if has_pgram:
         measured.append((_binned_periodogram(spec, join), f"C_x, periodogram of the whole record (below {join:.3g} rad/s)"))
     fig = plots.spectrum_figure(measured, fits=[(fit, "")], band=fitted, title="Displacement spectrum")
     ax = fig.axes[0]
-    record = getattr(fit, "method", "") == "record"
     if record:
         w = np.logspace(np.log10(fitted[0]), np.log10(fitted[1]), 200)
         ax.loglog(w, fit.level(w) + fit.floor, color="C3", lw=1.0, zorder=5,

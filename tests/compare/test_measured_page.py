@@ -92,8 +92,10 @@ def test_the_page_prints_the_interval_and_its_half_width_as_the_terminal_and_the
     assert lo < g < hi
     assert abs(pm - (hi - lo) / 2) <= 1.5e-3  # +- is half the interval's width (each printed to 3 decimals)
     doc = " ".join((DOCS / "explanation" / "identification.md").read_text().split())
-    rule = doc[doc.index("The exponent's +-"):][:300]
+    rule = doc[doc.index("The exponent's +-"):][:400]
     assert "half its interval's width" in rule and "interval itself beside it" in rule
+    assert _stated("gamma = " + rule.split("(\"")[1]) == (3.988, 0.052, 3.937, 4.041)  # the terminal's form, quoted
+    assert _stated("gamma = " + rule.split("index.html (\"")[1]) == (3.988, 0.052, 3.937, 4.041)  # the page's
 
 
 def test_the_figure_reaches_the_band_and_draws_the_fitted_model(floored):
@@ -112,3 +114,17 @@ def test_the_figure_reaches_the_band_and_draws_the_fitted_model(floored):
     top = (math.ceil((N - fit.order) / 2) - 1) * 2 * math.pi / ((N - fit.order) * DT)  # highest fitted ordinate
     assert any(np.isclose(a, fit.band[0]) and np.isclose(b, top) for a, b in shaded)
     assert "periodogram of the whole record" in cap and f"{an.C_x.periodogram_omega[0]:.3g} rad/s" in cap
+
+
+def test_a_band_fit_of_the_welch_spectrum_says_it_fits_no_floor_and_draws_only_its_band():
+    t = np.arange(N) * DT
+    x = power_law_record(N, DT, 4.0, seed=3)
+    an = analyze_displacement(t, x, method="whittle")
+    text = html.unescape(build_measured_report(an, _Record(t, x))[0][0].html)
+    assert "No floor term: the whittle fit takes a power law alone" in text
+    g, pm, lo, hi = _stated(text)
+    assert abs(pm - (hi - lo) / 2) <= 1.5e-3
+    fig, cap = displacement_figure(an)
+    assert "periodogram" not in cap and "record model" not in cap  # the band fit reads neither
+    shaded = [(p.get_x(), p.get_x() + p.get_width()) for p in fig.axes[0].patches if hasattr(p, "get_width")]
+    assert any(np.isclose(a, an.fit.band[0]) and np.isclose(b, an.fit.band[1]) for a, b in shaded)
