@@ -9,7 +9,7 @@ from ..analysis.displacement import C_F_NEEDS_MASS, DisplacementAnalysis
 from ..analysis.fits import flag_mark
 from ..analysis.force import ForceAnalysis, analyze_force, mu_source
 from ..analysis.strokes import Strokes, find_strokes
-from .html import esc, paragraphs, span, table
+from .html import esc, fixed, paragraphs, span, table
 from .verdict import fit_text
 from ..io.measured import units_line
 from .study import Figure, StudyResult
@@ -103,8 +103,8 @@ def exponent_text(fit, digits: int = 3, pm: str = "&plusmn;") -> str:
     escaped: "±")."""
     lo = getattr(fit, "gamma_low", fit.gamma - fit.gamma_err)
     hi = getattr(fit, "gamma_high", fit.gamma + fit.gamma_err)
-    return (f"{fit_text(fit, digits).replace('&plusmn;', pm)} (95 % [{lo:.{digits}f}, {hi:.{digits}f}], "
-            f"{fit.method})")
+    return (f"{fixed(fit.gamma, digits)} {pm} {fit.gamma_err:.{digits}f} (95 % [{lo:.{digits}f}, {hi:.{digits}f}], "
+            f"{fit.method}){flag_mark(fit)}")
 
 
 def floor_words(fit) -> str:
