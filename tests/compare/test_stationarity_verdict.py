@@ -106,3 +106,15 @@ def test_the_study_writes_its_page_with_the_binomial_verdict(tmp_path):
     main(["--page-from", str(tmp_path / "rows.json"), "--out", str(tmp_path / "again.md")])
     again = (tmp_path / "again.md").read_text()
     assert again.split("Written from")[0] == text.split("Measured in")[0]
+
+
+def test_the_split_half_test_flags_a_record_whose_level_quadruples_halfway():
+    # the one verdict still sees a real change: the fluctuation doubled in the second half (its spectrum x4), as the
+    # band test's own test does with model I's record
+    from compare.analysis.record_model import fit_record
+    from compare.analysis.synthetic import power_law_record
+
+    z = power_law_record(4096, DT, 4.0, seed=7)
+    jumped = np.concatenate([z[:2048], z[2047] + 2 * (z[2048:] - z[2047])])  # continuous at the midpoint
+    fit = fit_record(jumped, DT)
+    assert fit.stationarity_p < 1e-6 and any(f.startswith("not stationary") for f in fit.flags)
