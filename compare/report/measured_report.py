@@ -196,9 +196,9 @@ def displacement_figure(an: DisplacementAnalysis):
             ax.axhline(fit.floor, color="C3", ls=":", lw=1.0, zorder=3, label=f"white floor B ({fit.floor_rms:.3g} m rms)")
         if fit.band_end == "floor":
             ax.axvline(fit.band[1], color="0.3", ls="--", lw=0.8, zorder=3, label=f"crossover {fit.band[1]:.3g} rad/s")
-        handles, labels = ax.get_legend_handles_labels()
-        ax.legend(handles=[h for h, lab in zip(handles, labels) if not lab.startswith("γ")
-                           and not lab.startswith("$")], fontsize=7, loc="lower left")
+        handles, labels = ax.get_legend_handles_labels()  # the fit lines' labels (mathtext) have a legend of their own
+        ax.legend(handles=[h for h, lab in zip(handles, labels) if not lab.startswith("$")], fontsize=7,
+                  loc="lower left")
     lo = min(fitted[0], fit.band[0], spec.omega_min)
     ax.set_xlim(lo / 1.3, max(fitted[1], spec.omega_max) * 1.3)
     pgram = (f" (from {spec.omega_min:.3g} rad/s); below {join:.3g} rad/s the periodogram of the whole record "
