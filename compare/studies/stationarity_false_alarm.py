@@ -62,8 +62,9 @@ def binomial(count: int, records: int, level: float = TEST_LEVEL) -> tuple:
     return p, (lo, hi)
 
 
-def page(rows: list, seconds: float) -> list:
-    """The markdown page of the cells ``rows``."""
+def page(rows: list, seconds: float, note: str = "") -> list:
+    """The markdown page of the cells ``rows`` (``note``: how they were measured, for a page written from stored
+    cells)."""
     lines = ["# How often analyze calls a stationary record not stationary", "",
              "Regenerate: `python -m compare.studies.stationarity_false_alarm --seeds 100 --lengths 4096 --seeds-long "
              "25 --lengths-long 16384 --gammas-long 4` (one cell was stored with 200 seeds by a first run and kept "
@@ -91,14 +92,15 @@ def page(rows: list, seconds: float) -> list:
                   f"95 %: {100 * lo:.2f}-{100 * hi:.2f} %), against its nominal {100 * TEST_LEVEL:g} %: P(X >= {flags}) "
                   f"= {p:.3g} under Binomial({tot}, {TEST_LEVEL:g}), {verdict} at p < {REJECT_P:g} (one-sided: a rate "
                   "above the level). The band test on the same records: "
-                  f"{band}/{tot} = {100 * band / tot:.2f} % ({100 * lob:.2f}-{100 * hib:.2f} %).", "",
+                  f"{band}/{tot} = {100 * band / tot:.2f} % ({100 * lob:.2f}-{100 * hib:.2f} %), P(X >= {band}) = "
+                  f"{pb:.2g} at its nominal 1 %: {'rejected: it alarms more often than its stated level' if pb < REJECT_P else 'not rejected'}.", "",
               "What each tests: the split-half test asks whether the two halves have the same power law and floor "
               "(three parameters) over the band the exponent was fitted on; the band test asks whether any of eight "
               "frequency bands changed its level by more than a factor 1.5 between halves, a shape-free check over "
               "all frequencies. analyze names no mechanism when the split-half test flags the record; the band test "
               "is stated only for a fit without a split-half test (`--method whittle` or `lsq`).", "",
               f"Measured in {seconds / 60:.1f} min." if seconds == seconds else
-              "Written from the stored cells (`--page-from`)."]
+              "Written from the stored cells (`--page-from`)." + (f" {note}" if note else "")]
     return lines
 
 
@@ -114,10 +116,11 @@ def main(argv=None):
     ap.add_argument("--out", type=Path, default=PAGE)
     ap.add_argument("--rows", type=Path, default=Path("study-results") / "stationarity_rows.json")
     ap.add_argument("--page-from", type=Path, default=None, help="write the page of the cells stored in this file")
+    ap.add_argument("--note", default="", help="with --page-from: how the stored cells were measured")
     a = ap.parse_args(argv)
     if a.page_from is not None:
         rows = json.loads(a.page_from.read_text())
-        write_page(a.out, page(rows, float("nan")), load=False)
+        write_page(a.out, page(rows, float("nan"), a.note), load=False)
         return
     plan = [(n, a.seeds, GAMMAS) for n in a.lengths] + [(n, a.seeds_long, a.gammas_long) for n in a.lengths_long]
     if a.quick:

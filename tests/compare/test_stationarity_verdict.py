@@ -1,6 +1,8 @@
 """analyze states one stationarity verdict: the exponent fit's split-half likelihood-ratio test when it ran, the
 band test of compare.analysis.identify.stationarity only for a fit without one; and the split-half test's false
 alarms on exactly stationary records hold its nominal 1 % (docs/results/stationarity.md)."""
+import re
+
 import numpy as np
 import pytest
 from scipy import stats
@@ -118,3 +120,16 @@ def test_the_split_half_test_flags_a_record_whose_level_quadruples_halfway():
     jumped = np.concatenate([z[:2048], z[2047] + 2 * (z[2048:] - z[2047])])  # continuous at the midpoint
     fit = fit_record(jumped, DT)
     assert fit.stationarity_p < 1e-6 and any(f.startswith("not stationary") for f in fit.flags)
+
+
+def test_the_explanation_quotes_the_false_alarm_counts_of_the_results_page():
+    from pathlib import Path
+
+    docs = Path(__file__).resolve().parents[2] / "docs"
+    results = (docs / "results" / "stationarity.md").read_text()
+    split = re.search(r"false-alarm rate: (\d+)/(\d+) = ([\d.]+) %", results).groups()
+    band = re.search(r"The band test on the same records: (\d+)/(\d+) = ([\d.]+) %", results).groups()
+    text = " ".join((docs / "explanation" / "identification.md").read_text().split())
+    assert f"flagged {split[0]} of {split[1]} ({split[2]} %" in text
+    assert f"{band[0]} of {band[1]} ({band[2]} %)" in text
+    assert f"{split[2]} %" in " ".join((docs / "explanation" / "whittle_vs_lsq.md").read_text().split())
