@@ -10,11 +10,9 @@ compare.analysis.identify.stationarity (eight log-spaced bands, Bonferroni at 1 
 longer states when the split-half test has run.
 
     python -m compare.studies.stationarity_false_alarm --seeds 100 --lengths 4096 --seeds-long 25 --lengths-long 16384 \
-        --gammas-long 4 --resume study-results/stationarity_rows.json   # the page's cells (a cell stored with more
-                                                                        # seeds by an earlier run is kept)
+        --gammas-long 4 --resume ROWS   # the page's cells; ROWS: an earlier run's --rows file, whose cells are kept
     python -m compare.studies.stationarity_false_alarm --quick --out t.md   # smoke: 3 seeds at 4096, a few seconds
-    python -m compare.studies.stationarity_false_alarm --page-from study-results/stationarity_rows.json  # the page
-                                                                             # of the cells stored so far
+    python -m compare.studies.stationarity_false_alarm --page-from ROWS     # the page of the cells stored in ROWS
 
 Binomial criterion: the pooled count of flags is compared with Binomial(records, 0.01); the rate is rejected as above
 its nominal 1 % when P(X >= count) < 0.001 (one-sided: a test that alarms less often than its level only loses
