@@ -106,7 +106,8 @@ def cmd_analyze(args) -> int:
             if say:
                 say(f"exponent fitted in {time.perf_counter() - t0:.1f} s; naming the mechanism")
             sections, summary = build_measured_report(an, data)
-            summary.update(units=data.units, **mechanisms_of(data, an.mean_velocity, an.fit.flags, progress=say))
+            summary.update(units=data.units, **mechanisms_of(data, an.mean_velocity, an.fit.flags, progress=say,
+                                                             stationarity_p=getattr(an.fit, "stationarity_p", None)))
             sections = [ranking_section(summary)] + list(sections)
     except ValueError as e:
         raise UserError(f"{args.data}: {e}") from None

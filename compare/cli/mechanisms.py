@@ -4,12 +4,21 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["mechanisms_of", "ranking_lines", "ranking_section"]
+__all__ = ["mechanisms_of", "ranking_lines", "ranking_section", "stationarity_line", "SPLIT_HALF", "BAND_TEST"]
 
 
-def mechanisms_of(data, v: float, flags=(), progress=None) -> dict:
+SPLIT_HALF = "split-half likelihood ratio of the record model"
+BAND_TEST = "band levels of the two halves (compare.analysis.identify.stationarity)"
+
+
+def mechanisms_of(data, v: float, flags=(), progress=None, *, stationarity_p: float | None = None) -> dict:
     """summary.json's ``mechanisms`` (best first, each :meth:`Mechanism.to_dict`) and ``stationarity`` of a
     measured displacement record at mean speed ``v`` (m/s); ``mechanisms_note`` says why there are none.
+
+    One stationarity verdict: the exponent fit's split-half likelihood-ratio test
+    (:mod:`compare.analysis.record_model`, flagged below p = 0.01) when it ran, so the ranking and the exponent's
+    flag never disagree; only a fit without that test (``--method whittle`` or ``lsq``) leaves the verdict to the
+    band test of :func:`compare.analysis.identify.stationarity`. ``stationarity`` names the test that decided.
 
     Parameters
     ----------
@@ -22,13 +31,18 @@ def mechanisms_of(data, v: float, flags=(), progress=None) -> dict:
         mechanism.
     progress : callable, optional
         Called with one line per family fitted (:func:`compare.analysis.identify.identify`'s ``progress``).
+    stationarity_p : float, optional
+        The exponent fit's split-half p-value (:attr:`~compare.analysis.record_model.RecordFit.stationarity_p`);
+        None or NaN when the test did not run.
 
     Returns
     -------
     dict
-        ``mechanisms`` (list), ``stationarity`` (dict or None) and ``mechanisms_note`` (str).
+        ``mechanisms`` (list), ``stationarity`` (dict or None: ``test``, ``stationary``, and ``p_value`` with
+        ``level`` for the split-half test) and ``mechanisms_note`` (str).
     """
     from ..analysis.identify import MIN_SAMPLES, identify, stationarity, too_short
+    from ..analysis.record_model import TEST_LEVEL
 
     if getattr(data, "segmented", False):
         return {"mechanisms": [], "stationarity": None,
@@ -40,15 +54,37 @@ def mechanisms_of(data, v: float, flags=(), progress=None) -> dict:
     if len(data.x) < MIN_SAMPLES:
         return {"mechanisms": [], "stationarity": None, "mechanisms_note": f"no mechanism named: {too_short(len(data.x))}"}
     split = [f for f in flags if f.startswith("not stationary")]
-    if split:
-        return {"mechanisms": [], "stationarity": None, "mechanisms_note": f"no mechanism named: {split[0]}"}
+    ran = stationarity_p is not None and stationarity_p == stationarity_p
+    if split or ran:
+        st = {"test": SPLIT_HALF, "stationary": not split, "p_value": stationarity_p if ran else None,
+              "level": TEST_LEVEL}
+        if split:
+            return {"mechanisms": [], "stationarity": st, "mechanisms_note": f"no mechanism named: {split[0]}"}
+    else:
+        dt = float(np.median(np.diff(data.t)))
+        st = {"test": BAND_TEST, **stationarity(data.x, dt)}
+        if not st["stationary"]:
+            return {"mechanisms": [], "stationarity": st,
+                    "mechanisms_note": "no mechanism named: the record's two halves have different spectra (not "
+                                       "stationary by the band test of the halves' levels, eight bands, Bonferroni at "
+                                       "1 %; the exponent's fit ran no stationarity test of its own)"}
     dt = float(np.median(np.diff(data.t)))
-    st = stationarity(data.x, dt)
-    if not st["stationary"]:
-        return {"mechanisms": [], "stationarity": st,
-                "mechanisms_note": "no mechanism named: the record's two halves have different spectra (not stationary)"}
     ranking = identify(x=data.x, dt=dt, v=v, stationary=True, progress=progress)
     return {"mechanisms": [m.to_dict() for m in ranking], "stationarity": st, "mechanisms_note": ""}
+
+
+def stationarity_line(summary: dict) -> str:
+    """The stationarity verdict the ranking rests on, in one line: which test, its p-value and level."""
+    st = summary.get("stationarity")
+    if not st:
+        return ""
+    if st["test"] == SPLIT_HALF:
+        p = st.get("p_value")
+        return (f"stationarity: {'stationary' if st['stationary'] else 'NOT stationary'} by the {SPLIT_HALF} "
+                + (f"(p = {p:.2g}; flagged below {st['level']:g}), the test of the exponent's flags" if p is not None
+                   else f"(flagged below {st['level']:g}), the test of the exponent's flags"))
+    return (f"stationarity: {'stationary' if st['stationary'] else 'NOT stationary'} by the {BAND_TEST}; the "
+            "exponent's fit ran no stationarity test of its own")
 
 
 def _backward(v: float) -> str:
@@ -78,8 +114,9 @@ def ranking_lines(summary: dict) -> list:
     under it as one family, with what would separate each; then the others, with what would separate an
     indistinguishable one."""
     mechs = summary.get("mechanisms") or []
+    st = stationarity_line(summary)
     if not mechs:
-        return [f"mechanism: {summary.get('mechanisms_note') or 'none named'}"]
+        return [f"mechanism: {summary.get('mechanisms_note') or 'none named'}"] + ([st] if st else [])
     lines = ["mechanisms (best first; p: Holm-adjusted, against the best; +-: 95 % half-width, the larger side of "
              "an asymmetric interval):"]
     best = mechs[0]["model"]
@@ -93,7 +130,7 @@ def ranking_lines(summary: dict) -> list:
             lines.extend(f"        {c['model']}: {c['separate']}" for c in same)
         elif m["separate"]:
             lines.append(f"      to separate: {m['separate']}")
-    return lines
+    return lines + ([st] if st else [])
 
 
 def ranking_section(summary: dict):

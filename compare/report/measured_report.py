@@ -9,13 +9,14 @@ from ..analysis.displacement import C_F_NEEDS_MASS, DisplacementAnalysis
 from ..analysis.fits import flag_mark
 from ..analysis.force import ForceAnalysis, analyze_force, mu_source
 from ..analysis.strokes import Strokes, find_strokes
-from .html import esc, paragraphs, span, table
+from .html import esc, fixed, paragraphs, span, table
 from .verdict import fit_text
 from ..io.measured import units_line
 from .study import Figure, StudyResult
 from .timeline_section import pieces_html, timeline_html
 
-__all__ = ["Strokes", "ForceAnalysis", "find_strokes", "analyze_force", "build_force_report", "build_measured_report"]
+__all__ = ["Strokes", "ForceAnalysis", "find_strokes", "analyze_force", "build_force_report", "build_measured_report",
+           "displacement_figure", "exponent_text", "floor_words"]
 
 
 def build_force_report(an: ForceAnalysis):
@@ -95,6 +96,127 @@ def build_force_report(an: ForceAnalysis):
     return [result], summary
 
 
+def exponent_text(fit, digits: int = 3, pm: str = "&plusmn;") -> str:
+    """An exponent as the page states it: "3.988 &plusmn; 0.052 (95 % [3.937, 4.041], record)", the +- half the
+    interval's width (the rule of the terminal's line and of docs/explanation/identification.md); a band fit's
+    interval is gamma +- its half-width. ``pm``: the sign as the text it goes into writes it (a caption is
+    escaped: "±")."""
+    lo = getattr(fit, "gamma_low", fit.gamma - fit.gamma_err)
+    hi = getattr(fit, "gamma_high", fit.gamma + fit.gamma_err)
+    return (f"{fixed(fit.gamma, digits)} {pm} {fit.gamma_err:.{digits}f} (95 % [{lo:.{digits}f}, {hi:.{digits}f}], "
+            f"{fit.method}){flag_mark(fit)}")
+
+
+def floor_words(fit) -> str:
+    """The sensor's white floor and why the band ends where it does, as a sentence of the page: the record model's
+    :func:`~compare.analysis.record_model.band_end_words` with the floor's level in m rms and m^2 s; a band fit of
+    the Welch spectrum fits no floor and says so."""
+    if getattr(fit, "method", "") != "record":
+        return (f"No floor term: the {fit.method} fit takes a power law alone over the band "
+                f"{span(fit.band[0], fit.band[1])} rad/s of the Welch spectrum"
+                + (" (given)." if not fit.band_auto else " (its widest straight stretch)."))
+    from ..analysis.record_model import band_end_words
+
+    words = band_end_words(fit.band_end, fit.floor_rms, fit.crossover, fit.band[1], fit.gamma,
+                           [s[:3] for s in fit.segments], " m").lstrip("; ")
+    level = (f" (level B = {fit.floor:.3g} m^2 s of C_x)" if fit.floor > 0 else "")
+    if fit.floor > 0:
+        words = words.replace(" rms", f" rms{level}", 1)
+    else:
+        words = words.replace("no white floor detected", "no white floor resolved (B = 0: the fit's floor term sits "
+                              "at its bound)", 1)
+    why = {"floor": "", "departure": "",
+           "last frequency": f"; the band reaches the record's highest frequency, {fit.band[1]:.4g} rad/s (Nyquist)",
+           "given": f"; the band ends at {fit.band[1]:.4g} rad/s, the band given (--band)"}[fit.band_end]
+    return "Sensor floor and band end: " + esc(words + why) + "."
+
+
+def _fitted_band(fit, C_x) -> tuple:
+    """The band whose ordinates the fit summed over (rad/s): the given or searched band, else the record's whole
+    range of Fourier frequencies (the record model) or the fit's band (a band fit of the Welch spectrum)."""
+    if getattr(fit, "method", "") != "record":
+        return tuple(fit.band)
+    if fit.fit_band:
+        return tuple(fit.fit_band)
+    import math
+
+    m = fit.n_samples - fit.order  # the differenced record's Fourier ordinates j = 1 .. ceil(m/2) - 1
+    return (fit.band[0], (math.ceil(m / 2) - 1) * 2 * math.pi / (m * float(C_x.provenance["dt"])))
+
+
+def _binned_periodogram(C_x, top: float, per_decade: int = 20):
+    """The raw periodogram C_x carries (the differenced record's, re-coloured to C_x) up to ``top`` (rad/s),
+    averaged in log bins: the record's whole resolution, down to its lowest Fourier frequency 2 pi / (n dt)."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    w, p = C_x.periodogram_omega, np.asarray(C_x.periodogram, dtype=float)
+    w, p = w[w <= top], p[w <= top]
+    edges = np.logspace(np.log10(w[0]) - 1e-9, np.log10(w[-1]) + 1e-9,
+                        max(2, int(np.ceil(per_decade * np.log10(w[-1] / w[0]))) + 1))
+    idx = np.searchsorted(edges, w, side="right") - 1
+    cnt = np.bincount(idx, minlength=len(edges))
+    keep = cnt > 0
+    om = np.exp(np.bincount(idx, weights=np.log(w), minlength=len(edges))[keep] / cnt[keep])
+    return SimpleNamespace(omega=om, C=np.bincount(idx, weights=p, minlength=len(edges))[keep] / cnt[keep])
+
+
+def displacement_figure(an: DisplacementAnalysis):
+    """The displacement spectrum's figure and caption: the Welch C_x; for the record model, which fits every Fourier
+    ordinate of the record, the record's periodogram below the Welch average (log-binned, down to the band's lowest
+    frequency) and the fitted model A omega^-gamma + B (its power law alone over the identified band); the band the
+    fit summed over, shaded.
+
+    Returns
+    -------
+    (matplotlib.figure.Figure, str)
+        The figure and its caption (plain text: the page escapes it).
+    """
+    import numpy as np
+
+    from . import plots
+
+    fit, spec = an.fit, an.C_x
+    fitted = _fitted_band(fit, spec)
+    measured = [(spec, f"C_x, Welch (segments of {spec.provenance.get('nperseg', '?')} samples)")]
+    record = getattr(fit, "method", "") == "record"
+    join = 2.0 * spec.omega_min  # the periodogram below the Welch average, overlapping it by an octave
+    has_pgram = record and spec.periodogram is not None and spec.periodogram_omega[0] < spec.omega_min
+    if has_pgram:
+        measured.append((_binned_periodogram(spec, join), f"C_x, periodogram of the whole record (below {join:.3g} rad/s)"))
+    fig = plots.spectrum_figure(measured, fits=[(fit, "")], band=fitted, title="Displacement spectrum")
+    ax = fig.axes[0]
+    if record:
+        w = np.logspace(np.log10(fitted[0]), np.log10(fitted[1]), 200)
+        ax.loglog(w, fit.level(w) + fit.floor, color="C3", lw=1.0, zorder=5,
+                  label=r"fitted model $A\omega^{-\gamma} + B$" if fit.floor > 0 else
+                  r"fitted model $A\omega^{-\gamma}$ (no floor resolved)")
+        if fit.floor > 0:
+            ax.axhline(fit.floor, color="C3", ls=":", lw=1.0, zorder=3, label=f"white floor B ({fit.floor_rms:.3g} m rms)")
+        if fit.band_end == "floor":
+            ax.axvline(fit.band[1], color="0.3", ls="--", lw=0.8, zorder=3, label=f"crossover {fit.band[1]:.3g} rad/s")
+        handles, labels = ax.get_legend_handles_labels()  # the fit lines' labels (mathtext) have a legend of their own
+        ax.legend(handles=[h for h, lab in zip(handles, labels) if not lab.startswith("$")], fontsize=7,
+                  loc="lower left")
+    lo = min(fitted[0], fit.band[0], spec.omega_min)
+    ax.set_xlim(lo / 1.3, max(fitted[1], spec.omega_max) * 1.3)
+    pgram = (f" (from {spec.omega_min:.3g} rad/s); below {join:.3g} rad/s the periodogram of the whole record "
+             f"({spec.provenance.get('prewhiten_order', 2)}-times differenced, rectangular window, re-coloured to C_x, "
+             f"averaged in 20 bins a decade), which reaches the record's lowest Fourier frequency "
+             f"{spec.periodogram_omega[0]:.3g} rad/s as the fit does" if has_pgram else "")
+    model = (f"; the fitted record model A ω^-γ + B (red; B dotted: {fit.floor_rms:.3g} m rms) and its power law "
+             f"alone over the identified band {span(fit.band[0], fit.band[1])} rad/s (black)"
+             if record and fit.floor > 0 else
+             f"; the fitted record model, a power law with no floor resolved (red), and the power law over the "
+             f"identified band {span(fit.band[0], fit.band[1])} rad/s (black)" if record else
+             f"; the power-law fit over {span(fit.band[0], fit.band[1])} rad/s (black)")
+    caption = (f"C_x of the measured displacement (m^2 s): the Welch average{pgram}{model}; gamma = "
+               f"{exponent_text(fit, pm='±')}. Shaded: the band the fit summed over, {span(*fitted)} rad/s"
+               + ("" if not record or fit.fit_band else " (every Fourier ordinate of the record)") + ".")
+    return fig, caption
+
+
 def build_measured_report(an: DisplacementAnalysis, data):
     """Results (StudyResult list) and the JSON summary of a displacement analysis of the record ``data``.
 
@@ -117,20 +239,19 @@ def build_measured_report(an: DisplacementAnalysis, data):
     text = paragraphs([
         f"{len(data.t)} samples {every}; mean velocity {1e3 * an.mean_velocity:.4g} mm/s"
         + (f". {esc(data.warning)}" if data.warning else "."),
-        f"gamma = {fit_text(fit, 3)} (95 %, {fit.method}) over "
+        f"gamma = {exponent_text(fit)} over "
         f"{span(fit.band[0], fit.band[1])} rad/s{' (automatic band)' if fit.band_auto else ''}"
         + (f" <b>not a power law: {esc('; '.join(fit.flags))}</b>" if fit.flags else "")
         + f"; zeta_rms = {an.zeta_rms:.4g} m over the resolved band (eq. 4) and mu_rms = {an.mu_rms:.4g} "
         f"(dimensionless, C_mu = omega^4 C_x / g^2 of a free block, whatever its mass) over {span(*an.rms_band)} rad/s, "
         "the fitted band (omega^4 weighs a sensor's white floor above it, which is not friction).",
+        floor_words(fit),
         relation,
         "Processing: " + esc("; ".join(summary["spectrum_steps"])) + ".",
     ]) + (timeline_html(data.timeline, an.segment_fits, segs.notes) if segs is not None else "")
+    cx_figure, cx_caption = displacement_figure(an)
     figures = [
-        Figure("measured_Cx", plots.figure_png_bytes(plots.spectrum_figure([(spec, "C_x")], fits=[(fit, "")], band=fit.band,
-                                                                          title="Displacement spectrum")),
-               f"C_x of the measured displacement (m^2 s) with the power-law fit: gamma = {fit.gamma:.2f} ± "
-               f"{fit.gamma_err:.2f}{flag_mark(fit)} over {span(fit.band[0], fit.band[1])} rad/s (shaded)."),
+        Figure("measured_Cx", plots.figure_png_bytes(cx_figure), cx_caption),
         Figure("measured_Cmu", plots.figure_png_bytes(plots.spectrum_figure([(an.C_mu, "C_mu = omega^4 C_x / g^2")],
                                                                            ylabel=r"$C_\mu$ (s)",
                                                                            title="Friction coefficient spectrum")),
