@@ -27,8 +27,10 @@ Binomial(seeds, 0.95) (two-sided p < 0.001).
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import math
+import os
 import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
@@ -68,6 +70,7 @@ def floor_rms(n: int, gamma: float, where: str) -> float:
     return math.sqrt(2 * math.pi * wx ** -gamma / DT)
 
 
+@functools.lru_cache(maxsize=None)
 def cramer_rao(n: int, gamma: float, rms: float, floor_free: bool = True) -> float:
     """1.96 sqrt([F^-1]_gg): F_ab = sum_j d ln Ibar_j/da d ln Ibar_j/db over the Fourier ordinates of the true
     debiased expectation (the Whittle information; exact for independent exponential ordinates)."""
@@ -140,7 +143,9 @@ def summary(n: int, gamma: float, where: str, records: list, wall: float = 0.0) 
 
 
 def _seed_task(task):
-    return seed_record(*task)
+    """One seed_record call and its wall time (s), for a process pool."""
+    t0 = time.perf_counter()
+    return seed_record(*task), time.perf_counter() - t0
 
 
 def cell(n: int, gamma: float, where: str, seeds: int, old: bool, first: int = 0, pool=None) -> dict:
@@ -148,7 +153,7 @@ def cell(n: int, gamma: float, where: str, seeds: int, old: bool, first: int = 0
     given ``pool`` (a concurrent.futures executor), spread over its workers; the row is the same either way."""
     t0 = time.perf_counter()
     tasks = [(n, gamma, where, seed, old) for seed in range(first, first + seeds)]
-    records = list(pool.map(_seed_task, tasks) if pool is not None else map(_seed_task, tasks))
+    records = [r for r, _ in (pool.map(_seed_task, tasks) if pool is not None else map(_seed_task, tasks))]
     return summary(n, gamma, where, records, time.perf_counter() - t0)
 
 
@@ -389,24 +394,30 @@ def main(argv=None) -> int:
         return 0
     lengths = [2**10] if args.quick else [2 ** int(s) for s in args.lengths.split(",")]
     seeds = 2 if args.quick else args.seeds
-    rows = []
+    cells = [(n, g, where) for n in lengths for g in GAMMAS for where in FLOORS]
+    records, spent, rows = {c: [] for c in cells}, {c: 0.0 for c in cells}, []
+    first = args.first_seed
     t0 = time.perf_counter()
-    cmd = ("python -m compare.studies.exponent_coverage --quick" if args.quick else
-           f"python -m compare.studies.exponent_coverage --seeds {seeds} --lengths {args.lengths}"
-           + (" --no-old" if args.no_old else "") + (f" --first-seed {args.first_seed}" if args.first_seed else ""))
     pool = ProcessPoolExecutor(args.workers) if args.workers > 1 else None
-    try:
-        for n in lengths:
-            for g in GAMMAS:
-                for where in FLOORS:
-                    rows.append(cell(n, g, where, seeds, not args.no_old, args.first_seed, pool))
-                    print(table(rows[-1:]).splitlines()[-1], flush=True)
-                    if args.rows and not args.quick:  # every cell as it ends: a long run can be stopped and combined
-                        Path(args.rows).write_text(json.dumps(
-                            {"rows": rows, "command": cmd, "wall_s": time.perf_counter() - t0}))
+    try:  # seed by seed over every cell: a run stopped at any time leaves whole seeds in --rows
+        for seed in range(first, first + seeds):
+            tasks = [(*c, seed, not args.no_old) for c in cells]
+            for c, (rec, s) in zip(cells, pool.map(_seed_task, tasks) if pool is not None else map(_seed_task, tasks)):
+                records[c].append(rec)
+                spent[c] += s
+            rows = [summary(*c, records[c], spent[c]) for c in cells]
+            cmd = ("python -m compare.studies.exponent_coverage --quick" if args.quick else
+                   f"python -m compare.studies.exponent_coverage --seeds {seed - first + 1} --lengths {args.lengths}"
+                   + (" --no-old" if args.no_old else "") + (f" --first-seed {first}" if first else ""))
+            print(f"seed {seed} done ({time.perf_counter() - t0:.0f} s)", flush=True)
+            if args.rows and not args.quick:  # replaced whole: a run stopped while writing keeps the last seed's
+                part = Path(args.rows).with_suffix(".part")
+                part.write_text(json.dumps({"rows": rows, "command": cmd, "wall_s": time.perf_counter() - t0}))
+                os.replace(part, args.rows)
     finally:
         if pool is not None:
             pool.shutdown()
+    print(table(rows), end="")
     wall = time.perf_counter() - t0
     print(pooled(rows))
     if args.rows or (args.quick and not args.out):

@@ -69,6 +69,23 @@ def test_workers_and_merged_runs_give_the_serial_rows_bit_for_bit():
         exponent_coverage.merged([parts[0], parts[0]])
 
 
+def test_a_run_over_workers_stores_the_serial_rows_and_says_which_seeds(tmp_path):
+    # The command line's run, seed by seed over all 9 cells in 2 worker processes, stores in --rows the rows the
+    # serial cell() gives for those seeds (records and columns ==), and a command naming exactly those seeds.
+    import json
+
+    out = tmp_path / "rows.json"
+    assert exponent_coverage.main(["--seeds", "2", "--first-seed", "5", "--lengths", "10", "--workers", "2",
+                                   "--rows", str(out)]) == 0
+    part = json.loads(out.read_text())
+    assert part["command"].endswith("--seeds 2 --lengths 10 --first-seed 5")
+    assert [(r["gamma"], r["floor"]) for r in part["rows"]] == [
+        (g, w) for g in exponent_coverage.GAMMAS for w in exponent_coverage.FLOORS]
+    for row in part["rows"][::4]:  # three of the nine cells (one per gamma) run again serially
+        serial = exponent_coverage.cell(1024, row["gamma"], row["floor"], 2, True, 5)
+        assert _without_wall(row) == json.loads(json.dumps(_without_wall(serial)))
+
+
 def test_page_rows_read_back_print_as_they_stood(tmp_path):
     # A page written from 2 seeds per cell at 2^10 is read back (--from-page) and rebuilt (--combine): the table's
     # rows and the pooled coverage are the same text; a read-back row merged with a run on other seeds adds its
