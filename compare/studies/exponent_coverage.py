@@ -15,11 +15,12 @@ bound of one told the floor).
     python -m compare.studies.exponent_coverage --seeds 20 --first-seed 100 --lengths 16 --workers 2 --rows a.json
     python -m compare.studies.exponent_coverage --combine compare/studies/exponent_coverage_runs/*.json a.json
 
-The page is made of parts, each a JSON file of rows that carry their per-seed records (runs with --rows; the page's
-earliest rows were read back from the page with --from-page and carry none); --combine merges the rows of one cell
-over its parts' seeds and writes the page, so more seeds are one more run on new seeds and one more --combine. The
-committed parts are in compare/studies/exponent_coverage_runs/. --workers N fits the records in N processes; every
-record depends on its cell and seed only, so the rows are those of one process.
+The page is made of parts, each a JSON file of rows that carry their per-seed records (runs with --rows, which
+store every seed over all cells as it ends, so a run can be stopped at any time; the page's earliest rows were read
+back from the page with --from-page and carry none); --combine merges the rows of one cell over its parts' seeds and
+writes the page, so more seeds are one more run on new seeds and one more --combine. The committed parts are in
+compare/studies/exponent_coverage_runs/. --workers N fits the records in N processes; every record depends on its
+cell and seed only, so the rows are those of one process.
 
 Binomial criterion: a cell is rejected when its coverage count is below the 0.0005 or above the 0.9995 quantile of
 Binomial(seeds, 0.95) (two-sided p < 0.001).
@@ -227,6 +228,20 @@ def pooled(rows) -> str:
     return f"pooled coverage {100 * hits / total:.1f} % ({hits}/{total}; 95 % Clopper-Pearson {100 * lo:.1f}-{100 * hi:.1f} %)"
 
 
+def _where_narrowest(rows, where: str) -> str:
+    """Where the narrowest band of the cells with floor ``where`` lies, as " (2^16 seed 40, γ 2 4 6)", when the
+    per-seed records that reach it are at hand; "" otherwise."""
+    cells = [r for r in rows if r["floor"] == where]
+    low = min(r["min_decades"] for r in cells)
+    hit = [(r, x) for r in cells for x in r.get("records", r.get("part_records", [])) if x["decades"] == low]
+    if not hit:
+        return ""
+    n = {r["n"] for r, _ in hit}
+    seeds = sorted({x["seed"] for _, x in hit})
+    return (f" ({', '.join(f'2^{int(math.log2(v))}' for v in sorted(n))} seed {', '.join(map(str, seeds))}, "
+            f"γ {' '.join(f'{g:g}' for g in sorted({r['gamma'] for r, _ in hit}))})")
+
+
 def claims(rows) -> str:
     """The page's claims read off its rows: cells rejected, the bias criterion (and where the seeds resolve it), the
     half-width over the Cramer-Rao bound, the narrowest band on a clean power law, and the old estimator beside."""
@@ -254,7 +269,11 @@ def claims(rows) -> str:
                "which do not test it" if len(rows) > len(resolved) else "")
             + f"; median half-width over the Cramér-Rao bound {min(ratio):.2f}-{max(ratio):.2f}")
     if clean:
-        text += f"; the narrowest band on a clean power law spans {min(clean):.2f} decades"
+        text += (f"; the narrowest band on a clean power law spans {min(clean):.2f} decades"
+                 f"{_where_narrowest(rows, 'none')}")
+    if any(r["floor"] == "dominant" for r in rows):
+        text += (f", under a dominant floor {min(r['min_decades'] for r in rows if r['floor'] == 'dominant'):.2f}"
+                 f"{_where_narrowest(rows, 'dominant')}")
     if old:
         text += f"; the old estimator's median half-width {min(old):.1f}-{max(old):.1f}× the bound"
     return text
@@ -313,6 +332,7 @@ def merged(rows) -> list:
         for k in ("bias", "median_half", "flag_rate", "old_coverage", "old_bias", "old_median_half", "old_flag_rate"):
             if k in m and k in r:
                 m[k] = (m[k] * s0 + r[k] * s1) / (s0 + s1)
+        m["part_records"] = m.get("part_records", []) + m.get("records", []) + r.get("records", [])
         for k in ("records", "line", "ratio", "old_ratio"):
             m.pop(k, None)
         m["median_note"] = "seed-weighted mean of the parts' medians"
