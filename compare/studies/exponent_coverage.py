@@ -352,8 +352,12 @@ def write_page(rows, commands, model1=None, path=PAGE) -> None:
     approx = [r for r in rows if "median_note" in r]
     note = ("" if not approx else " In the " + ", ".join(
         sorted({f"2^{int(math.log2(r['n']))}" for r in approx})) + " rows the median half-widths (and the ratio beside "
-        "them) are the seed-weighted means of the medians of parts of which one kept no per-seed records; the counts, "
-        "means, flag rates and narrowest bands are exact.")
+        "them) are the seed-weighted means of the medians of parts of which one kept no per-seed records; "
+        "the counts and "
+        "flag rates are exact, the mean bias and narrowest band exact up to the printed digits of the part read back.")
+    counts = sorted({r["seeds"] for r in rows}, reverse=True)
+    note += " Covering counts not rejected: " + ", ".join(
+        f"{int(stats.binom.ppf(0.0005, k, 0.95))}-{int(stats.binom.ppf(0.9995, k, 0.95))} of {k}" for k in counts) + "."
     Path(path).write_text(
         "# Exponent coverage on lab-length records\n\n"
         f"Reproduce: {commands}; `--quick --out FILE` writes the same table for 2 seeds at 2^10 samples in a few "
