@@ -11,10 +11,16 @@ Whittle Fisher information of the true debiased expected periodogram for (gamma,
 floor free (also where it is zero: the bound of an estimator that does not know there is none), and known (the
 bound of one told the floor).
 
-    python -m compare.studies.exponent_coverage --seeds 200       # the page (minutes per cell at 2^16)
     python -m compare.studies.exponent_coverage --quick --out t.md  # CI smoke: 2 seeds at 2^10, a few seconds
-    python -m compare.studies.exponent_coverage --seeds 80 --lengths 12,14 --rows a.json   # runs in pieces,
-    python -m compare.studies.exponent_coverage --combine a.json b.json                    # then one page
+    python -m compare.studies.exponent_coverage --seeds 20 --first-seed 100 --lengths 16 --workers 2 --rows a.json
+    python -m compare.studies.exponent_coverage --combine compare/studies/exponent_coverage_runs/*.json a.json
+
+The page is made of parts, each a JSON file of rows that carry their per-seed records (runs with --rows, which
+store every seed over all cells as it ends, so a run can be stopped at any time; the page's earliest rows were read
+back from the page with --from-page and carry none); --combine merges the rows of one cell over its parts' seeds and
+writes the page, so more seeds are one more run on new seeds and one more --combine. The committed parts are in
+compare/studies/exponent_coverage_runs/. --workers N fits the records in N processes; every record depends on its
+cell and seed only, so the rows are those of one process.
 
 Binomial criterion: a cell is rejected when its coverage count is below the 0.0005 or above the 0.9995 quantile of
 Binomial(seeds, 0.95) (two-sided p < 0.001).
@@ -22,9 +28,12 @@ Binomial(seeds, 0.95) (two-sided p < 0.001).
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import math
+import os
 import time
+from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -62,6 +71,7 @@ def floor_rms(n: int, gamma: float, where: str) -> float:
     return math.sqrt(2 * math.pi * wx ** -gamma / DT)
 
 
+@functools.lru_cache(maxsize=None)
 def cramer_rao(n: int, gamma: float, rms: float, floor_free: bool = True) -> float:
     """1.96 sqrt([F^-1]_gg): F_ab = sum_j d ln Ibar_j/da d ln Ibar_j/db over the Fourier ordinates of the true
     debiased expectation (the Whittle information; exact for independent exponential ordinates)."""
@@ -84,47 +94,68 @@ def cramer_rao(n: int, gamma: float, rms: float, floor_free: bool = True) -> flo
     return 1.96 * math.sqrt(float(np.linalg.inv(F)[0, 0]))
 
 
-def cell(n: int, gamma: float, where: str, seeds: int, old: bool, first: int = 0) -> dict:
+def seed_record(n: int, gamma: float, where: str, seed: int, old: bool) -> dict:
+    """One record of one cell fitted: the record model's estimate, interval, flags and band width (decades), and
+    with ``old`` the spectrum-and-band estimator's estimate, half-width and flags (NaN where it fails). The record
+    depends on (n, gamma, where, seed) only, so seeds can be run apart, in any order or process, and merged."""
     rms = floor_rms(n, gamma, where)
-    t = np.arange(n) * DT
-    new_g, new_lo, new_hi, new_flag, dec = [], [], [], 0, []
-    old_g, old_h, old_flag = [], [], 0
-    t0 = time.perf_counter()
-    for seed in range(first, first + seeds):
-        x = power_law_record(n, DT, gamma, floor_rms=rms, seed=seed)
-        f = fit_record(x, DT, stationarity=False)
-        new_g.append(f.gamma)
-        new_lo.append(f.gamma_low)
-        new_hi.append(f.gamma_high)
-        new_flag += bool(f.flags)
-        dec.append(f.decades)
-        if old:
-            try:
-                o = fit_power_law(displacement_spectrum(t, x))
-                old_g.append(o.gamma)
-                old_h.append(o.gamma_err)
-                old_flag += bool(o.flags)
-            except ValueError:
-                old_g.append(math.nan)
-                old_h.append(math.nan)
-                old_flag += 1
-    wall = time.perf_counter() - t0
-    g, lo, hi = np.array(new_g), np.array(new_lo), np.array(new_hi)
+    x = power_law_record(n, DT, gamma, floor_rms=rms, seed=seed)
+    f = fit_record(x, DT, stationarity=False)
+    rec = {"seed": seed, "gamma": float(f.gamma), "low": float(f.gamma_low), "high": float(f.gamma_high),
+           "flagged": bool(f.flags), "decades": float(f.decades)}
+    if old:
+        try:
+            o = fit_power_law(displacement_spectrum(np.arange(n) * DT, x))
+            rec.update({"old_gamma": float(o.gamma), "old_half": float(o.gamma_err), "old_flagged": bool(o.flags)})
+        except ValueError:
+            rec.update({"old_gamma": math.nan, "old_half": math.nan, "old_flagged": True})
+    return rec
+
+
+def summary(n: int, gamma: float, where: str, records: list, wall: float = 0.0) -> dict:
+    """A cell's row from its seeds' records (taken in seed order; a seed given twice is an error): the count of
+    intervals holding ``gamma`` and its binomial test, the mean bias, the median half-width beside the Cramer-Rao
+    half-widths, the flag rate, the narrowest band and the old estimator's columns. The per-seed records travel
+    with the row (``records``) so that runs on other seeds merge exactly."""
+    records = sorted(records, key=lambda r: r["seed"])
+    seeds = len(records)
+    if len({r["seed"] for r in records}) != seeds:
+        raise ValueError(f"cell 2^{int(math.log2(n))} gamma {gamma:g} {where}: a seed appears twice")
+    rms = floor_rms(n, gamma, where)
+    g = np.array([r["gamma"] for r in records])
+    lo, hi = np.array([r["low"] for r in records]), np.array([r["high"] for r in records])
     hits = int(np.sum((lo <= gamma) & (gamma <= hi)))
     qlo, qhi = stats.binom.ppf(0.0005, seeds, 0.95), stats.binom.ppf(0.9995, seeds, 0.95)
     row = {"n": n, "gamma": gamma, "floor": where, "seeds": seeds, "hits": hits, "coverage": hits / seeds,
            "rejected": not (qlo <= hits <= qhi), "bias": float(g.mean() - gamma),
            "median_half": float(np.median(0.5 * (hi - lo))), "cr_half": cramer_rao(n, gamma, rms),
            "cr_known": cramer_rao(n, gamma, rms, floor_free=False),
-           "flag_rate": new_flag / seeds, "min_decades": float(np.min(dec)), "wall_s": wall}
-    if old:
-        og, oh = np.array(old_g), np.array(old_h)
+           "flag_rate": sum(r["flagged"] for r in records) / seeds,
+           "min_decades": float(np.min([r["decades"] for r in records])), "wall_s": wall}
+    if all("old_gamma" in r for r in records):
+        og, oh = np.array([r["old_gamma"] for r in records]), np.array([r["old_half"] for r in records])
         ok = np.isfinite(og)
         row.update({"old_coverage": float(np.mean(np.abs(og[ok] - gamma) <= oh[ok])) if ok.any() else math.nan,
                     "old_bias": float(np.mean(og[ok]) - gamma) if ok.any() else math.nan,
                     "old_median_half": float(np.median(oh[ok])) if ok.any() else math.nan,
-                    "old_flag_rate": old_flag / seeds})
+                    "old_flag_rate": sum(r["old_flagged"] for r in records) / seeds})
+    row["records"] = records
     return row
+
+
+def _seed_task(task):
+    """One seed_record call and its wall time (s), for a process pool."""
+    t0 = time.perf_counter()
+    return seed_record(*task), time.perf_counter() - t0
+
+
+def cell(n: int, gamma: float, where: str, seeds: int, old: bool, first: int = 0, pool=None) -> dict:
+    """The row of one cell over seeds ``first`` .. ``first + seeds - 1``, the records fitted in this process or,
+    given ``pool`` (a concurrent.futures executor), spread over its workers; the row is the same either way."""
+    t0 = time.perf_counter()
+    tasks = [(n, gamma, where, seed, old) for seed in range(first, first + seeds)]
+    records = [r for r, _ in (pool.map(_seed_task, tasks) if pool is not None else map(_seed_task, tasks))]
+    return summary(n, gamma, where, records, time.perf_counter() - t0)
 
 
 def model1_like(records: int, floor_nm: float = 20.0) -> dict:
@@ -176,6 +207,9 @@ def table(rows) -> str:
             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
     out = []
     for r in rows:
+        if "line" in r:  # a row read back from the page (page_rows): printed as it stood
+            out.append(r["line"])
+            continue
         out.append(f"| 2^{int(math.log2(r['n']))} | {r['gamma']:g} | {r['floor']} | {r['seeds']} | "
                    f"{100 * r['coverage']:.1f} % | {'yes' if r['rejected'] else 'no'} | {r['bias']:+.4f} | "
                    f"{r['median_half']:.4f} | {r['cr_half']:.4f} / {r.get('cr_known', r['cr_half']):.4f} | "
@@ -194,6 +228,20 @@ def pooled(rows) -> str:
     return f"pooled coverage {100 * hits / total:.1f} % ({hits}/{total}; 95 % Clopper-Pearson {100 * lo:.1f}-{100 * hi:.1f} %)"
 
 
+def _where_narrowest(rows, where: str) -> str:
+    """Where the narrowest band of the cells with floor ``where`` lies, as " (2^16 seed 40, γ 2 4 6)", when the
+    per-seed records that reach it are at hand; "" otherwise."""
+    cells = [r for r in rows if r["floor"] == where]
+    low = min(r["min_decades"] for r in cells)
+    hit = [(r, x) for r in cells for x in r.get("records", r.get("part_records", [])) if x["decades"] == low]
+    if not hit:
+        return ""
+    n = {r["n"] for r, _ in hit}
+    seeds = sorted({x["seed"] for _, x in hit})
+    return (f" ({', '.join(f'2^{int(math.log2(v))}' for v in sorted(n))} seed {', '.join(map(str, seeds))}, "
+            f"γ {' '.join(f'{g:g}' for g in sorted({r['gamma'] for r, _ in hit}))})")
+
+
 def claims(rows) -> str:
     """The page's claims read off its rows: cells rejected, the bias criterion (and where the seeds resolve it), the
     half-width over the Cramer-Rao bound, the narrowest band on a clean power law, and the old estimator beside."""
@@ -202,9 +250,9 @@ def claims(rows) -> str:
     resolved = [r for r in rows if r["seeds"] >= 62]
     failed = [r for r in biased if r["seeds"] >= 62]
     untested = [r for r in biased if r["seeds"] < 62]
-    ratio = [r["median_half"] / r["cr_half"] for r in rows]
+    ratio = [r.get("ratio", r["median_half"] / r["cr_half"]) for r in rows]
     clean = [r["min_decades"] for r in rows if r["floor"] == "none"]
-    old = [r["old_median_half"] / r["cr_half"] for r in rows
+    old = [r.get("old_ratio", r["old_median_half"] / r["cr_half"]) for r in rows
            if "old_median_half" in r and math.isfinite(r["old_median_half"])]
     by_n = []
     for n in sorted({r["n"] for r in rows}):
@@ -221,15 +269,55 @@ def claims(rows) -> str:
                "which do not test it" if len(rows) > len(resolved) else "")
             + f"; median half-width over the Cramér-Rao bound {min(ratio):.2f}-{max(ratio):.2f}")
     if clean:
-        text += f"; the narrowest band on a clean power law spans {min(clean):.2f} decades"
+        text += (f"; the narrowest band on a clean power law spans {min(clean):.2f} decades"
+                 f"{_where_narrowest(rows, 'none')}")
+    if any(r["floor"] == "dominant" for r in rows):
+        text += (f", under a dominant floor {min(r['min_decades'] for r in rows if r['floor'] == 'dominant'):.2f}"
+                 f"{_where_narrowest(rows, 'dominant')}")
     if old:
         text += f"; the old estimator's median half-width {min(old):.1f}-{max(old):.1f}× the bound"
     return text
 
 
+def page_rows(text: str, lengths) -> dict:
+    """The rows of ``lengths`` (log2 of n) read back from a page's table, and its model I paragraph: counts
+    (covering intervals, flags) recovered from the printed percentages, the Cramer-Rao half-widths recomputed
+    (and checked against the printed ones), the other columns as printed (4 decimals) and the printed line kept
+    (``line``), so that the page rebuilt from them prints those rows as they stood. Merged with runs on other seeds
+    (which carry per-seed records) they give counts exactly and the median half-width approximately."""
+    rows = []
+    for line in text.splitlines():
+        cols = [c.strip() for c in line.strip().strip("|").split("|")]
+        if not line.startswith("| 2^") or int(cols[0][2:]) not in lengths:
+            continue
+        n, gamma, where, seeds = 2 ** int(cols[0][2:]), float(cols[1]), cols[2], int(cols[3])
+        pct = lambda c: float(c.split("%")[0]) / 100  # noqa: E731
+        count = lambda c: round(pct(c) * seeds)  # noqa: E731
+        rms = floor_rms(n, gamma, where)
+        r = {"n": n, "gamma": gamma, "floor": where, "seeds": seeds, "hits": count(cols[4]),
+             "rejected": cols[5] == "yes",
+             "bias": float(cols[6]), "median_half": float(cols[7]), "cr_half": cramer_rao(n, gamma, rms),
+             "cr_known": cramer_rao(n, gamma, rms, floor_free=False), "ratio": float(cols[9]),
+             "flag_rate": count(cols[10]) / seeds, "min_decades": float(cols[11]), "wall_s": 0.0, "line": line}
+        r["coverage"] = r["hits"] / seeds
+        if f"{r['cr_half']:.4f} / {r['cr_known']:.4f}" != cols[8]:
+            raise ValueError(f"row {cols[:3]}: Cramer-Rao {cols[8]} printed, {r['cr_half']:.4f} computed")
+        if cols[12] != "not run":
+            r.update({"old_coverage": pct(cols[12]), "old_bias": float(cols[13]),
+                      "old_median_half": float(cols[14].split()[0]),
+                      "old_ratio": float(cols[14].split("(")[1].rstrip("×)")),
+                      "old_flag_rate": count(cols[15]) / seeds})
+        rows.append(r)
+    head = "\n## Records like the shipped model I file"
+    model1 = text.split(head, 1)
+    return {"rows": rows, "model1_text": (head + model1[1]) if len(model1) > 1 else None}
+
+
 def merged(rows) -> list:
-    """Rows of the same cell from runs on other seeds made one: counts added, means weighted by seeds, and the
-    median half-width as the seed-weighted mean of the runs' medians."""
+    """Rows of the same cell from runs on other seeds made one. Where every part carries its per-seed records the
+    row is summarised afresh from their union (exact: the same row as one run over all those seeds); otherwise
+    counts are added, means weighted by seeds, and the median half-width taken as the seed-weighted mean of the
+    parts' medians (an approximation, said so in the row's ``median_note``)."""
     out = {}
     for r in rows:
         key = (r["n"], r["gamma"], r["floor"])
@@ -237,9 +325,17 @@ def merged(rows) -> list:
             out[key] = dict(r)
             continue
         m, s0, s1 = out[key], out[key]["seeds"], r["seeds"]
+        if "records" in m and "records" in r:
+            out[key] = summary(r["n"], r["gamma"], r["floor"], m["records"] + r["records"],
+                               m.get("wall_s", 0.0) + r.get("wall_s", 0.0))
+            continue
         for k in ("bias", "median_half", "flag_rate", "old_coverage", "old_bias", "old_median_half", "old_flag_rate"):
             if k in m and k in r:
                 m[k] = (m[k] * s0 + r[k] * s1) / (s0 + s1)
+        m["part_records"] = m.get("part_records", []) + m.get("records", []) + r.get("records", [])
+        for k in ("records", "line", "ratio", "old_ratio"):
+            m.pop(k, None)
+        m["median_note"] = "seed-weighted mean of the parts' medians"
         m["hits"] += r["hits"]
         m["seeds"] = s0 + s1
         m["coverage"] = m["hits"] / m["seeds"]
@@ -249,14 +345,28 @@ def merged(rows) -> list:
     return list(out.values())
 
 
-def write_page(rows, commands, wall, model1=None, path=PAGE) -> None:
+def write_page(rows, commands, model1=None, path=PAGE) -> None:
     """The page (docs/results/exponent_coverage.md unless ``path``) from the rows of one or more runs (and the
-    model I-like records)."""
+    model I-like records: their dict, or their paragraph as a page printed it); ``commands`` says how."""
+    m1 = model1_text(model1) if isinstance(model1, dict) else (model1 or "")
+    approx = [r for r in rows if "median_note" in r]
+    note = ("" if not approx else " In the " + ", ".join(
+        sorted({f"2^{int(math.log2(r['n']))}" for r in approx})) + " rows the median half-widths (and the ratio beside "
+        "them) are the seed-weighted means of the medians of parts of which one kept no per-seed records; "
+        "the counts and "
+        "flag rates are exact, the mean bias and narrowest band exact up to the printed digits of the part read back.")
+    counts = sorted({r["seeds"] for r in rows}, reverse=True)
+    note += " Covering counts not rejected: " + ", ".join(
+        f"{int(stats.binom.ppf(0.0005, k, 0.95))}-{int(stats.binom.ppf(0.9995, k, 0.95))} of {k}" for k in counts) + "."
     Path(path).write_text(
         "# Exponent coverage on lab-length records\n\n"
-        f"Reproduce: {commands} ({wall / 60:.0f} min of wall time, one process at a time on 2 shared cores); `--quick --out FILE` writes "
-        "the same table for 2 seeds at 2^10 samples in a few seconds (a smoke test, not a measurement).\n\n" + (__doc__.split("\n\n", 1)[1].split("    python -m")[0])
-        + "\n" + CRITERION + f"\n\nResult: {pooled(rows)}; {claims(rows)}.\n\n" + table(rows) + (model1_text(model1) if model1 else ""))
+        f"Reproduce: {commands}; `--quick --out FILE` writes the same table for 2 seeds at 2^10 samples in a few "
+        "seconds (a smoke test, not a measurement).\n\n" + (__doc__.split("\n\n", 1)[1].split("    python -m")[0])
+        + "\n" + CRITERION + note + f"\n\nResult: {pooled(rows)}; {claims(rows)}.\n\n" + table(rows) + m1)
+
+
+def _minutes(seconds: float) -> str:
+    return f"{seconds / 60:.0f} min" if seconds >= 60 else f"{seconds:.0f} s"
 
 
 def main(argv=None) -> int:
@@ -268,18 +378,36 @@ def main(argv=None) -> int:
     ap.add_argument("--lengths", default="12,14,16", help="log2 of the record lengths, comma-separated")
     ap.add_argument("--no-old", action="store_true", help="skip the spectrum-and-band estimator")
     ap.add_argument("--first-seed", type=int, default=0, help="seeds first-seed .. first-seed + seeds - 1")
-    ap.add_argument("--rows", default=None, metavar="JSON", help="write the rows here instead of the page")
+    ap.add_argument("--workers", type=int, default=1, metavar="N",
+                    help="fit the records in N processes (the rows are the same as with one)")
+    ap.add_argument("--rows", default=None, metavar="JSON", help="write the rows here instead of the page (with "
+                    "--combine: the parts' rows merged, one part)")
     ap.add_argument("--model1", type=int, default=0, metavar="N",
                     help="instead: N records like the shipped model I file (coverage and flags)")
+    ap.add_argument("--from-page", default=None, metavar="MD",
+                    help="instead: read the rows of --lengths (and the model I paragraph) back from a page into --rows")
+    ap.add_argument("--note", default=None, help="with --from-page: how those rows were made (the page quotes it)")
     ap.add_argument("--combine", nargs="+", default=None, metavar="JSON",
                     help="write the page from the rows of earlier --rows runs (runs nothing)")
     args = ap.parse_args(argv)
+    if args.from_page:
+        part = page_rows(Path(args.from_page).read_text(), [int(v) for v in args.lengths.split(",")])
+        part.update({"command": args.note or f"rows {args.lengths} of {args.from_page}", "wall_s": 0.0})
+        Path(args.rows or "page_rows.json").write_text(json.dumps(part, indent=1))
+        return 0
     if args.combine:
         parts = [json.loads(Path(f).read_text()) for f in args.combine]
         rows = merged([r for p in parts for r in p.get("rows", [])])
-        m1 = next((p["model1"] for p in parts if "model1" in p), None)
-        write_page(rows, " and ".join(f"`{p['command']}`" for p in parts), sum(p["wall_s"] for p in parts), m1,
-                   args.out or PAGE)
+        rows.sort(key=lambda r: (r["n"], GAMMAS.index(r["gamma"]), FLOORS.index(r["floor"])))
+        m1 = next((p.get("model1") or p.get("model1_text") for p in parts if p.get("model1") or p.get("model1_text")),
+                  None)
+        how = "; ".join(f"`{p['command']}` ({_minutes(p['wall_s'])})" if p["wall_s"] else p["command"] for p in parts)
+        if args.rows:  # the parts made one part (one file per cell-set instead of one per run)
+            Path(args.rows).write_text(json.dumps({"rows": rows, "command": how, "wall_s": 0.0}))
+            return 0
+        write_page(rows, f"{how}; then `python -m compare.studies.exponent_coverage --combine "
+                   + " ".join(args.combine) + "` writes the page from those parts (wall times of one process at a time "
+                   "on 2 shared cores, loaded by other work)", m1, args.out or PAGE)
         return 0
     if args.model1:
         m = model1_like(args.model1)
@@ -290,24 +418,35 @@ def main(argv=None) -> int:
         return 0
     lengths = [2**10] if args.quick else [2 ** int(s) for s in args.lengths.split(",")]
     seeds = 2 if args.quick else args.seeds
-    rows = []
+    cells = [(n, g, where) for n in lengths for g in GAMMAS for where in FLOORS]
+    records, spent, rows = {c: [] for c in cells}, {c: 0.0 for c in cells}, []
+    first = args.first_seed
     t0 = time.perf_counter()
-    cmd = ("python -m compare.studies.exponent_coverage --quick" if args.quick else
-           f"python -m compare.studies.exponent_coverage --seeds {seeds} --lengths {args.lengths}"
-           + (" --no-old" if args.no_old else "") + (f" --first-seed {args.first_seed}" if args.first_seed else ""))
-    for n in lengths:
-        for g in GAMMAS:
-            for where in FLOORS:
-                rows.append(cell(n, g, where, seeds, not args.no_old, args.first_seed))
-                print(table(rows[-1:]).splitlines()[-1], flush=True)
-                if args.rows and not args.quick:  # every cell as it ends: a long run can be stopped and combined
-                    Path(args.rows).write_text(json.dumps(
-                        {"rows": rows, "command": cmd, "wall_s": time.perf_counter() - t0}, indent=1))
+    pool = ProcessPoolExecutor(args.workers) if args.workers > 1 else None
+    try:  # seed by seed over every cell: a run stopped at any time leaves whole seeds in --rows
+        for seed in range(first, first + seeds):
+            tasks = [(*c, seed, not args.no_old) for c in cells]
+            for c, (rec, s) in zip(cells, pool.map(_seed_task, tasks) if pool is not None else map(_seed_task, tasks)):
+                records[c].append(rec)
+                spent[c] += s
+            rows = [summary(*c, records[c], spent[c]) for c in cells]
+            cmd = ("python -m compare.studies.exponent_coverage --quick" if args.quick else
+                   f"python -m compare.studies.exponent_coverage --seeds {seed - first + 1} --lengths {args.lengths}"
+                   + (" --no-old" if args.no_old else "") + (f" --first-seed {first}" if first else ""))
+            print(f"seed {seed} done ({time.perf_counter() - t0:.0f} s)", flush=True)
+            if args.rows and not args.quick:  # replaced whole: a run stopped while writing keeps the last seed's
+                part = Path(args.rows).with_suffix(".part")
+                part.write_text(json.dumps({"rows": rows, "command": cmd, "wall_s": time.perf_counter() - t0}))
+                os.replace(part, args.rows)
+    finally:
+        if pool is not None:
+            pool.shutdown()
+    print(table(rows), end="")
     wall = time.perf_counter() - t0
     print(pooled(rows))
     if args.rows or (args.quick and not args.out):
         return 0
-    write_page(rows, f"`{cmd}`", wall, path=args.out or PAGE)
+    write_page(rows, f"`{cmd}` ({_minutes(wall)} of wall time)", path=args.out or PAGE)
     return 0
 
 

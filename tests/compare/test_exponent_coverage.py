@@ -46,3 +46,61 @@ def test_the_pages_claims_hold_on_its_2_12_cells_with_fewer_seeds():
         assert abs(r["bias"]) - r["median_half"] / 4 < 3.29 * se, r
         assert r["median_half"] <= 1.25 * r["cr_half"], r
     assert all(r["min_decades"] >= 1.0 for r in rows if r["floor"] == "none")
+
+
+def _without_wall(row):
+    return {k: v for k, v in row.items() if k != "wall_s"}
+
+
+def test_workers_and_merged_runs_give_the_serial_rows_bit_for_bit():
+    # A record depends on its cell and seed only: fitted in two worker processes, or in two runs on seeds 0-1 and
+    # 2-3 merged afterwards, every per-seed record and every column of the row equals the serial run's exactly
+    # (== on floats, no tolerance), the dominant floor (the slowest fits) at 2^10 samples.
+    from concurrent.futures import ProcessPoolExecutor
+
+    serial = exponent_coverage.cell(1024, 4.0, "dominant", 4, True)
+    with ProcessPoolExecutor(2) as pool:
+        pooled = exponent_coverage.cell(1024, 4.0, "dominant", 4, True, pool=pool)
+    assert [r["seed"] for r in serial["records"]] == [0, 1, 2, 3]
+    assert _without_wall(pooled) == _without_wall(serial)
+    parts = [exponent_coverage.cell(1024, 4.0, "dominant", 2, True, first) for first in (2, 0)]
+    assert _without_wall(exponent_coverage.merged(parts)[0]) == _without_wall(serial)
+    with pytest.raises(ValueError, match="a seed appears twice"):
+        exponent_coverage.merged([parts[0], parts[0]])
+
+
+def test_a_run_over_workers_stores_the_serial_rows_and_says_which_seeds(tmp_path):
+    # The command line's run, seed by seed over all 9 cells in 2 worker processes, stores in --rows the rows the
+    # serial cell() gives for those seeds (records and columns ==), and a command naming exactly those seeds.
+    import json
+
+    out = tmp_path / "rows.json"
+    assert exponent_coverage.main(["--seeds", "2", "--first-seed", "5", "--lengths", "10", "--workers", "2",
+                                   "--rows", str(out)]) == 0
+    part = json.loads(out.read_text())
+    assert part["command"].endswith("--seeds 2 --lengths 10 --first-seed 5")
+    assert [(r["gamma"], r["floor"]) for r in part["rows"]] == [
+        (g, w) for g in exponent_coverage.GAMMAS for w in exponent_coverage.FLOORS]
+    for row in part["rows"][::4]:  # three of the nine cells (one per gamma) run again serially
+        serial = exponent_coverage.cell(1024, row["gamma"], row["floor"], 2, True, 5)
+        assert _without_wall(row) == json.loads(json.dumps(_without_wall(serial)))
+
+
+def test_page_rows_read_back_print_as_they_stood(tmp_path):
+    # A page written from 2 seeds per cell at 2^10 is read back (--from-page) and rebuilt (--combine): the table's
+    # rows and the pooled coverage are the same text; a read-back row merged with a run on other seeds adds its
+    # counts (2 + 2 seeds) and leaves the printed line for one computed afresh.
+    page, part, again = tmp_path / "p.md", tmp_path / "rows.json", tmp_path / "again.md"
+    assert exponent_coverage.main(["--quick", "--out", str(page)]) == 0
+    assert exponent_coverage.main(["--from-page", str(page), "--lengths", "10", "--rows", str(part)]) == 0
+    assert exponent_coverage.main(["--combine", str(part), "--out", str(again)]) == 0
+    rows = [line for line in page.read_text().splitlines() if line.startswith("| 2^10 |")]
+    assert len(rows) == 9
+    assert rows == [line for line in again.read_text().splitlines() if line.startswith("| 2^10 |")]
+    pooled = re.search(r"pooled coverage [^;]*;", page.read_text()).group(0)
+    assert pooled in again.read_text()
+    read = exponent_coverage.page_rows(page.read_text(), [10])["rows"][0]
+    more = exponent_coverage.cell(1024, read["gamma"], read["floor"], 2, True, first=2)
+    both = exponent_coverage.merged([read, more])[0]
+    assert both["seeds"] == 4 and both["hits"] == read["hits"] + more["hits"]
+    assert "line" not in both and exponent_coverage.table([both]).splitlines()[-1].startswith("| 2^10 | 2 | none | 4 |")
