@@ -13,13 +13,13 @@ bound of one told the floor).
 
     python -m compare.studies.exponent_coverage --quick --out t.md  # CI smoke: 2 seeds at 2^10, a few seconds
     python -m compare.studies.exponent_coverage --seeds 20 --first-seed 100 --lengths 16 --workers 2 --rows a.json
-    python -m compare.studies.exponent_coverage --combine compare/studies/exponent_coverage_runs/*.json a.json
+    python -m compare.studies.exponent_coverage --combine p0.json p16.json p18.json a.json
 
 The page is made of parts, each a JSON file of rows that carry their per-seed records (runs with --rows, which
 store every seed over all cells as it ends, so a run can be stopped at any time; the page's earliest rows were read
 back from the page with --from-page and carry none); --combine merges the rows of one cell over its parts' seeds and
-writes the page, so more seeds are one more run on new seeds and one more --combine. The committed parts are in
-compare/studies/exponent_coverage_runs/. --workers N fits the records in N processes; every record depends on its
+writes the page, so more seeds are one more run on new seeds and one more --combine. The parts are the user's files
+(none is tracked: the page is the record; --from-page reads its rows back into a part). --workers N fits the records in N processes; every record depends on its
 cell and seed only, so the rows are those of one process.
 
 Binomial criterion: a cell is rejected when its coverage count is below the 0.0005 or above the 0.9995 quantile of
