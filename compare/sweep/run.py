@@ -57,7 +57,11 @@ def _connect(scheduler: str | None, workers: int, connect_timeout: float):
     # it with a warning printed under our one line: the tracker (started with this process's -W options) stays quiet
     if "ignore:resource_tracker:UserWarning" not in sys.warnoptions:
         sys.warnoptions.append("ignore:resource_tracker:UserWarning")
+    # no dashboard; the scheduler's HTTP server (health routes), which distributed starts even without one and would
+    # put on port 8787, on a free local port: a second cluster (another sweep, a user's dask) holds 8787, and
+    # distributed's "Port 8787 is already in use" warning would be printed under the sweep's own lines
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+                           scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"},
                            silence_logs=logging.ERROR)
     return Client(cluster), cluster
 

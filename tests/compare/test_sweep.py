@@ -208,6 +208,33 @@ def test_a_narrowed_grid_reads_only_its_own_tasks(tmp_path):
     assert summary["n_results"] == 2 and [x["v"] for x in summary["results"]] == [1e-4, 5e-4]
 
 
+@pytest.mark.slow  # a LocalCluster of one worker (a few seconds)
+def test_local_cluster_beside_another_on_8787_prints_nothing(capfd):
+    # distributed starts its scheduler's HTTP server on port 8787 even without a dashboard and warns when another
+    # cluster holds it: the sweep's cluster takes a free local port instead, so nothing is printed under its lines
+    import socket
+    import warnings
+
+    from compare.sweep.run import _close, _connect
+
+    holder = socket.socket()
+    try:
+        holder.bind(("127.0.0.1", 8787))
+        holder.listen(1)
+    except OSError:
+        pass  # something else holds 8787 already: the same condition
+    try:
+        with warnings.catch_warnings(record=True) as caught:  # the CLI prints a warning on stderr
+            warnings.simplefilter("always")
+            client, cluster = _connect(None, 1, 10.0)
+            assert client.submit(sum, [1, 2]).result() == 3
+            _close(client, cluster)
+    finally:
+        holder.close()
+    said = capfd.readouterr().err + "\n".join(str(w.message) for w in caught)
+    assert "8787" not in said and "already in use" not in said, said
+
+
 @pytest.mark.slow
 def test_real_cluster_survives_a_killed_worker(tmp_path):
     """A `dask scheduler` and two `dask worker` processes on 127.0.0.1; one worker is killed (SIGKILL) while the
