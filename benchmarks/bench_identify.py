@@ -61,7 +61,7 @@ def test_identify_400s(benchmark, ratio, smoke):
     x, v = record(10.0 if smoke else 400.0)
     identify(x=x[:4096], dt=DT, v=v)  # warm-up: numba's kernels
     c0 = time.process_time()
-    ranking = benchmark.pedantic(identify, args=(x, DT, v), rounds=1 if not smoke else 2, iterations=1)
+    ranking = benchmark.pedantic(identify, kwargs={"x": x, "dt": DT, "v": v}, rounds=1 if not smoke else 2, iterations=1)
     ratio("CPU / wall of the timed calls", (time.process_time() - c0) / benchmark.stats.stats.total)
     benchmark.extra_info["load_average"] = os.getloadavg()[0]  # the machine's load: a wall time reads with it
     # only that it ran and did not reject the record's own model: the confusion study measures what it names
