@@ -172,59 +172,60 @@ _SIGNAL_SCENES = [("pads_friction_patches", 3.0, 0.5), ("pads_rough_profile", 2.
 def test_real_signals_at_random_moments_then_resume_is_bitwise_identical(tmp_path):
     """`frictionnoise run` interrupted by real SIGINT and SIGKILL at seeded random moments
     (a second interrupt, of the other kind, lands during the resume), then resumed to the end, equals a plain run
-    that never checkpointed in every recorded array, bit for bit, on five scenes; no crash, no traceback. The
-    hazards it watches: an interrupt that leaves the loop's and the recorder's counters apart (a resume would write
+    that never checkpointed in every recorded array, bit for bit, on five scenes (SIGINT first on three, SIGKILL
+    first on two); no crash, no traceback. The hazards it watches: an interrupt that leaves the loop's and the recorder's counters apart (a resume would write
     past the buffers), and a checkpointed run that departs from a plain one at its first checkpoint."""
     rng = np.random.default_rng(2026_11_23)
     counts = {"SIGINT": 0, "SIGKILL": 0, "during resume": 0, "finished before the signal": 0, "crashes": 0,
               "differing arrays": 0, "arrays compared": 0}
-    for name, T, epoch in _SIGNAL_SCENES:
+    orders = ((signal.SIGINT, signal.SIGKILL), (signal.SIGKILL, signal.SIGINT))
+    for trial, (name, T, epoch) in enumerate(_SIGNAL_SCENES):
         path = tmp_path / f"{name}.toml"  # the shipped scene with a 0.2 s warm-up (1 s costs up to 4 s per start)
         text = shipped_scenarios()[name].read_text()
         assert "warmup = 1.0" in text
         path.write_text(text.replace("warmup = 1.0", "warmup = 0.2"))
         ref = engine_sim.run(load_scenario(path).with_run(duration=T), seed=5, epoch=epoch)  # never checkpointed
         wall = ref.metadata["wall_s"] + 2.0  # + interpreter start and imports
-        for trial, (first, second) in enumerate(((signal.SIGINT, signal.SIGKILL), (signal.SIGKILL, signal.SIGINT))):
-            out = tmp_path / f"{name}-{trial}"
-            cmd = _cli("run", path, "--duration", T, "--seed", 5, "--epoch", epoch, "--checkpoint-every", epoch,
-                       "-o", out)
-            # a run that finishes before its first signal delivers none: start again from nothing with the seeded
-            # moments halved (a child's speed varies with the machine's load; CI once delivered 6 of 10)
-            for attempt in range(5):
-                shutil.rmtree(out, ignore_errors=True)
-                scale = 0.5 ** attempt
-                delivered = 0
-                for sig, frac in ((first, scale * rng.uniform(0.4, 1.0)), (second, scale * rng.uniform(0.2, 0.8))):
-                    proc = _popen(cmd)
-                    try:
-                        proc.wait(timeout=frac * wall)
-                    except subprocess.TimeoutExpired:
-                        proc.send_signal(sig)
-                    _, err = proc.communicate(timeout=120)
-                    if proc.returncode == 0:
-                        counts["finished before the signal"] += 1
-                        break
-                    delivered += 1
-                    counts[sig.name] += 1
-                    counts["during resume"] += sig is second
-                    ok = proc.returncode == (130 if sig == signal.SIGINT else -signal.SIGKILL)
-                    counts["crashes"] += not ok or "Traceback" in err
-                    assert ok and "Traceback" not in err, (name, sig, proc.returncode, err[-2000:])
-                if delivered:
+        first, second = orders[trial % 2]
+        out = tmp_path / f"{name}-{trial}"
+        cmd = _cli("run", path, "--duration", T, "--seed", 5, "--epoch", epoch, "--checkpoint-every", epoch,
+                   "-o", out)
+        # a run (or its resume) that finishes before its signal: start again from nothing with the seeded moments
+        # halved, until both signals land (a child's speed varies with the machine's load; CI once delivered 6 of 10)
+        for attempt in range(5):
+            shutil.rmtree(out, ignore_errors=True)
+            scale = 0.5 ** attempt
+            delivered = 0
+            for sig, frac in ((first, scale * rng.uniform(0.4, 1.0)), (second, scale * rng.uniform(0.2, 0.8))):
+                proc = _popen(cmd)
+                try:
+                    proc.wait(timeout=frac * wall)
+                except subprocess.TimeoutExpired:
+                    proc.send_signal(sig)
+                _, err = proc.communicate(timeout=120)
+                if proc.returncode == 0:
+                    counts["finished before the signal"] += 1
                     break
-            done = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-            counts["crashes"] += done.returncode != 0
-            assert done.returncode == 0 and "Traceback" not in done.stderr, (name, done.stderr[-2000:])
-            got = np.load(out / "trace.npz")
-            for f in (f for f in got.files if f != "format"):
-                counts["arrays compared"] += 1
-                same = np.array_equal(got[f], getattr(ref, f))
-                counts["differing arrays"] += not same
-                assert same, (name, trial, f)
-            assert not (out / "checkpoint.pkl").exists()
+                delivered += 1
+                counts[sig.name] += 1
+                counts["during resume"] += sig is second
+                ok = proc.returncode == (130 if sig == signal.SIGINT else -signal.SIGKILL)
+                counts["crashes"] += not ok or "Traceback" in err
+                assert ok and "Traceback" not in err, (name, sig, proc.returncode, err[-2000:])
+            if delivered == 2:
+                break
+        done = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        counts["crashes"] += done.returncode != 0
+        assert done.returncode == 0 and "Traceback" not in done.stderr, (name, done.stderr[-2000:])
+        got = np.load(out / "trace.npz")
+        for f in (f for f in got.files if f != "format"):
+            counts["arrays compared"] += 1
+            same = np.array_equal(got[f], getattr(ref, f))
+            counts["differing arrays"] += not same
+            assert same, (name, trial, f)
+        assert not (out / "checkpoint.pkl").exists()
     print("\nreal interrupts then resume:", ", ".join(f"{k}: {v}" for k, v in counts.items()))
-    assert counts["SIGINT"] + counts["SIGKILL"] >= 10 and counts["during resume"] >= 3
+    assert counts["SIGINT"] + counts["SIGKILL"] >= 8 and counts["during resume"] >= 3
     assert counts["crashes"] == 0 and counts["differing arrays"] == 0
 
 
