@@ -72,6 +72,8 @@ def cmd_analyze(args) -> int:
 
     force = args.force_col is not None
     _check_analyze_numbers(args)
+    if force and args.no_mechanisms:
+        raise UserError("--no-mechanisms applies to displacement data (force records are not ranked)")
     if not force:
         for flag in ("normal_col", "direction_col", "speed", "cut", "force_unit", "mu_col", "contact_area"):
             if getattr(args, flag) is not None:
@@ -104,21 +106,28 @@ def cmd_analyze(args) -> int:
                 say(f"fitting the exponent of C_x ({len(data.t)} samples)")
             an = analyze_displacement(data, mass=args.mass, band=band, method=args.method)
             if say:
-                say(f"exponent fitted in {time.perf_counter() - t0:.1f} s; naming the mechanism")
+                say(f"exponent fitted in {time.perf_counter() - t0:.1f} s"
+                    + ("" if args.no_mechanisms else "; naming the mechanism"))
             sections, summary = build_measured_report(an, data)
-            summary.update(units=data.units, **mechanisms_of(data, an.mean_velocity, an.fit.flags, progress=say,
-                                                             stationarity_p=getattr(an.fit, "stationarity_p", None)))
-            sections = [ranking_section(summary)] + list(sections)
+            if args.no_mechanisms:
+                summary.update(units=data.units, mechanisms=[], stationarity=None,
+                               mechanisms_note="not asked (--no-mechanisms)")
+            else:
+                summary.update(units=data.units, **mechanisms_of(
+                    data, an.mean_velocity, an.fit.flags, progress=say,
+                    stationarity_p=getattr(an.fit, "stationarity_p", None)))
+                sections = [ranking_section(summary)] + list(sections)
     except ValueError as e:
         raise UserError(f"{args.data}: {e}") from None
     write_report(out, sections, summary, title=f"frictionnoise analyze: {Path(args.data).name}")
-    print("\n".join(([] if force else ranking_lines(summary)) + [f"{args.data}: {units_line(data)}"]))
+    print("\n".join(([] if force or args.no_mechanisms else ranking_lines(summary))
+                    + [f"{args.data}: {units_line(data)}"]))
     for line in (force_lines if force else displacement_lines)(summary, out / "index.html"):
         print(line)
     return 0
 
 
-PROGRESS_SAMPLES = 100_000  # a record this long prints its analysis's progress (a minute or more of fitting)
+PROGRESS_SAMPLES = 2**15  # a record this long prints its analysis's progress (the ranking's fits take 15 s or more)
 
 
 def _stderr_progress(line: str) -> None:

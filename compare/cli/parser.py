@@ -178,6 +178,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="several files: the angular frequency (rad/s) at which C_x is compared across speeds "
                          "(default: inside the band common to every record's fit band, where the least precise "
                          "record's level is most precise)")
+    an.add_argument("--no-mechanisms", action="store_true",
+                    help="displacement data: skip the mechanism ranking (every registered model's family fitted; "
+                         "most of analyze's time on a long record) and report the exponent, floor and spectra only")
     an.add_argument("-o", "--output", default=None, help="output folder (default: analyze-<file stem>; several files: analyze-series-<first stem>)")
     an.set_defaults(func=cmd_analyze)
     return ap

@@ -25,7 +25,8 @@ def test_analyze_recovers_gamma_4_from_a_model_I_csv_in_micrometres(tmp_path):
     f = tmp_path / "sensor.csv"
     _write(f, tr.t, tr.x * 1e6)
     out = tmp_path / "out"
-    assert main(["analyze", str(f), "--mass", "1.0", "--x-unit", "um", "--band", "5", "50", "-o", str(out)]) == 0
+    assert main(["analyze", str(f), "--mass", "1.0", "--x-unit", "um", "--band", "5", "50", "--no-mechanisms", "-o",
+                 str(out)]) == 0
     s = json.loads((out / "summary.json").read_text())
     assert s["gamma"] == pytest.approx(4.0, abs=0.15)
     assert s["mean_velocity"] == pytest.approx(5e-4, rel=0.02)
@@ -87,7 +88,8 @@ def test_shipped_um_file_is_read_in_micrometres_from_its_header(tmp_path, capsys
     # file is model I at v = 0.5 mm/s; the fitted mean velocity must be 5e-4 m/s within 2 % (200 s of a 0.1 mm
     # rms noise).
     out = tmp_path / "out"
-    assert main(["analyze", "scenarios/data/model1_synthetic_um.csv", "--mass", "1", "-o", str(out)]) == 0
+    assert main(["analyze", "scenarios/data/model1_synthetic_um.csv", "--mass", "1", "--no-mechanisms", "-o",
+                 str(out)]) == 0
     printed = capsys.readouterr().out
     assert "'x_um' in um (from the header)" in printed and "'time_s' in s (from the header)" in printed
     s = json.loads((out / "summary.json").read_text())
@@ -308,7 +310,7 @@ def test_cli_x_in_micrometres_without_a_mass(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     with open("x_um.csv", "w") as fh:  # full double precision: the record's high-frequency noise is ~1e-7 um
         fh.write("t,x\n" + "".join(f"{a:.17g},{b:.17g}\n" for a, b in zip(t, x * 1e6)))
-    assert main(["analyze", "x_um.csv", "--x-unit", "um", "--time-unit", "s"]) == 0
+    assert main(["analyze", "x_um.csv", "--x-unit", "um", "--time-unit", "s", "--no-mechanisms"]) == 0
     printed = capsys.readouterr().out
     assert "gamma = " in printed and "C_F not computed" in printed and "--mass" in printed
     out = tmp_path / "analyze-x_um"
@@ -377,6 +379,7 @@ def test_shipped_model_I_file_by_the_record_model(tmp_path, capsys, monkeypatch)
     # 2-60 rad/s given by --band the interval must hold 4 as well.
     from compare.cli import commands
 
+    assert commands.PROGRESS_SAMPLES == 2**15  # the measured-data tutorial: progress from 2^15 samples
     monkeypatch.setattr(commands, "PROGRESS_SAMPLES", 0)  # a long record's progress lines, on this short one
     out = tmp_path / "out"
     assert main(["analyze", "scenarios/data/model1_synthetic_um.csv", "-o", str(out)]) == 0
@@ -390,7 +393,8 @@ def test_shipped_model_I_file_by_the_record_model(tmp_path, capsys, monkeypatch)
     # the ranking is on the page, ahead of the exponent's section
     assert "Mechanisms: which model explains the record" in html
     assert html.index("Mechanisms: which model") < html.index("Measured displacement")
-    assert main(["analyze", "scenarios/data/model1_synthetic_um.csv", "--band", "2", "60", "-o", str(out)]) == 0
+    assert main(["analyze", "scenarios/data/model1_synthetic_um.csv", "--band", "2", "60", "--no-mechanisms", "-o",
+                 str(out)]) == 0
     f = json.loads((out / "summary.json").read_text())["fit"]
     assert f["gamma_interval"][0] <= 4.0 <= f["gamma_interval"][1] and f["power_law"], f
 

@@ -125,6 +125,30 @@ def test_analyze_prints_the_ranking_first_and_writes_mechanisms(tmp_path, capsys
     assert best["parameters"]["omega_c"] == "not identified"  # 548 rad/s lies above the 100 Hz file's Nyquist
 
 
+def test_analyze_without_the_ranking_fits_no_family(tmp_path, capsys, monkeypatch):
+    # --no-mechanisms: the exponent, floor and spectra as without it, no family fitted, no ranking printed or shown
+    import json
+
+    import compare.analysis.identify as identify_module
+    from compare.cli.main import main
+
+    def refused(*a, **k):
+        raise AssertionError("identify called under --no-mechanisms")
+
+    monkeypatch.setattr(identify_module, "identify", refused)
+    out = tmp_path / "out"
+    assert main(["analyze", "scenarios/data/model1_synthetic_um.csv", "--no-mechanisms", "-o", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert "mechanism" not in printed and "gamma = " in printed
+    s = json.loads((out / "summary.json").read_text())
+    assert s["mechanisms"] == [] and s["mechanisms_note"] == "not asked (--no-mechanisms)" and s["gamma"] > 0
+    assert "Mechanisms: which model explains the record" not in (out / "index.html").read_text()
+    f = tmp_path / "force.csv"
+    f.write_text("t,F\n" + "\n".join(f"{i * 1e-3},{1 + 1e-3 * (i % 7)}" for i in range(5000)) + "\n")
+    assert main(["analyze", str(f), "--force-col", "F", "--no-mechanisms", "-o", str(tmp_path / "o2")]) == 2
+    assert "--no-mechanisms applies to displacement data" in capsys.readouterr().err
+
+
 def test_fn_identify_takes_a_trace():
     import frictionnoise as fn
 
