@@ -77,7 +77,7 @@ def assert_spectral_slope(t, x, expected: float, tol: float, band=None, method: 
             raise ValueError(f"{', '.join(sorted(spectrum_kwargs))}: Welch spectrum options, used by the band fits "
                              "only (method='whittle' or 'lsq'); the record model fits the record itself")
         fit = fit_series(t, x, band=band, stationarity=False)
-        counted = "Fourier ordinates"
+        counted = "Fourier ordinates in the likelihood, those above the band where the floor is fitted included"
     else:
         fit = fit_power_law(displacement_spectrum(t, x, **spectrum_kwargs), band=band, method=method)
         counted = "periodogram ordinates" if fit.method == "whittle" else "log bins"
@@ -107,7 +107,7 @@ def _slope_message(fit, expected: float, tol: float, counted: str, off: bool, fl
         f"  measured gamma = {fit.gamma:.3f} +- {fit.gamma_err:.3f}, 95 % interval [{low:.3f}, {high:.3f}] ({how})",
         f"  expected gamma = {expected:g} +- {tol:g}",
         f"  band {fit.band[0]:.4g}-{fit.band[1]:.4g} rad/s ({math.log10(fit.band[1] / fit.band[0]):.2f} decades, "
-        f"{'auto' if fit.band_auto else 'given'}, {fit.n_points} {counted})",
+        f"{'auto' if fit.band_auto else 'given'}; {fit.n_points} {counted})",
         f"  flags: {flags}",
     ])
 

@@ -105,6 +105,11 @@ class RecordFit:
         return 0.5 * (self.gamma_high - self.gamma_low)
 
     @property
+    def gamma_interval(self) -> tuple[float, float]:
+        """The 95 % profile-likelihood interval (gamma_low, gamma_high), as summary.json's ``gamma_interval``."""
+        return (self.gamma_low, self.gamma_high)
+
+    @property
     def power_law(self) -> bool:
         """False when a flag says the record is not a stationary power law (see ``flags``)."""
         return not self.flags
@@ -218,7 +223,7 @@ class RecordFit:
         floor = band_end_words(self.band_end, self.floor_rms, self.crossover, self.band[1], self.gamma,
                                [s[:3] for s in self.segments], f" {self.record_unit}" if self.record_unit else "")
         return (f"gamma = {self.gamma:.3f} +- {self.gamma_err:.3f} (95 % [{self.gamma_low:.3f}, {self.gamma_high:.3f}], "
-                f"debiased Whittle) over {self.band[0]:.3g}-{self.band[1]:.3g} rad/s ({self.decades:.1f} decades)"
+                f"record model: debiased Whittle) over {self.band[0]:.3g}-{self.band[1]:.3g} rad/s ({self.decades:.1f} decades)"
                 f"{floor}{flag}")
 
 
@@ -292,8 +297,12 @@ def band_end_words(end: str, floor_rms: float, crossover, top: float, gamma: flo
         return (f"; white floor {floor_rms:.3g}{unit} rms, over the power law above {crossover:.3g} rad/s: the floor "
                 "ends the band")
     if end != "departure":
-        return (f"; white floor {floor_rms:.3g}{unit} rms, below the power law over the whole band" if floor_rms > 0
-                else "; no white floor detected")
+        if not floor_rms > 0:
+            return "; no white floor detected"
+        where = (f"it would cross the power law at {crossover:.3g} rad/s, above the given band" if end == "given"
+                 and crossover is not None and math.isfinite(crossover) else
+                 "no floor resolved: it dominates at no frequency of the record")
+        return f"; a floor term of {floor_rms:.3g}{unit} rms fitted, below the power law over the whole band ({where})"
     nxt = next((s for s in segments if s[0] >= top * (1 - 1e-9)), None)
     shape = ("no band of a decade above it holds one power law" if nxt is None else
              f"{'steeper' if nxt[2] > gamma else 'flatter'} above: {nxt[2]:.2f} over {nxt[0]:.3g}-{nxt[1]:.3g} rad/s")

@@ -199,12 +199,13 @@ def displacement_figure(an: DisplacementAnalysis):
         handles, labels = ax.get_legend_handles_labels()  # the fit lines' labels (mathtext) have a legend of their own
         ax.legend(handles=[h for h, lab in zip(handles, labels) if not lab.startswith("$")], fontsize=7,
                   loc="lower left")
-    lo = min(fitted[0], fit.band[0], spec.omega_min)
+    lo = min(fitted[0], fit.band[0], spec.omega_min, spec.periodogram_omega[0] if has_pgram else np.inf)
     ax.set_xlim(lo / 1.3, max(fitted[1], spec.omega_max) * 1.3)
     pgram = (f" (from {spec.omega_min:.3g} rad/s); below {join:.3g} rad/s the periodogram of the whole record "
              f"({spec.provenance.get('prewhiten_order', 2)}-times differenced, rectangular window, re-coloured to C_x, "
              f"averaged in 20 bins a decade), which reaches the record's lowest Fourier frequency "
-             f"{spec.periodogram_omega[0]:.3g} rad/s as the fit does" if has_pgram else "")
+             f"{spec.periodogram_omega[0]:.3g} rad/s"
+             + (" as the fit does" if fitted[0] <= 1.01 * spec.periodogram_omega[0] else "") if has_pgram else "")
     model = (f"; the fitted record model A ω^-γ + B (red; B dotted: {fit.floor_rms:.3g} m rms) and its power law "
              f"alone over the identified band {span(fit.band[0], fit.band[1])} rad/s (black)"
              if record and fit.floor > 0 else

@@ -9,7 +9,8 @@ FIT = {"gamma": 4.01, "gamma_err": 0.05, "gamma_interval": [3.96, 4.06], "method
 def test_a_floor_that_is_absent_or_never_reached_is_said_so():
     assert "no white floor detected" in _fit_text({**FIT, "floor": 0.0, "floor_rms": 0.0, "crossover": None})
     below = _fit_text({**FIT, "floor": 1e-30, "floor_rms": 1e-12, "crossover": None})
-    assert "below the power law over the whole band" in below and "inf" not in below
+    assert "below the power law over the whole band" in below and "no floor resolved" in below and "inf" not in below
+    assert "white floor" not in below  # a term fitted, not a floor found
     ends = _fit_text({**FIT, "band": [1.0, 250.0], "floor": 1e-24, "floor_rms": 7.9e-11, "crossover": 250.0,
                       "band_end": "floor"})
     assert "over the power law above 250 rad/s: the floor ends the band" in ends

@@ -60,7 +60,8 @@ def test_a_record_without_a_resolved_floor_says_so_and_why_the_band_ends():
     fit = an.fit
     assert fit.band_end == "last frequency"
     if fit.floor > 0:  # a floor term below the power law everywhere: named with its level
-        assert f"white floor {fit.floor_rms:.3g} m rms" in text and "below the power law over the whole band" in text
+        assert f"a floor term of {fit.floor_rms:.3g} m rms fitted" in text and "no floor resolved" in text
+        assert "below the power law over the whole band" in text
     else:
         assert "no white floor resolved" in text
     assert f"the band reaches the record's highest frequency, {fit.band[1]:.4g} rad/s (Nyquist)" in text
@@ -114,6 +115,19 @@ def test_the_figure_reaches_the_band_and_draws_the_fitted_model(floored):
     top = (math.ceil((N - fit.order) / 2) - 1) * 2 * math.pi / ((N - fit.order) * DT)  # highest fitted ordinate
     assert any(np.isclose(a, fit.band[0]) and np.isclose(b, top) for a, b in shaded)
     assert "periodogram of the whole record" in cap and f"{an.C_x.periodogram_omega[0]:.3g} rad/s" in cap
+    assert lo <= an.C_x.periodogram_omega[0] and "as the fit does" in cap  # the fit starts at the lowest ordinate
+
+
+def test_the_figure_shows_the_periodogram_below_a_band_that_starts_higher():
+    # a band given above the record's lowest frequencies: the periodogram drawn to its lowest ordinate, in view, and
+    # the caption does not say the fit reaches it
+    t = np.arange(N) * DT
+    an = analyze_displacement(t, power_law_record(N, DT, 4.0, seed=3), band=(20.0, 300.0))
+    fig, cap = displacement_figure(an)
+    lo, _ = fig.axes[0].get_xlim()
+    w0 = an.C_x.periodogram_omega[0]
+    assert an.fit.band[0] > 10 * w0 and lo <= w0
+    assert f"lowest Fourier frequency {w0:.3g} rad/s" in cap and "as the fit does" not in cap
 
 
 def test_a_band_fit_of_the_welch_spectrum_says_it_fits_no_floor_and_draws_only_its_band():

@@ -60,6 +60,8 @@ def test_a_clean_power_law_is_identified_over_every_frequency():
     f = fit_record(power_law_record(4096, DT, 6.0, seed=2), DT)
     assert f.decades > 3.0 and f.order == 3
     assert f.band_end == "last frequency" and "departs" not in str(f) and "ends the band" not in str(f)
+    # the interval by the name summary.json gives it
+    assert f.gamma_interval == (f.gamma_low, f.gamma_high) and f.to_dict()["gamma_interval"] == list(f.gamma_interval)
 
 
 def test_given_band_restricts_the_ordinates():
