@@ -299,3 +299,22 @@ def test_the_taper_the_docs_state_is_the_one_the_processing_line_names():
     assert f"under a Tukey taper (a cosine over {100 * TAPER / 2:g} % of the record at each end)" in rec[-1]
     assert not any("rectangular" in s for s in rec)
     assert band[-1].startswith("raw periodogram (rectangular window)") and not any("Tukey" in s for s in band)
+
+
+def test_a_discrete_random_walk_reads_lower_unless_the_band_stops_at_a_quarter_of_nyquist():
+    # docs/explanation/whittle_vs_lsq.md: double sums of white noise (2^12 samples, seeds 0-7) have the spectrum
+    # (2 sin(omega dt / 2))^-4, above the folded omega^-4 toward Nyquist; the fit takes the rise for a floor that ends
+    # the band and reads gamma lower (3.79-3.97, 5 of 8 intervals holding 4); stopped at a quarter of Nyquist it
+    # reads 3.95-4.05 and every interval holds 4
+    n = 4096
+    default, quarter = [], []
+    for seed in range(8):
+        rng = np.random.default_rng(seed)
+        x = 1e-4 * np.arange(n) * DT + 1e-9 * np.cumsum(np.cumsum(rng.standard_normal(n)))
+        default.append(fit_record(x, DT))
+        quarter.append(fit_record(x, DT, band=(2 * math.pi / (n * DT), math.pi / DT / 4)))
+    assert sum(f.gamma_low <= 4 <= f.gamma_high for f in default) == 5
+    assert all(f.band_end == "floor" and not f.flags and 0.1e-9 < f.floor_rms < 0.3e-9 for f in default)
+    assert 3.79 <= min(f.gamma for f in default) and max(f.gamma for f in default) < 3.97 + 5e-4
+    assert all(f.gamma_low <= 4 <= f.gamma_high for f in quarter)
+    assert min(f.gamma for f in quarter) >= 3.95 - 5e-4 and max(f.gamma for f in quarter) <= 4.05 + 5e-4
