@@ -105,6 +105,7 @@ def test_the_study_writes_its_page_with_the_binomial_verdict(tmp_path):
     main(["--quick", "--out", str(out), "--rows", str(tmp_path / "rows.json")])
     text = out.read_text()
     assert "Pooled split-half false-alarm rate" in text and "| 4096 | 6 | dominant | 3 |" in text
+    assert "Records of a mechanism: model_I's reference case**, 20 s at 1 kHz (20000 samples)" in text
     main(["--page-from", str(tmp_path / "rows.json"), "--out", str(tmp_path / "again.md")])
     again = (tmp_path / "again.md").read_text()
     assert again.split("Written from")[0] == text.split("Measured in")[0]
@@ -132,4 +133,6 @@ def test_the_explanation_quotes_the_false_alarm_counts_of_the_results_page():
     text = " ".join((docs / "explanation" / "identification.md").read_text().split())
     assert f"flagged {split[0]} of {split[1]} ({split[2]} %" in text
     assert f"{band[0]} of {band[1]} ({band[2]} %)" in text
+    model = re.search(r"the split-half test flags \*\*(\d+) of (\d+)\*\*", results).groups()
+    assert f"{model[0]} of {model[1]} records of model I's reference case" in text
     assert f"{split[2]} %" in " ".join((docs / "explanation" / "whittle_vs_lsq.md").read_text().split())
