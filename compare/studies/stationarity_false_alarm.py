@@ -159,7 +159,7 @@ def main(argv=None):
     ap.add_argument("--gammas-long", type=float, nargs="+", default=list(GAMMAS), help="exponents at --lengths-long")
     ap.add_argument("--model-I-seeds", type=int, default=40, help="model I's records (60 s at 1 kHz each)")
     ap.add_argument("--resume", type=Path, default=None, help="keep the cells stored in this file, run the others")
-    ap.add_argument("--quick", action="store_true", help="3 records per cell at 4096 samples, one of model I (20 s)")
+    ap.add_argument("--quick", action="store_true", help="3 records per cell at 4096 samples, one of model I (10 s)")
     ap.add_argument("--out", type=Path, default=PAGE)
     ap.add_argument("--rows", type=Path, default=Path("study-results") / "stationarity_rows.json")
     ap.add_argument("--page-from", type=Path, default=None, help="write the page of the cells stored in this file")
@@ -188,7 +188,7 @@ def main(argv=None):
                       f"({time.perf_counter() - t0:.0f} s)", flush=True)
     if not any("model" in r for r in rows) and (a.model_I_seeds > 0 or a.quick):
         seeds = range(MODEL_I_SEED0, MODEL_I_SEED0 + (1 if a.quick else a.model_I_seeds))
-        rows.append(model_I_cell(seeds, 20.0 if a.quick else MODEL_I_DURATION))
+        rows.append(model_I_cell(seeds, 10.0 if a.quick else MODEL_I_DURATION))
         a.rows.write_text(json.dumps(rows))
         r = rows[-1]
         print(f"model I, {r['n']} samples: {sum(p < TEST_LEVEL for p in r['split_half_p'])}/{len(seeds)} split-half "

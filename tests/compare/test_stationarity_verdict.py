@@ -105,7 +105,7 @@ def test_the_study_writes_its_page_with_the_binomial_verdict(tmp_path):
     main(["--quick", "--out", str(out), "--rows", str(tmp_path / "rows.json")])
     text = out.read_text()
     assert "Pooled split-half false-alarm rate" in text and "| 4096 | 6 | dominant | 3 |" in text
-    assert "Records of a mechanism: model_I's reference case**, 20 s at 1 kHz (20000 samples)" in text
+    assert "Records of a mechanism: model_I's reference case**, 10 s at 1 kHz (10000 samples)" in text
     main(["--page-from", str(tmp_path / "rows.json"), "--out", str(tmp_path / "again.md")])
     again = (tmp_path / "again.md").read_text()
     assert again.split("Written from")[0] == text.split("Measured in")[0]
