@@ -92,8 +92,9 @@ def _block_lines(summary: dict, most: int = 10) -> list:
 
 
 def displacement_lines(summary: dict, index) -> list:
-    lines = [f"wrote {index}: C_x ~ omega^-gamma, gamma = {_fit_text(summary['fit'])}; mean velocity "
-             f"{summary['mean_velocity']:.4g} m/s; zeta_rms = {summary['zeta_rms_m']:.4g} m over "
+    lines = [f"wrote {index}",
+             f"  C_x ~ omega^-gamma, gamma = {_fit_text(summary['fit'])}",
+             f"  mean velocity {summary['mean_velocity']:.4g} m/s; zeta_rms = {summary['zeta_rms_m']:.4g} m over "
              f"{summary['zeta_rms_band'][0]:.3g}-{summary['zeta_rms_band'][1]:.4g} rad/s (eq. 4), mu_rms = "
              f"{summary['mu_rms']:.4g} over {summary['mu_rms_band'][0]:.3g}-{summary['mu_rms_band'][1]:.4g} rad/s, the "
              f"fitted band (C_mu = omega^4 C_x / g^2; a white floor above the band is the sensor's, not friction)"]
