@@ -27,7 +27,8 @@ class SpectralAssertionError(AssertionError):
 
 
 def assert_spectral_slope(t, x, expected: float, tol: float, band=None, method: str = "record",
-                          allow_flagged: bool = False, **spectrum_kwargs) -> RecordFit | PowerLawFit:
+                          allow_flagged: bool = False, discrete: bool = False,
+                          **spectrum_kwargs) -> RecordFit | PowerLawFit:
     """Assert that C_x of x(t) falls as omega^-gamma with ``abs(gamma - expected) <= tol`` and that the fit carries
     no flag (the spectrum is one power law over the band).
 
@@ -60,6 +61,10 @@ def assert_spectral_slope(t, x, expected: float, tol: float, band=None, method: 
         False (default): a fit flagged as not a power law (``fit.flags``: band under a decade, curved residuals, not
         stationary, a bend, gamma at the fit's limit) fails, whatever its gamma, because its gamma describes no single
         power law. True: only gamma is checked; the flags still appear in a failure's message.
+    discrete : bool, optional
+        With ``"record"``: x is a discrete-time process (a simulation's cumulative sum of random steps, whose
+        spectrum is (2 sin(omega dt / 2) / dt)^-gamma): fit that form (:func:`compare.analysis.record_model.fit_record`)
+        rather than the continuous law folded at Nyquist, which reads such a walk low with a floor near Nyquist.
     **spectrum_kwargs
         With a band fit only: passed to :func:`compare.spectra.displacement_spectrum` (``detrend``, ``prewhiten``,
         ``nperseg``).
@@ -72,11 +77,13 @@ def assert_spectral_slope(t, x, expected: float, tol: float, band=None, method: 
     __tracebackhide__ = True  # pytest: the failure points at the caller's line
     if method not in SLOPE_METHODS:
         raise ValueError(f"method {method!r}: choose one of {', '.join(SLOPE_METHODS)}")
+    if discrete and method != "record":
+        raise ValueError(f"discrete applies to method='record' (the record model), not to {method!r}")
     if method == "record":
         if spectrum_kwargs:
             raise ValueError(f"{', '.join(sorted(spectrum_kwargs))}: Welch spectrum options, used by the band fits "
                              "only (method='whittle' or 'lsq'); the record model fits the record itself")
-        fit = fit_series(t, x, band=band, stationarity=False)
+        fit = fit_series(t, x, band=band, stationarity=False, discrete=discrete)
         counted = "Fourier ordinates in the likelihood, those above the band where the floor is fitted included"
     else:
         fit = fit_power_law(displacement_spectrum(t, x, **spectrum_kwargs), band=band, method=method)

@@ -133,7 +133,7 @@ def _band_rms(spectrum, band) -> float:
 
 
 def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, method: str | None = None,
-                         g: float = STANDARD_GRAVITY, timeline=None) -> DisplacementAnalysis:
+                         g: float = STANDARD_GRAVITY, timeline=None, discrete: bool = False) -> DisplacementAnalysis:
     """C_x, its exponent gamma, the velocity and C_mu of a displacement record; C_F when the mass is known.
 
     Parameters
@@ -161,6 +161,10 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
     timeline : compare.analysis.timeline.Timeline, optional
         The breaks of ``t``: each uniform segment is estimated on its own and their spectra combined
         (:func:`compare.analysis.segments.segment_spectra`).
+    discrete : bool, optional
+        The record is of a discrete-time process (a simulation's cumulative sum of random steps): the record model
+        fits the power law's discrete form (:func:`compare.analysis.record_model.fit_record`); default a continuous
+        process sampled, as an instrument records it. The record model only.
 
     Returns
     -------
@@ -179,6 +183,9 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
         raise ValueError(f"mass must be positive, in kg (got {mass!r})")
     if method not in (None,) + METHODS:
         raise ValueError(f"method must be one of {', '.join(METHODS)} (got {method!r})")
+    if discrete and (method not in (None, "record") or timeline is not None):
+        raise ValueError("discrete applies to the record model of one uniform record (method 'record', no "
+                         "segments)")
     segs = None
     if timeline is not None:  # time stamps in uniform segments: each on its own, and their spectra averaged
         segs = segment_spectra(t, x, timeline, quantity="x", unit="m^2 s", detrend="linear", name="x")
@@ -191,7 +198,7 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
         C_x = displacement_spectrum(t, x)
     if method in (None, "record") and segs is None:
         z = x - np.polyval(np.polyfit(t - t[0], x, 1), t - t[0])
-        fit = with_line_flag(fit_record(z, float(C_x.provenance["dt"]), band=band), C_x)
+        fit = with_line_flag(fit_record(z, float(C_x.provenance["dt"]), band=band, discrete=discrete), C_x)
         fit_mu = fit.derived(4.0, 1.0 / g**2, "mu", "s")
     else:
         fit = with_line_flag(fit_power_law(C_x, band=band, method=method), C_x)

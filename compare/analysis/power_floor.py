@@ -2,7 +2,8 @@
 :func:`compare.analysis.record_model.fit_record`.
 
 For a record's differenced periodogram (:class:`compare.analysis.whittle.WhittleRecord`) and the model
-C^(s)(omega) = A sum_m abs(omega + 2 pi m / dt)^-gamma + B, :class:`PowerFloorProfile` gives the debiased Whittle
+C^(s)(omega) = A sum_m abs(omega + 2 pi m / dt)^-gamma + B (a discrete-time record's: A (2 sin(omega dt / 2) /
+dt)^-gamma + B), :class:`PowerFloorProfile` gives the debiased Whittle
 negative log-likelihood with A and the floor's share at their best for each gamma (A in closed form, the share by a
 bounded one-dimensional search), so :func:`minimum` and :func:`interval` work on a function of gamma alone.
 :func:`bend_p` is the score test for changes of slope, :func:`level_cov` the Fisher covariance of (gamma, ln A).
@@ -48,6 +49,14 @@ def _fold_table(rec: WhittleRecord) -> tuple:
     return table
 
 
+def _sine_log(rec: WhittleRecord) -> np.ndarray:
+    """ln(sin(pi u) / pi) on the record's fine grid, computed once per record and kept on it."""
+    table = rec.__dict__.get("_sine_log")
+    if table is None:
+        table = rec.__dict__["_sine_log"] = np.log(np.sin(np.pi * rec.grid_u) / np.pi)
+    return table
+
+
 def above_rounding(e: np.ndarray) -> np.ndarray:
     """An expected periodogram with ordinates below the FFT's rounding (1e-13 of its largest: a differenced floor's
     omega^2k at the lowest frequencies of a long record) raised to that level, so that none is zero or negative."""
@@ -86,7 +95,11 @@ class PowerFloorProfile:
         self._local = None
 
     def fold(self, gamma: float) -> np.ndarray:
-        """sum_m abs(u + m)^-gamma over all integers m, u in (0, 1/2] (the power law folded at Nyquist)."""
+        """sum_m abs(u + m)^-gamma over all integers m, u in (0, 1/2] (the power law folded at Nyquist); for a
+        discrete-time record (``rec.discrete``) (sin(pi u) / pi)^-gamma, the same law's discrete form
+        (2 sin(omega dt / 2) / dt)^-gamma in these units, which it equals as u -> 0."""
+        if self.rec.discrete:
+            return np.exp(-gamma * _sine_log(self.rec))
         logs, tails = _fold_table(self.rec)
         s = sum(np.exp(-gamma * lg) for lg in logs)
         u = self.rec.grid_u

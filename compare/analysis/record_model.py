@@ -334,15 +334,15 @@ def _fit_band(rec, floor, band):
     return prof, (g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi)
 
 
-def _fit_order(x, dt, k, floor, band):
-    rec = WhittleRecord(x, dt, k)
+def _fit_order(x, dt, k, floor, band, discrete=False):
+    rec = WhittleRecord(x, dt, k, discrete=discrete)
     return (rec, *_fit_band(rec, floor, band))
 
 
-def _split_half_p(x, dt, k, floor, g0, band) -> float:
+def _split_half_p(x, dt, k, floor, g0, band, discrete=False) -> float:
     """p-value of the split-half likelihood-ratio test of stationarity (module docstring)."""
     h = len(x) // 2
-    halves = [WhittleRecord(x[:h], dt, k), WhittleRecord(x[h:2 * h], dt, k)]
+    halves = [WhittleRecord(x[:h], dt, k, discrete=discrete), WhittleRecord(x[h:2 * h], dt, k, discrete=discrete)]
     halves[1].memo = halves[0].memo  # equally long records (same n, dt, order, taper): the same expected periodograms
     keep = keep_band(halves[0], band) if band is not None else None
     lo, hi = max(GAMMA_MIN, 2 * k - 3.0), 2 * k + _HEADROOM
@@ -389,14 +389,14 @@ def split_p(rec: WhittleRecord, floor: bool, band) -> tuple[float, float | None]
     return float(min(1.0, count * stats.chi2.sf(best, 3 if floor else 2))), knot
 
 
-def _differenced(x, dt):
+def _differenced(x, dt, discrete=False):
     """order -> the record differenced that many times (:class:`WhittleRecord`), each made when first asked for and
     kept, so that every band fitted at one order shares its expected periodograms."""
     made = {}
 
     def get(k):
         if k not in made:
-            made[k] = WhittleRecord(x, dt, k)
+            made[k] = WhittleRecord(x, dt, k, discrete=discrete)
         return made[k]
     return get
 
@@ -440,12 +440,12 @@ def _segments(get, floor, band, k, out):
     return out
 
 
-def _narrowed(x, dt, k, floor, omega):
+def _narrowed(x, dt, k, floor, omega, discrete=False):
     """The band of a record whose spectrum bends: of the binary segmentation's kept bands (:func:`_segments`, each
     fitted at its own differencing order), the one with the most Fourier ordinates. Returns (record, profile,
     result, bend p, band, segments), segments the kept bands as (low, high, gamma, low end, high end, order) in
     rising frequency; or None when no band of a decade or more is kept."""
-    kept = _segments(_differenced(x, dt), floor, (float(omega[0]), float(omega[-1])), k, [])
+    kept = _segments(_differenced(x, dt, discrete), floor, (float(omega[0]), float(omega[-1])), k, [])
     if not kept:
         return None
     kept.sort(key=lambda c: c[1])
@@ -484,7 +484,7 @@ def check_record(x, name: str = "x", unit: str = "", *, resolution: bool = True)
 
 
 def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, band=None, quantity: str = "x",
-               stationarity: bool = True, unit: str | None = None) -> RecordFit:
+               stationarity: bool = True, unit: str | None = None, discrete: bool = False) -> RecordFit:
     """Fit C_x = A omega^-gamma + B to a uniformly sampled record by the debiased Whittle likelihood.
 
     Parameters
@@ -509,6 +509,12 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
     unit : str, optional
         The record's unit (SI); default from ``quantity`` (:data:`RECORD_UNITS`: ``"m"`` for x, ``"N"`` for F, ``""``
         for mu), carried to the result as ``record_unit``.
+    discrete : bool, optional
+        The record is of a discrete-time process (a cumulative sum of random steps, a simulation's update rule):
+        fit C = A (2 sin(omega dt / 2) / dt)^-gamma + B, the power law's discrete form, instead of the continuous law
+        folded at Nyquist (default: a continuous process sampled, what an instrument records). A discrete random
+        walk read as a sampled continuous one has more power toward Nyquist than the folded law (52 % more at half
+        Nyquist for gamma 4), which the fit takes for a floor and a lower gamma.
 
     Returns
     -------
@@ -523,24 +529,24 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
     if order is None:
         k = order_for(_pilot(x, dt))
         while True:
-            rec, prof, res = _fit_order(x, dt, k, floor, band)
+            rec, prof, res = _fit_order(x, dt, k, floor, band, discrete)
             if res[6] and k < MAX_ORDER:
                 k += 1
                 continue
             if order_for(res[0]) < k:  # over-differenced: the order the estimate itself asks for
                 k = order_for(res[0])
-                rec, prof, res = _fit_order(x, dt, k, floor, band)
+                rec, prof, res = _fit_order(x, dt, k, floor, band, discrete)
             break
     else:
         k = int(order)
-        rec, prof, res = _fit_order(x, dt, k, floor, band)
+        rec, prof, res = _fit_order(x, dt, k, floor, band, discrete)
     g, nll, t, g_lo, g_hi, wall_lo, wall_hi, lo, hi = res
     bend = bend_p(prof, g, t)
     searched, split_flag, segments, cut_above = False, None, (), False
     if band is None and bend < SCREEN_LEVEL:
         searched = True
         whole = (float(rec.omega[0]), float(rec.omega[-1]))
-        narrowed = _narrowed(x, dt, k, floor, rec.omega)
+        narrowed = _narrowed(x, dt, k, floor, rec.omega, discrete)
         if narrowed is None:
             split_flag = (f"no band of a decade holds one power law (bend test p = {bend:.2g}; the split test rejects "
                           f"every band at {TEST_LEVEL:g})")
@@ -565,8 +571,18 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
     A, B = prof.levels(g, t)
     w0, w1 = float(prof.omega[0]), float(prof.omega[-1])
     cross = (A / B) ** (1.0 / g) if B > 0 else math.inf
+    if discrete:
+        # where A (2 sin(omega dt / 2) / dt)^-gamma = B; that law never falls below A (dt / 2)^gamma (at Nyquist)
+        cross = 2.0 / dt * math.asin(cross * dt / 2.0) if cross * dt / 2.0 < 1.0 else math.inf
+        notes.append("fitted as a discrete-time process: C = A (2 sin(omega dt / 2) / dt)^-gamma + B, the power law "
+                     "A omega^-gamma at low frequency")
     band_out = (w0, float(min(cross, w1)))
     end = ("floor" if cross < w1 else "given" if not auto else "departure" if cut_above else "last frequency")
+    if end == "floor" and not discrete and cross > math.pi / dt / math.sqrt(10.0):
+        notes.append("a floor that crosses the power law in the top half-decade below Nyquist is also what a "
+                     "discrete-time process (a simulation's cumulative sum of random steps) shows when fitted as a "
+                     "sampled continuous one: if the record is one, fit it as such (discrete=True; analyze "
+                     "--discrete)")
     flags = []
     if (wall_lo and g - lo < 1e-3 and lo > GAMMA_MIN) or (wall_hi and hi - g < 1e-3):
         flags.append(f"gamma is not identified: the estimate sits at the fitted range's limit {lo if wall_lo else hi:.2f} "
@@ -574,7 +590,7 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
     if band_out[1] <= w0 * 1.0001:
         notes.append("the floor lies above the power law at every fitted frequency: gamma is not identified")
         band_out = (w0, w0 * 1.0001)
-    p = _split_half_p(x, dt, k, floor, g, band) if stationarity and len(x) >= 64 + 2 * k else math.nan
+    p = _split_half_p(x, dt, k, floor, g, band, discrete) if stationarity and len(x) >= 64 + 2 * k else math.nan
     if p < TEST_LEVEL:
         flags.append(f"not stationary: the halves' spectra differ (split-half likelihood ratio, p = {p:.2g})")
     if split_flag:
@@ -633,7 +649,7 @@ def expected_gamma(spectrum, fit: RecordFit, dt: float, band=None, floor: bool =
 
 
 def fit_series(t, y, *, band=None, quantity: str = "x", stationarity: bool = True,
-               integrate: bool = False) -> RecordFit:
+               integrate: bool = False, discrete: bool = False) -> RecordFit:
     """:func:`fit_record` of a record given with its sample times: the exponent every report, ``compare`` and sweep
     quotes of a time record (a scene's x(t) or F(t), a simulator's output).
 
@@ -651,6 +667,9 @@ def fit_series(t, y, *, band=None, quantity: str = "x", stationarity: bool = Tru
         Fit the running sum of y dt and return the exponent of y (gamma - 2): for a spectrum flatter than
         omega^-1.05 (a 1/f force), which the record model cannot represent. The sum's transfer
         dt^2 / (4 sin^2(omega dt / 2)) is omega^-2 to (omega dt)^2 / 12 of it.
+    discrete : bool, optional
+        y is a discrete-time process (a cumulative sum of random steps, a simulation's update rule): its power law's
+        discrete form is fitted (:func:`fit_record`).
 
     Returns
     -------
@@ -660,13 +679,14 @@ def fit_series(t, y, *, band=None, quantity: str = "x", stationarity: bool = Tru
     dt = float(t[1] - t[0])
     y = np.asarray(y, dtype=float)
     if not integrate:
-        return fit_record(y, dt, band=band, quantity=quantity, stationarity=stationarity)
+        return fit_record(y, dt, band=band, quantity=quantity, stationarity=stationarity, discrete=discrete)
     # a flat channel is refused as such, not as its (linear) running sum; a force that holds between events (an exact
     # simulator's) is not a rounded file
     check_record(y, quantity, resolution=False)
     z = np.cumsum(y - y.mean()) * dt
     u = RECORD_UNITS.get(quantity, "")
-    fit = fit_record(z, dt, band=band, quantity=quantity, stationarity=stationarity, unit=f"{u} s".strip())
+    fit = fit_record(z, dt, band=band, quantity=quantity, stationarity=stationarity, unit=f"{u} s".strip(),
+                     discrete=discrete)
     return replace(fit.derived(2.0, 1.0, quantity, spectrum_unit_of(u)),
                    notes=fit.notes + ("fitted through the record's running sum (its spectrum omega^-2 times the "
                                       "record's): the floor and the exponents in the notes above are the sum's (2 "

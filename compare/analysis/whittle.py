@@ -124,6 +124,10 @@ class WhittleRecord:
         Fineness of the autocovariance grid (multiples of 2n).
     taper : float, optional
         Fraction of the record in the Tukey taper's cosine ends (:data:`TAPER`); 0 for none (rectangular).
+    discrete : bool, optional
+        The record is of a discrete-time process (a cumulative sum of random steps, a simulation's update rule), whose
+        power law is (2 sin(omega dt / 2) / dt)^-gamma, rather than of a continuous one sampled, whose power law is
+        folded at Nyquist (default): the form :class:`compare.analysis.power_floor.PowerFloorProfile` fits.
 
     Attributes
     ----------
@@ -138,7 +142,8 @@ class WhittleRecord:
         record compute each once.
     """
 
-    def __init__(self, x, dt: float, order: int, *, oversample: int = _OVERSAMPLE, taper: float = TAPER):
+    def __init__(self, x, dt: float, order: int, *, oversample: int = _OVERSAMPLE, taper: float = TAPER,
+                 discrete: bool = False):
         x = np.asarray(x, dtype=float)
         if x.ndim != 1:
             raise ValueError(f"the record must be one-dimensional (got shape {x.shape})")
@@ -165,6 +170,7 @@ class WhittleRecord:
         self.n = n
         self.periodogram = (Y.real[1:m + 1] ** 2 + Y.imag[1:m + 1] ** 2) * (dt / (2.0 * math.pi))
         self.taper = float(taper)
+        self.discrete = bool(discrete)
         self.omega = 2.0 * math.pi / (n * dt) * np.arange(1, m + 1)
         self.L = sp_fft.next_fast_len(2 * oversample * n, real=True)
         self._h = h

@@ -74,6 +74,10 @@ def cmd_analyze(args) -> int:
     _check_analyze_numbers(args)
     if force and args.no_mechanisms:
         raise UserError("--no-mechanisms applies to displacement data (force records are not ranked)")
+    if force and args.discrete:
+        raise UserError("--discrete applies to displacement data (a simulation's random walk), not to force data")
+    if args.discrete and args.method not in (None, "record"):
+        raise UserError(f"--discrete applies to the record model (--method record), not to --method {args.method}")
     if not force:
         for flag in ("normal_col", "direction_col", "speed", "cut", "force_unit", "mu_col", "contact_area"):
             if getattr(args, flag) is not None:
@@ -104,7 +108,7 @@ def cmd_analyze(args) -> int:
             t0 = time.perf_counter()
             if say:
                 say(f"fitting the exponent of C_x ({len(data.t)} samples)")
-            an = analyze_displacement(data, mass=args.mass, band=band, method=args.method)
+            an = analyze_displacement(data, mass=args.mass, band=band, method=args.method, discrete=args.discrete)
             if say:
                 say(f"exponent fitted in {time.perf_counter() - t0:.1f} s"
                     + ("" if args.no_mechanisms else "; naming the mechanism"))

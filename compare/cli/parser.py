@@ -178,6 +178,10 @@ def build_parser() -> argparse.ArgumentParser:
                     help="several files: the angular frequency (rad/s) at which C_x is compared across speeds "
                          "(default: inside the band common to every record's fit band, where the least precise "
                          "record's level is most precise)")
+    an.add_argument("--discrete", action="store_true",
+                    help="displacement data of a discrete-time process (a simulation's cumulative sum of random steps): "
+                         "fit the power law's discrete form (2 sin(omega dt/2)/dt)^-gamma, not the continuous law "
+                         "folded at Nyquist that a sampled measurement follows (default)")
     an.add_argument("--no-mechanisms", action="store_true",
                     help="displacement data: skip the mechanism ranking (every registered model's family fitted; "
                          "most of analyze's time on a long record) and report the exponent, floor and spectra only")

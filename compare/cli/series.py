@@ -22,7 +22,8 @@ def analyze_series(args, read) -> int:
     for path in args.data:
         data = read(path, args)
         try:
-            analyses.append(analyze_displacement(data, mass=args.mass, band=band, method=args.method))
+            analyses.append(analyze_displacement(data, mass=args.mass, band=band, method=args.method,
+                                                 discrete=args.discrete))
         except ValueError as e:
             raise UserError(f"{path}: {e}") from None
     try:

@@ -458,3 +458,29 @@ def test_summary_units_preamble_and_gravity(tmp_path):
 
     fit = analyze_displacement(d).fit
     assert " m rms" in str(fit) or "no white floor" in str(fit)
+
+
+def test_analyze_discrete_fits_a_simulated_random_walk_and_is_refused_where_it_does_not_apply(tmp_path, capsys):
+    # a double sum of white noise (a simulation written step by step) in a file: `--discrete` fits its spectrum's own
+    # form (2 sin(omega dt / 2) / dt)^-4 and says so (summary.json's notes); the default folded law reads it with a
+    # floor near Nyquist and a note naming --discrete (compare.analysis.record_model; the fits page's numbers:
+    # tests/compare/test_record_model.py); on force data or a band fit the option is refused, one line, exit 2
+    rng = np.random.default_rng(0)
+    n = 4096
+    t = 1e-2 * np.arange(n)
+    f = tmp_path / "walk.csv"
+    _write(f, t, 1e-3 * t + 1e-3 * np.cumsum(np.cumsum(rng.standard_normal(n))))
+    runs = {}
+    for name, extra in (("folded", []), ("discrete", ["--discrete"])):
+        assert main(["analyze", str(f), "--no-mechanisms", "-o", str(tmp_path / name)] + extra) == 0
+        runs[name] = json.loads((tmp_path / name / "summary.json").read_text())["fit"]
+    capsys.readouterr()
+    assert runs["discrete"]["gamma_interval"][0] <= 4 <= runs["discrete"]["gamma_interval"][1]
+    assert runs["discrete"]["band_end"] != "floor"
+    assert any(s.startswith("fitted as a discrete-time process") for s in runs["discrete"]["notes"])
+    assert runs["folded"]["band_end"] == "floor" and any("--discrete" in s for s in runs["folded"]["notes"])
+    for extra, match in ((["--method", "lsq"], "--discrete applies to the record model"),
+                         (["--force-col", "x_um"], "--discrete applies to displacement data")):
+        assert main(["analyze", str(f), "--discrete", "-o", str(tmp_path / "no")] + extra) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and match in err and not (tmp_path / "no").exists()

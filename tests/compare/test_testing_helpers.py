@@ -135,3 +135,17 @@ def test_wrong_method_or_welch_option_is_named():
         assert_spectral_slope(t, x, expected=4.0, tol=0.2, method="band")
     with pytest.raises(ValueError, match="nperseg: Welch spectrum options"):
         assert_spectral_slope(t, x, expected=4.0, tol=0.2, nperseg=1024)
+    with pytest.raises(ValueError, match="discrete applies to method='record'"):
+        assert_spectral_slope(t, x, expected=4.0, tol=0.2, method="lsq", discrete=True)
+
+
+def test_a_discrete_walk_is_fitted_in_its_own_form_when_asked():
+    # discrete=True hands the record to the record model's discrete form (docs/howto/slope_test.md): the same fit as
+    # fit_series(..., discrete=True), number for number, and its note says which form was fitted
+    rng = np.random.default_rng(0)
+    t = np.arange(4096) * DT
+    x = 1e-9 * np.cumsum(np.cumsum(rng.standard_normal(4096)))
+    fit = assert_spectral_slope(t, x, expected=4.0, tol=0.2, discrete=True)
+    ref = fit_series(t, x, stationarity=False, discrete=True)
+    assert fit.gamma == ref.gamma and fit.gamma_interval == ref.gamma_interval
+    assert any(n.startswith("fitted as a discrete-time process") for n in fit.notes)
