@@ -4,8 +4,10 @@
                                          [--out PREFIX] [--smoke]
 
 Runs ``pads_with_wear`` with ``wear.count = 0`` (its solver settings as shipped) for each cavity geometry and
-seed, and fits gamma over 3-30 v/a, v the drive's set speed (15-150 rad/s at v = 5 mm/s, a = 1 mm), with the
-report's spectral settings (``displacement_spectrum`` with the wear study's nperseg, ``fit_power_law``: Whittle).
+seed, and fits gamma over 3-30 v/a, v the drive's set speed (15-150 rad/s at v = 5 mm/s, a = 1 mm), by the record
+model as the wear study fits it (:func:`compare.analysis.record_model.fit_series`: C_x = A omega^-gamma plus a white
+floor, the debiased Whittle likelihood of the whole record; the friction force through its running sum); C_x's band
+levels from the Welch spectrum with the wear study's nperseg.
 Per geometry: gamma per seed with its 95 % interval, the inverse-variance mean over seeds with its interval, and
 the seed-to-seed standard deviation. Every finished run is written to ``PREFIX.json`` at once (a rerun skips
 finished runs) and ``PREFIX.md`` is rewritten.
@@ -26,8 +28,8 @@ from pathlib import Path
 import numpy as np
 
 import engine_sim
-from compare.analysis.fits import fit_power_law
-from compare.analysis.spectra import band_average, displacement_spectrum, force_series_spectrum
+from compare.analysis.record_model import fit_series
+from compare.analysis.spectra import band_average, displacement_spectrum
 from compare.analysis.balances import balances
 from engine_sim import load_scenario, shipped_scenarios
 
@@ -71,14 +73,11 @@ def measure(geometry: str, seed: int, duration: float) -> dict:
     band = (3 * va, 30 * va)
     nper = nperseg_for(len(tr.t))
     sx = displacement_spectrum(tr.t, tr.x, nperseg=nper)
-    fit = fit_power_law(sx, band=band)
-    fit_lsq = fit_power_law(sx, band=band, method="lsq")
-    sF = force_series_spectrum(tr.t, tr.F_t, nperseg=nper)
-    fitF = fit_power_law(sF, band=band)
+    fit = fit_series(tr.t, tr.x, band=band)
+    fitF = fit_series(tr.t, tr.F_t, band=band, quantity="F", integrate=True)
     edges = np.logspace(math.log10(band[0]), math.log10(band[1]), 4)
     return {"geometry": geometry, "seed": seed, "duration": duration, "band": list(band), "nperseg": nper,
             "gamma": fit.gamma, "gamma_err": fit.gamma_err, "power_law": bool(fit.power_law), "flags": list(fit.flags),
-            "gamma_lsq": fit_lsq.gamma, "gamma_lsq_err": fit_lsq.gamma_err,
             "gamma_F": fitF.gamma, "gamma_F_err": fitF.gamma_err,
             "Cx_bands": band_average(sx, edges).tolist(), "band_edges": edges.tolist(),
             "v_mean": float((tr.x[-1] - tr.x[0]) / (tr.t[-1] - tr.t[0])),
@@ -103,21 +102,21 @@ def markdown(runs, geometries, seeds, meta) -> str:
          "Commands: " + "; ".join(f"`{c}`" for c in meta.get("commands", [meta.get("command", "")])) + "  ",
          f"Scene: pads_with_wear with wear.count = 0 (20 iterations, dt 1e-4 s as shipped), {meta['duration']:g} s recorded "
          f"per run (+ 1 s warm-up), seeds {', '.join(map(str, seeds))}. Band 3-30 v/a with v = 5 mm/s (set speed), "
-         "a = 1 mm: 15-150 rad/s (a = 3 mm geometries: 5-50 rad/s). displacement_spectrum (auto pre-whitening, nperseg as the wear study) + "
-         "fit_power_law (Whittle, 95 % intervals).  ",
+         "a = 1 mm: 15-150 rad/s (a = 3 mm geometries: 5-50 rad/s). The record model (fit_series: a power law plus a "
+         "white floor, debiased Whittle likelihood of the whole record, profile 95 % intervals; the friction force "
+         "through its running sum).  ",
          f"Wall time: {meta['wall_total_s']:.0f} s for {len(runs)} runs; last update {meta['updated']}.", "",
          "| geometry | per seed: gamma +- 95 % | mean (inverse-variance) +- 95 % | seed sd | +- 95 % with seed scatter "
-         "| lsq gamma, per seed | C_F(friction) exponent, mean | v (mm/s) | wall s / sim s |",
-         "|---|---|---|---|---|---|---|---|---|"]
+         "| C_F(friction) exponent, mean | v (mm/s) | wall s / sim s |",
+         "|---|---|---|---|---|---|---|---|"]
     for g in geometries:
         rows = [runs[f"{g}|{s}"] for s in seeds if f"{g}|{s}" in runs]
         if not rows:
             continue
         mean, err, sd, err2 = summary(rows)
         per_seed = ", ".join("%.2f +- %.2f" % (r["gamma"], r["gamma_err"]) for r in rows)
-        lsq = ", ".join("%.2f" % r["gamma_lsq"] for r in rows)
         L.append(f"| {g} | {per_seed} | {mean:.2f} +- {err:.2f} "
-                 f"| {sd:.2f} | {mean:.2f} +- {err2:.2f} | {lsq} "
+                 f"| {sd:.2f} | {mean:.2f} +- {err2:.2f} "
                  f"| {np.mean([r['gamma_F'] for r in rows]):.2f} | {1e3 * np.mean([r['v_mean'] for r in rows]):.3f} "
                  f"| {np.mean([r['wall_per_sim_s'] for r in rows]):.2f} |")
     L += ["", "Geometries:", ""] + [f"- {g}: {GEOMETRIES[g][1]}" for g in geometries]
@@ -166,8 +165,8 @@ def main(argv=None):
             runs[f"{g}|{s}"] = r
             meta["wall_total_s"] += time.perf_counter() - t0
             meta["updated"] = time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime())
-            print(f"[{time.strftime('%H:%M:%S')}] {g} seed {s}: gamma {r['gamma']:.2f} +- {r['gamma_err']:.2f} "
-                  f"(lsq {r['gamma_lsq']:.2f}), {r['wall_s']:.0f} s wall", file=sys.stderr, flush=True)
+            print(f"[{time.strftime('%H:%M:%S')}] {g} seed {s}: gamma {r['gamma']:.2f} +- {r['gamma_err']:.2f}, "
+                  f"{r['wall_s']:.0f} s wall", file=sys.stderr, flush=True)
             jpath.write_text(json.dumps({"meta": meta, "runs": runs}, indent=1))
             mpath.write_text(markdown(runs, allg, sorted({int(k.split('|')[1]) for k in runs}), meta))
     if a.smoke:
