@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from .fits import METHODS, PowerLawFit, fit_power_law
-from .record_model import RecordFit, fit_series
+from .record_model import RecordFit, band_end_words, fit_series
 from .spectra import Spectrum, band_average, displacement_spectrum
 
 __all__ = ["assert_spectral_slope", "assert_spectrum_matches", "SpectralAssertionError", "SLOPE_METHODS"]
@@ -109,14 +109,22 @@ def _slope_message(fit, expected: float, tol: float, counted: str, off: bool, fl
     if flagged:
         why.append("the fit is flagged NOT A POWER LAW (pass allow_flagged=True to check gamma alone)")
     flags = "; ".join(fit.flags) if fit.flags else "none"
-    return "\n".join([
+    lines = [
         f"spectral slope: {' and '.join(why)}",
         f"  measured gamma = {fit.gamma:.3f} +- {fit.gamma_err:.3f}, 95 % interval [{low:.3f}, {high:.3f}] ({how})",
         f"  expected gamma = {expected:g} +- {tol:g}",
         f"  band {fit.band[0]:.4g}-{fit.band[1]:.4g} rad/s ({math.log10(fit.band[1] / fit.band[0]):.2f} decades, "
         f"{'auto' if fit.band_auto else 'given'}; {fit.n_points} {counted})",
         f"  flags: {flags}",
-    ])
+    ]
+    if isinstance(fit, RecordFit):
+        # what the record model says ends the band (a floor, a departure), and its notes: among them the hint that a
+        # floor near Nyquist is a discrete-time process read as a continuous one
+        lines.append("  band end: " + band_end_words(fit.band_end, fit.floor_rms, fit.crossover, fit.band[1],
+                                                      fit.gamma, [s[:3] for s in fit.segments],
+                                                      f" {fit.record_unit}" if fit.record_unit else "").lstrip("; "))
+        lines += [f"  note: {n}" for n in fit.notes]
+    return "\n".join(lines)
 
 
 def assert_spectrum_matches(spectrum: Spectrum, theory, edges, rtol: float) -> np.ndarray:

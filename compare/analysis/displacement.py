@@ -8,7 +8,7 @@ fit methods of :func:`compare.analysis.fits.fit_power_law` apply to every spectr
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -23,6 +23,7 @@ from .spectra import (Spectrum, displacement_spectrum, force_spectrum, friction_
 __all__ = ["DisplacementAnalysis", "analyze_displacement", "C_F_NEEDS_MASS", "METHODS"]
 
 METHODS = ("record", "whittle", "lsq")  # record: compare.analysis.record_model (default); the others: compare.analysis.fits
+PIECE_SHARE = 0.75  # a record in pieces: the record model fits its longest piece alone from this share of the samples
 
 C_F_NEEDS_MASS = ("C_F not computed: C_F = M^2 omega^4 C_x (eq. 3) needs the block mass M (--mass, kg); gamma, C_x "
                   "and C_mu do not depend on it")
@@ -154,7 +155,10 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
         Fit method. Default ``"record"``: the record model C_x = A omega^-gamma + B fitted by the debiased Whittle
         likelihood of the whole record (:func:`compare.analysis.record_model.fit_record`; C_mu's and C_F's
         exponents follow as gamma - 4). ``"whittle"`` and ``"lsq"`` fit the Welch spectrum over a band
-        (:func:`compare.analysis.fits.fit_power_law`); a record in uniform segments is fitted that way.
+        (:func:`compare.analysis.fits.fit_power_law`). A record in uniform segments: the record model fits its
+        longest segment alone when asked for (``"record"``) or, by default, when that segment holds at least
+        :data:`PIECE_SHARE` of the samples (a row dropped near an end); else the segments' combined Welch spectrum
+        is fitted by least squares over its band (it keeps no single periodogram for the Whittle fits).
     g : float, optional
         Gravitational acceleration for C_mu (m/s^2); default standard gravity, 9.80665 (the value the reader
         converts a gram-force by), for a record measured on Earth; the paper's models use 9.81 (``frictionnoise.G``).
@@ -183,22 +187,41 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
         raise ValueError(f"mass must be positive, in kg (got {mass!r})")
     if method not in (None,) + METHODS:
         raise ValueError(f"method must be one of {', '.join(METHODS)} (got {method!r})")
-    if discrete and (method not in (None, "record") or timeline is not None):
-        raise ValueError("discrete applies to the record model of one uniform record (method 'record', no "
-                         "segments)")
-    segs = None
+    if discrete and method not in (None, "record"):
+        raise ValueError("discrete applies to the record model (method 'record')")
+    segs = piece = None
     if timeline is not None:  # time stamps in uniform segments: each on its own, and their spectra averaged
         segs = segment_spectra(t, x, timeline, quantity="x", unit="m^2 s", detrend="linear", name="x")
         C_x = segs.combined
-        if method in (None, "record"):  # the record model needs one uniform record; the segments' spectra carry no
-            method = None               # record, so their combination is fitted over its band
+        if method in (None, "record"):
+            # the record model needs one uniform record: the longest piece when asked for, or when it holds most of
+            # the record (a dropped row near an end); else the pieces' combined spectrum is fitted over its band
+            usable = timeline.usable()
+            piece = max(usable, key=lambda s: s.n)
+            share = piece.n / sum(s.n for s in usable)
+            if method is None and share < PIECE_SHARE:
+                piece = None
+                if discrete:
+                    raise ValueError(f"discrete applies to the record model of one uniform record; the longest of "
+                                     f"this record's {len(usable)} pieces holds {100 * share:.0f} % of its samples "
+                                     f"(resample it onto one grid, or give method 'record' to fit that piece)")
     else:
         t, x = np.asarray(t, dtype=float), np.asarray(x, dtype=float)
         check_record(x, "x", "m")
         C_x = displacement_spectrum(t, x)
-    if method in (None, "record") and segs is None:
-        z = x - np.polyval(np.polyfit(t - t[0], x, 1), t - t[0])
-        fit = with_line_flag(fit_record(z, float(C_x.provenance["dt"]), band=band, discrete=discrete), C_x)
+    if method in (None, "record") and (segs is None or piece is not None):
+        tp, xp, dt = t, x, float(C_x.provenance["dt"])
+        if piece is not None:
+            tp, xp, dt = np.asarray(t[piece.start:piece.stop], float), np.asarray(x[piece.start:piece.stop], float), piece.dt
+        z = xp - np.polyval(np.polyfit(tp - tp[0], xp, 1), tp - tp[0])
+        fit = with_line_flag(fit_record(z, dt, band=band, discrete=discrete), C_x)
+        if piece is not None:
+            total = sum(s.n for s in timeline.usable())
+            fit = replace(fit, notes=fit.notes + (
+                f"the record is in {len(timeline.usable())} uniform pieces: the record model was fitted to the "
+                f"longest, data rows {piece.start + 1}-{piece.stop} ({piece.n} of {total} samples, "
+                f"{100 * piece.n / total:.0f} %); the others enter the combined spectrum only (--resample DT puts "
+                "the whole record on one grid)",))
         fit_mu = fit.derived(4.0, 1.0 / g**2, "mu", "s")
     else:
         fit = with_line_flag(fit_power_law(C_x, band=band, method=method), C_x)

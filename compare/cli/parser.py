@@ -159,10 +159,11 @@ def build_parser() -> argparse.ArgumentParser:
     an.add_argument("--method", default=None, choices=["record", "whittle", "lsq"],
                     help="exponent fit: record (the power law plus a white floor fitted to the whole record by the "
                          "debiased Whittle likelihood; the default for displacement; force data of one stroke with "
-                         "unbroken time stamps, a constant-velocity rig: fitted through the force's running sum), "
-                         "whittle (the Whittle likelihood over a band of the stroke-averaged Welch spectrum; the "
-                         "default for force data and records in segments) or lsq (least squares on the log-binned "
-                         "spectrum)")
+                         "unbroken time stamps, a constant-velocity rig: fitted through the force's running sum; "
+                         "displacement in uniform pieces: fitted to the longest piece, by default when it holds 3/4 "
+                         "of the samples), whittle (the Whittle likelihood over a band of the stroke-averaged Welch "
+                         "spectrum; the default for force data) or lsq (least squares on the log-binned spectrum; "
+                         "the default for displacement in pieces none of which holds 3/4 of the samples)")
     an.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"),
                     help="fit band (rad/s); default (record): searched over every Fourier frequency, the band with the "
                          "most frequencies where one power law holds, ended where a white floor takes over; default "

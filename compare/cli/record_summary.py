@@ -97,7 +97,7 @@ def displacement_lines(summary: dict, index) -> list:
              f"  mean velocity {summary['mean_velocity']:.4g} m/s; zeta_rms = {summary['zeta_rms_m']:.4g} m over "
              f"{summary['zeta_rms_band'][0]:.3g}-{summary['zeta_rms_band'][1]:.4g} rad/s (eq. 4), mu_rms = "
              f"{summary['mu_rms']:.4g} over {summary['mu_rms_band'][0]:.3g}-{summary['mu_rms_band'][1]:.4g} rad/s, the "
-             f"fitted band (C_mu = omega^4 C_x / g^2; a white floor above the band is the sensor's, not friction)"]
+             f"fitted band within the Welch spectrum's (C_mu = omega^4 C_x / g^2; a white floor above the band is the sensor's, not friction)"]
     if "fit_F" in summary:
         lines.append(f"  C_F = M^2 omega^4 C_x (M = {summary['mass_kg']:g} kg, eq. 3): force exponent "
                      f"{_fit_text(summary['fit_F'])}; F_rms = {summary['F_rms_N']:.4g} N")

@@ -245,7 +245,7 @@ def build_measured_report(an: DisplacementAnalysis, data):
         + (f" <b>not a power law: {esc('; '.join(fit.flags))}</b>" if fit.flags else "")
         + f"; zeta_rms = {an.zeta_rms:.4g} m over the resolved band (eq. 4) and mu_rms = {an.mu_rms:.4g} "
         f"(dimensionless, C_mu = omega^4 C_x / g^2 of a free block, whatever its mass) over {span(*an.rms_band)} rad/s, "
-        "the fitted band (omega^4 weighs a sensor's white floor above it, which is not friction).",
+        "the fitted band within the Welch spectrum's (omega^4 weighs a sensor's white floor above it, which is not friction).",
         floor_words(fit),
         relation,
         "Processing: " + esc("; ".join(summary["spectrum_steps"])) + ".",
@@ -257,7 +257,7 @@ def build_measured_report(an: DisplacementAnalysis, data):
                                                                            ylabel=r"$C_\mu$ (s)",
                                                                            title="Friction coefficient spectrum")),
                f"C_mu (s) = omega^4 C_x / g^2; mu_rms = {an.mu_rms:.3g} over {span(*an.rms_band)} rad/s, the fitted band "
-               "(eq. 4)."),
+               "within the Welch spectrum's (eq. 4)."),
     ]
     if an.C_F is not None:
         figures.insert(1, Figure(

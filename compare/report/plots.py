@@ -105,7 +105,7 @@ def spectrum_figure(measured: list, theory: list = (), *, title: str = "", ylabe
     ax.grid(True, which="major", alpha=0.3)
     h = [x for x in ax.get_legend_handles_labels()[0] if x not in fit_lines]
     if fit_lines:
-        ax.add_artist(ax.legend(handles=fit_lines, fontsize=8, loc="upper right", title="power-law fit over the shaded band (95 %)",
+        ax.add_artist(ax.legend(handles=fit_lines, fontsize=8, loc="upper right", title="power-law fit (95 %); shaded: the frequencies fitted",
                                 title_fontsize=7))
     ax.legend(handles=h + handles, fontsize=7, loc="lower left")
     fig.tight_layout()

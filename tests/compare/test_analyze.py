@@ -484,3 +484,32 @@ def test_analyze_discrete_fits_a_simulated_random_walk_and_is_refused_where_it_d
         assert main(["analyze", str(f), "--discrete", "-o", str(tmp_path / "no")] + extra) == 2
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and match in err and not (tmp_path / "no").exists()
+
+
+def test_a_dropped_row_leaves_the_record_model_on_the_longest_piece(tmp_path, capsys):
+    # one row missing at line 900 of 2^14 (an omega^-4 record at 1 kHz): the longest uniform piece holds 95 % of the
+    # samples, so the record model fits it alone and says so (compare.analysis.displacement.PIECE_SHARE), with the
+    # interval of a record of its length (half-width about 0.02 here, not the band fit of the pieces' combined
+    # spectrum, which the short piece's window would hold to half a decade); with the gap in the middle the pieces'
+    # spectrum is fitted by least squares as before, unless the record model is asked for
+    from compare.analysis.synthetic import power_law_record
+
+    n, dt = 2**14, 1e-3
+    x = power_law_record(n, dt, 4.0, seed=0)
+    t = np.arange(n) * dt
+    for name, drop in (("end", 899), ("middle", n // 2)):
+        keep = np.ones(n, bool)
+        keep[drop] = False
+        _write(tmp_path / f"{name}.csv", t[keep], 1e6 * x[keep])
+    assert main(["analyze", str(tmp_path / "end.csv"), "--no-mechanisms", "-o", str(tmp_path / "a")]) == 0
+    fit = json.loads((tmp_path / "a" / "summary.json").read_text())["fit"]
+    assert fit["method"] == "record" and fit["n_samples"] == n - 900 and fit["decades"] > 3
+    assert fit["gamma_interval"][0] <= 4 <= fit["gamma_interval"][1] and fit["gamma_err"] < 0.05
+    assert any("fitted to the longest, data rows 900-16383 (15484 of 16383 samples, 95 %)" in s for s in fit["notes"])
+    assert "the record model was fitted to the longest" in capsys.readouterr().out
+    assert main(["analyze", str(tmp_path / "middle.csv"), "--no-mechanisms", "-o", str(tmp_path / "b")]) == 0
+    assert json.loads((tmp_path / "b" / "summary.json").read_text())["fit"]["method"] == "lsq"
+    assert main(["analyze", str(tmp_path / "middle.csv"), "--method", "record", "--no-mechanisms",
+                 "-o", str(tmp_path / "c")]) == 0
+    fit = json.loads((tmp_path / "c" / "summary.json").read_text())["fit"]
+    assert fit["method"] == "record" and fit["n_samples"] == n // 2  # the first piece, rows 1-8192

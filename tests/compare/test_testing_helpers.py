@@ -68,10 +68,11 @@ def test_assert_spectral_slope_passes_and_fails_with_numbers():
     assert "measured gamma = 3.9" in msg or "measured gamma = 4.0" in msg
     assert "expected gamma = 5 +- 0.2" in msg and "given" in msg and "Fourier ordinates" in msg and "record" in msg
     assert "off by -1.0" in msg or "off by -0.9" in msg
-    # a few lines a user reads: why, exponent with its interval, expectation, band, flags
+    # a few lines a user reads: why, exponent with its interval, expectation, band, flags, what ends the band, the
+    # fit's notes
     lines = msg.splitlines()
-    assert len(lines) == 5 and lines[-1] == "  flags: none"
     ref = fit_series(t, x, band=(2.0, 100.0), stationarity=False)
+    assert len(lines) == 6 + len(ref.notes) and lines[4] == "  flags: none" and lines[5].startswith("  band end: ")
     assert f"95 % interval [{ref.gamma_low:.3f}, {ref.gamma_high:.3f}]" in lines[1]
 
 
@@ -149,3 +150,15 @@ def test_a_discrete_walk_is_fitted_in_its_own_form_when_asked():
     ref = fit_series(t, x, stationarity=False, discrete=True)
     assert fit.gamma == ref.gamma and fit.gamma_interval == ref.gamma_interval
     assert any(n.startswith("fitted as a discrete-time process") for n in fit.notes)
+
+
+def test_a_failing_walk_names_the_discrete_form_in_its_message():
+    # a double sum of white noise fitted as a sampled continuous process reads low with a floor near Nyquist
+    # (docs/explanation/whittle_vs_lsq.md); a failure's message carries that floor and the note naming discrete=True
+    rng = np.random.default_rng(0)
+    t = np.arange(4096) * DT
+    x = 1e-9 * np.cumsum(np.cumsum(rng.standard_normal(4096)))
+    with pytest.raises(SpectralAssertionError) as err:
+        assert_spectral_slope(t, x, expected=4.0, tol=0.01)
+    msg = str(err.value)
+    assert "band end: white floor" in msg and "the floor ends the band" in msg and "discrete=True" in msg
