@@ -92,5 +92,6 @@ def test_help_states_the_defaults_the_output_shows():
     an = next(a for a in build_parser()._subparsers._group_actions[0].choices.values() if a.prog.endswith("analyze"))
     text = " ".join(an.format_help().split())
     assert "the default for displacement; force data of one stroke with unbroken time stamps" in text
-    assert "the default for force data and records in segments" in text
+    assert "the default for force data)" in text
+    assert "the default for displacement in pieces none of which holds 3/4 of the samples" in text
     assert "or all of that range, flagged, when it spans less" in text
