@@ -576,6 +576,9 @@ def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, ba
     u = RECORD_UNITS.get(quantity, "") if unit is None else unit
     notes = []
     auto = band is None
+    if band is not None and band[1] > math.pi / dt * (1 + 1e-9):
+        notes.append(f"the band given ends at {band[1]:.4g} rad/s, above the record's Nyquist frequency "
+                     f"{math.pi / dt:.4g} rad/s: its ordinates end there")
     if order is None:
         k = order_for(_pilot(x, dt))
         while True:

@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import argparse
+import difflib
+import re
 
 from .commands import cmd_analyze, cmd_compare, cmd_render, cmd_report, cmd_run, cmd_sweep
 from .shipped import cmd_scenarios
@@ -10,10 +12,17 @@ __all__ = ["Parser", "build_parser"]
 
 
 class Parser(argparse.ArgumentParser):
-    """argparse's usage errors as one line too (exit 2), like every other user error."""
+    """argparse's usage errors as one line too (exit 2), like every other user error; a mistyped command or choice
+    gets the closest valid one suggested."""
 
     def error(self, message):
-        self.exit(2, f"frictionnoise: error: {self.prog}: {message} (see {self.prog} --help)\n")
+        m = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)", message)
+        if m:
+            close = difflib.get_close_matches(m.group(1), re.findall(r"'([^']*)'", m.group(2)), n=1)
+            if close:
+                message += f"; did you mean {close[0]!r}?"
+        where = "" if self.prog == "frictionnoise" else f"{self.prog}: "
+        self.exit(2, f"frictionnoise: error: {where}{message} (see {self.prog} --help)\n")
 
 
 

@@ -459,3 +459,16 @@ def test_run_takes_a_shipped_scenario_by_its_path_in_the_docs(tmp_path, monkeypa
     assert scenario_path("scenarios/asperity_field.toml") == str(SCENARIO_DIR / "asperity_field.toml")
     assert main(["run", "scenarios/sweeps/vibrated_patches.toml", "-o", str(tmp_path / "r"), "--duration", "0.01"]) == 0
     assert (tmp_path / "r" / "trace.npz").is_file()
+
+
+def test_a_mistyped_command_or_choice_gets_the_closest_one_suggested(capsys):
+    # one line, exit 2, the program named once, and the valid name closest to the typo
+    with pytest.raises(SystemExit) as e:
+        main(["analyse", "x.csv"])
+    err = capsys.readouterr().err
+    assert e.value.code == 2
+    assert err.count("\n") == 1 and "did you mean 'analyze'?" in err and "frictionnoise: error: frictionnoise" not in err
+    with pytest.raises(SystemExit):
+        main(["analyze", "x.csv", "--method", "lsqq"])
+    err = capsys.readouterr().err
+    assert "frictionnoise analyze: argument --method" in err and "did you mean 'lsq'?" in err

@@ -342,3 +342,10 @@ def test_the_discrete_form_fits_a_discrete_random_walk():
     assert all(any(n.startswith("fitted as a discrete-time process") for n in f.notes) for f in fits)
     assert sum(f.gamma_low <= 4 <= f.gamma_high for f in noisy) >= 7
     assert all(f.band_end == "floor" and abs(f.floor_rms / 30e-9 - 1) < 0.1 for f in noisy)
+
+
+def test_a_band_above_nyquist_is_said_to_end_there():
+    x = power_law_record(4096, DT, 4.0, seed=0)
+    f = fit_record(x, DT, band=(1.0, 1e5), stationarity=False)
+    assert any("above the record's Nyquist frequency 3142 rad/s" in n for n in f.notes)
+    assert not any("Nyquist frequency" in n for n in fit_record(x, DT, band=(1.0, 1e3), stationarity=False).notes)
