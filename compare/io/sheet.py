@@ -176,6 +176,9 @@ def tabulate(src, name, records, first, dc, place, info) -> Sheet:
     while j < len(records):
         key, cells = records[j]
         if any(_is_numeric(c, dc) for c in cells):
+            if any(str(c).strip() for c in cells[width:]):  # trailing empty cells (a closing separator) are none
+                raise SheetError(f"{src}, {place(key)}: {len(cells)} cells where the header has {width} (a stray "
+                                 "separator, or a value written with the separator inside it)")
             rows.append(cells)
             keys.append(key)
             j += 1

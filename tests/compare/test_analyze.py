@@ -160,6 +160,15 @@ def test_only_what_cannot_be_read_is_refused(tmp_path):
     f.write_text("\n".join(lines) + "\n")
     with pytest.raises(DataFileError, match=r"line 21: non-numeric value 'oops' in column 'x_m'"):
         read_measured(f)
+    # a row with a cell more than the header (a stray separator, or a decimal comma in a comma-separated file) is
+    # named, not read by position; a closing separator (an empty last cell) is none
+    lines[20] = lines[21] + ",2,5"
+    f.write_text("\n".join(lines) + "\n")
+    with pytest.raises(DataFileError, match=r"line 21: 5 cells where the header has 3"):
+        read_measured(f)
+    lines[20] = lines[21] + ","
+    f.write_text("\n".join(lines) + "\n")
+    assert len(read_measured(f).t) == 100
 
 
 # ----------------------------------------------------------------------------- force data
