@@ -197,8 +197,10 @@ def displacement_figure(an: DisplacementAnalysis):
         if fit.band_end == "floor":
             ax.axvline(fit.band[1], color="0.3", ls="--", lw=0.8, zorder=3, label=f"crossover {fit.band[1]:.3g} rad/s")
         handles, labels = ax.get_legend_handles_labels()  # the fit lines' labels (mathtext) have a legend of their own
+        # below the axes: inside, it covered the Welch points and the floor it names
         ax.legend(handles=[h for h, lab in zip(handles, labels) if not lab.startswith("$")], fontsize=7,
-                  loc="lower left")
+                  loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
+        fig.tight_layout()
     lo = min(fitted[0], fit.band[0], spec.omega_min, spec.periodogram_omega[0] if has_pgram else np.inf)
     ax.set_xlim(lo / 1.3, max(fitted[1], spec.omega_max) * 1.3)
     pgram = (f" (from {spec.omega_min:.3g} rad/s); below {join:.3g} rad/s the periodogram of the whole record "
