@@ -198,7 +198,8 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
             # the record (a dropped row near an end); else the pieces' combined spectrum is fitted over its band
             usable = timeline.usable()
             piece = max(usable, key=lambda s: s.n)
-            share = piece.n / sum(s.n for s in usable)
+            total = sum(s.n for s in usable)
+            share = piece.n / total
             if method is None and share < PIECE_SHARE:
                 piece = None
                 if discrete:
@@ -210,15 +211,14 @@ def analyze_displacement(t, x=None, *, mass: float | None = None, band=None, met
         check_record(x, "x", "m")
         C_x = displacement_spectrum(t, x)
     if method in (None, "record") and (segs is None or piece is not None):
-        tp, xp, dt = t, x, float(C_x.provenance["dt"])
-        if piece is not None:
-            tp, xp, dt = np.asarray(t[piece.start:piece.stop], float), np.asarray(x[piece.start:piece.stop], float), piece.dt
+        dt = float(C_x.provenance["dt"]) if piece is None else piece.dt
+        rows = slice(None) if piece is None else slice(piece.start, piece.stop)
+        tp, xp = np.asarray(t[rows], dtype=float), np.asarray(x[rows], dtype=float)
         z = xp - np.polyval(np.polyfit(tp - tp[0], xp, 1), tp - tp[0])
         fit = with_line_flag(fit_record(z, dt, band=band, discrete=discrete), C_x)
         if piece is not None:
-            total = sum(s.n for s in timeline.usable())
             fit = replace(fit, notes=fit.notes + (
-                f"the record is in {len(timeline.usable())} uniform pieces: the record model was fitted to the "
+                f"the record is in {len(usable)} uniform pieces: the record model was fitted to the "
                 f"longest, data rows {piece.start + 1}-{piece.stop} ({piece.n} of {total} samples, "
                 f"{100 * piece.n / total:.0f} %); the others enter the combined spectrum only (--resample DT puts "
                 "the whole record on one grid)",))

@@ -43,7 +43,7 @@ from scipy import stats
 from .power_floor import PowerFloorProfile, above_rounding, bend_p, interval, keep_band, level_cov, minimum
 from .whittle import MAX_ORDER, TAPER, WhittleRecord, order_for
 
-__all__ = ["RecordFit", "fit_record", "fit_series", "expected_gamma", "split_p", "TEST_LEVEL", "SCREEN_LEVEL",
+__all__ = ["RecordFit", "fit_record", "fit_series", "expected_gamma", "split_p", "split_half_references", "TEST_LEVEL", "SCREEN_LEVEL",
            "GAMMA_MIN", "check_record", "band_end_words", "BAND_ENDS", "RECORD_UNITS", "spectrum_unit_of",
            "processing_steps"]
 
@@ -355,6 +355,17 @@ def _lr_apart(recs, floor, keep, lo, hi, g0) -> float:
     return max(0.0, 2.0 * (together - apart))
 
 
+def split_half_references(lr_h: float, lr_w: float, dof: int = 3) -> tuple[float, float]:
+    """The two p-values of the split-half test's likelihood ratios (:func:`_split_half`): LR_h against chi2 with
+    ``dof`` degrees of freedom, and F = (LR_h / dof) / (LR_w / 6 dof) against F(dof, 6 dof) (NaN without LR_w); the
+    test's p-value is the larger."""
+    p_chi2 = float(stats.chi2.sf(lr_h, dof))
+    if not math.isfinite(lr_w):
+        return p_chi2, math.nan
+    dof_w = 2 * (STATIONARITY_BLOCKS // 2 - 1) * dof
+    return p_chi2, float(stats.f.sf((lr_h / dof) / max(lr_w / dof_w, 1e-12), dof, dof_w))
+
+
 def _split_half(x, dt, k, floor, g0, band, discrete=False) -> tuple:
     """The split-half test of stationarity (module docstring): (p-value, LR_h, LR_w); NaNs when the halves are too
     short to fit, LR_w NaN (and chi2 alone) when the quarters are, or hold fewer than 16 of the band's ordinates.
@@ -391,15 +402,12 @@ def _split_half(x, dt, k, floor, g0, band, discrete=False) -> tuple:
     if inside(halves[0]) < 8:
         return nan
     between = _lr_apart(halves, floor, keep_band(halves[0], band), lo, hi, g0)
-    p_chi2 = float(stats.chi2.sf(between, dof))
     if not blocks:  # quarters too short to fit, or holding too few of the band's ordinates: chi2 alone
-        return p_chi2, between, math.nan
+        return split_half_references(between, math.nan, dof)[0], between, math.nan
     keep_b = keep_band(blocks[0], band)
     q = STATIONARITY_BLOCKS // 2
     within = _lr_apart(blocks[:q], floor, keep_b, lo, hi, g0) + _lr_apart(blocks[q:], floor, keep_b, lo, hi, g0)
-    dof_within = 2 * (q - 1) * dof
-    F = (between / dof) / max(within / dof_within, 1e-12)
-    return max(p_chi2, float(stats.f.sf(F, dof, dof_within))), between, within
+    return max(split_half_references(between, within, dof)), between, within
 
 
 def _band_fit(rec, floor, band):

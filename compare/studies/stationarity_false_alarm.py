@@ -30,7 +30,7 @@ from pathlib import Path
 from scipy import stats
 
 from compare.analysis.identify import stationarity
-from compare.analysis.record_model import TEST_LEVEL, fit_record
+from compare.analysis.record_model import TEST_LEVEL, fit_record, split_half_references
 from compare.analysis.synthetic import power_law_record
 from compare.studies.exponent_coverage import floor_rms
 from compare.studies.study_page import write_page
@@ -42,33 +42,31 @@ PAGE = Path(__file__).resolve().parents[2] / "docs" / "results" / "stationarity.
 REJECT_P = 0.001
 
 
+def _record_row(x, row: dict) -> None:
+    """Fit one record as analyze does and add its split-half p, each reference's p alone
+    (:func:`compare.analysis.record_model.split_half_references`: chi2 alone, the quarters alone) and the band test's
+    verdict to the cell's ``row``."""
+    f = fit_record(x, DT)
+    p_chi2, p_quarters = split_half_references(*f.stationarity_lr)
+    row["split_half_p"].append(float(f.stationarity_p))
+    row["halves_chi2_p"].append(p_chi2)
+    row["quarters_f_p"].append(p_quarters)
+    row["band_test_flags"] += not stationarity(x, DT)["stationary"]
+
+
+def _empty_row(seeds, **key) -> dict:
+    return dict(key, seeds=[int(s) for s in seeds], split_half_p=[], halves_chi2_p=[], quarters_f_p=[],
+                band_test_flags=0)
+
+
 def cell(n: int, gamma: float, floor: str, seeds) -> dict:
-    """One cell's records: the split-half p of each (nan when not run), and the band test's verdicts."""
+    """One cell's records: the split-half p of each (nan when not run), each reference's alone, and the band test's
+    verdicts."""
     rms = floor_rms(n, gamma, floor)
-    ps, chi2_ps, f_ps, band_flags = [], [], [], 0
+    row = _empty_row(seeds, n=n, gamma=gamma, floor=floor)
     for s in seeds:
-        x = power_law_record(n, DT, gamma, floor_rms=rms, seed=int(s))
-        f = fit_record(x, DT)
-        ps.append(float(f.stationarity_p))
-        chi2_ps.append(halves_chi2_p(f))
-        f_ps.append(quarters_f_p(f))
-        band_flags += not stationarity(x, DT)["stationary"]
-    return {"n": n, "gamma": gamma, "floor": floor, "seeds": [int(s) for s in seeds], "split_half_p": ps,
-            "halves_chi2_p": chi2_ps, "quarters_f_p": f_ps, "band_test_flags": int(band_flags)}
-
-
-def halves_chi2_p(fit) -> float:
-    """The halves' likelihood ratio LR_h of ``fit``'s split-half test read against chi2 alone (3 degrees of freedom with
-    the floor term), as if the record's periodogram ordinates were independent and Gaussian: the reference the
-    test's quarters complete."""
-    return float(stats.chi2.sf(fit.stationarity_lr[0], 3))
-
-
-def quarters_f_p(fit) -> float:
-    """The halves' likelihood ratio LR_h of ``fit``'s split-half test read against its quarters' LR_w alone:
-    F = (LR_h / 3) / (LR_w / 18) against F(3, 18)."""
-    lr_h, lr_w = fit.stationarity_lr
-    return float(stats.f.sf((lr_h / 3) / max(lr_w / 18, 1e-12), 3, 18))
+        _record_row(power_law_record(n, DT, gamma, floor_rms=rms, seed=int(s)), row)
+    return row
 
 
 MODEL_I_DURATION = 60.0  # s
@@ -86,19 +84,13 @@ def model_I_cell(seeds, duration: float = MODEL_I_DURATION) -> dict:
     import reduced_models as rm
 
     p = rm.spring_block.SpringBlockParams.reference()
-    ps, chi2_ps, f_ps, band_flags, n = [], [], [], 0, 0
+    row = _empty_row(seeds, model="model_I", n=0, duration=duration)
     for s in seeds:
         tr = rm.MODELS["model_I"].simulate(p, duration, DT, seed=int(s))
         noise = np.random.default_rng(int(s) + 1000).normal(0.0, math.sqrt(2 * math.pi * MODEL_I_FLOOR / DT), len(tr.x))
-        x = tr.x + noise
-        n = len(x)
-        f = fit_record(x, DT)
-        ps.append(float(f.stationarity_p))
-        chi2_ps.append(halves_chi2_p(f))
-        f_ps.append(quarters_f_p(f))
-        band_flags += not stationarity(x, DT)["stationary"]
-    return {"model": "model_I", "n": n, "duration": duration, "seeds": [int(s) for s in seeds], "split_half_p": ps,
-            "halves_chi2_p": chi2_ps, "quarters_f_p": f_ps, "band_test_flags": int(band_flags)}
+        row["n"] = len(tr.x)
+        _record_row(tr.x + noise, row)
+    return row
 
 
 def binomial(count: int, records: int, level: float = TEST_LEVEL) -> tuple:
