@@ -22,7 +22,8 @@ small once two differences flatten the spectrum; ``exact=True`` polishes the max
 
 The 95 % intervals (:mod:`compare.analysis.family_intervals`) come from the curvature of the grouped negative
 log-likelihood at the maximum over every free parameter and the floor (finite differences on the fitted scale;
-log-fitted parameters get asymmetric ends), a corner's from the likelihood along its profile line. A
+log-fitted parameters get asymmetric ends), a corner's from its profile likelihood (the other parameters fitted
+again at each step), and the place of model III's comb of zeros from the debiased likelihood. A
 parameter whose feature (:meth:`Family.feature`) lies outside the band where the fitted family stands above the
 floor is "not identified": no interval; so is a scale whose 95 % interval spans more than a factor 100, and so are
 the parameters placing a feature (a step, a micro level) whose amplitude the record does not tell from its neutral
@@ -237,6 +238,13 @@ def _bounds(fam: Family, v: float, lo: float, hi: float):
 # parameters restarted from the first maximum at a second value (factor of the band's top): the contacts' inertia
 # corner just above the band, where a scene's gram-sized pads put it (a 10-30 % tilt of the resonance's flanks)
 _RESTARTS = {"omega_1": 3.0}
+# parameters restarted from the first maximum at these multiples of its value: a window of width w / 2 or w / 3 has
+# every second or third zero of the window w, a local maximum where 2 of 20 records of model III's confusion cell
+# (60 s) ended from the start's best grid point
+_MULTIPLES = {"w": (2.0, 3.0)}
+# parameters placing a comb of zeros: read again on the debiased likelihood (family_intervals.comb_on_debiased)
+_COMBS = ("w",)
+COMB_EXACT_N = family_intervals.COMB_EXACT_N
 
 _IMAGES = 2  # aliasing images each side: a family falling as omega^-4 leaves out 5^-4 of its Nyquist level
 
@@ -581,10 +589,16 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
     q_nest = None if nested is None else _nesting_start(fam, nested, q0, bounds)
     if q_nest is not None:
         res = _better(res, _descend(grouped, q_nest, bounds, per))
+    seen = _identify(record, fam, v, res.x)[1] if any(p.name in _MULTIPLES for p in fam.params) else None
     for i, p in enumerate(fam.params):
+        starts = []
         if p.name in _RESTARTS:
+            starts.append(math.log10(_RESTARTS[p.name] * G.omega[-1]))
+        if seen is not None and seen[i]:  # a comb the band shows (on a record without one: 2 s more at 400 s)
+            starts += [res.x[i] + math.log10(k) for k in _MULTIPLES.get(p.name, ())]
+        for value in starts:
             q1 = res.x.copy()
-            q1[i] = min(max(math.log10(_RESTARTS[p.name] * G.omega[-1]), bounds[i][0]), bounds[i][1])
+            q1[i] = min(max(value, bounds[i][0]), bounds[i][1])
             again = _descend(grouped, q1, bounds, per)
             if again.fun < res.fun:
                 res = again
@@ -603,7 +617,7 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         q, ident, band = _identify(record, fam, v, fit.params)
         for i in neutral:
             ident[i] = False
-        intervals = family_intervals.intervals(fam, grouped, q, ident, neutral, bounds, _FEATURE_LAW)
+        intervals = family_intervals.intervals(fam, grouped, q, ident, neutral, bounds, _FEATURE_LAW, per)
         # a feature whose amplitude the record does not tell from its neutral value (no interval, or one holding it)
         # is not seen either: held and fitted again once
         unseen = [i for i, p in enumerate(fam.params) if i not in neutral and p.neutral is not None
@@ -617,6 +631,15 @@ def fit_family(record: WhittleRecord, fam: Family, v: float, *, start_theta: dic
         val = 10.0 ** q[lev]
         if half is not None:
             intervals[fam.params[lev].name] = (min(lo, val * math.exp(-half)), max(hi, val * math.exp(half)))
+    comb = next((i for i, p in enumerate(fam.params) if p.name in _COMBS), None)
+    if (comb is not None and intervals.get(fam.params[comb].name) is not None and record.n <= COMB_EXACT_N
+            and len(record.omega) == (record.n + 1) // 2 - 1):  # every ordinate kept: no line's skirt left out
+        read = family_intervals.comb_on_debiased(record, spectrum, q, comb,
+                                                 tuple(math.log10(e) for e in intervals[fam.params[comb].name]))
+        if read is not None:
+            q = np.array(q, dtype=float)
+            q[comb] = read[0]
+            intervals[fam.params[comb].name] = (10.0 ** read[1][0], 10.0 ** read[1][1])
     theta = _to_theta(fam, q)
     n_free = 1 + sum(1 for i in range(len(fam.params)) if i not in neutral and ident[i])  # what the band shows
     return FamilyFit(fam.name, theta, 10.0 ** q[-1], fit.nll, intervals, band, n_free, v, fit.converged, tuple(q),
