@@ -231,7 +231,7 @@ class RecordFit:
                                [s[:3] for s in self.segments], f" {self.record_unit}" if self.record_unit else "")
         return (f"gamma = {self.gamma:.3f} +- {self.gamma_err:.3f} (95 % [{self.gamma_low:.3f}, {self.gamma_high:.3f}], "
                 f"record model: debiased Whittle) over {self.band[0]:.3g}-{self.band[1]:.3g} rad/s ({self.decades:.1f} decades)"
-                f"{floor}{flag}")
+                f"{floor}{flag}" + "".join(f"\n  note: {n}" for n in self.notes))
 
 
 RECORD_UNITS = {"x": "m", "F": "N", "mu": ""}  # a record's unit by what it is of (SI; mu is dimensionless)

@@ -320,6 +320,7 @@ def test_a_discrete_random_walk_reads_lower_unless_the_band_stops_at_a_quarter_o
     assert min(f.gamma for f in quarter) >= 3.95 - 5e-4 and max(f.gamma for f in quarter) <= 4.05 + 5e-4
     # the floor that ends the band sits in the top half-decade below Nyquist: the fit's note names the discrete form
     assert all(any("discrete=True" in n for n in f.notes) for f in default)
+    assert all(f"\n  note: {f.notes[0]}" in str(f) for f in default)  # printed with the fit in Python too
 
 
 def test_the_discrete_form_fits_a_discrete_random_walk():
