@@ -79,12 +79,14 @@ def cmd_analyze(args) -> int:
     if args.discrete and args.method not in (None, "record"):
         raise UserError(f"--discrete applies to the record model (--method record), not to --method {args.method}")
     if not force:
-        for flag in ("normal_col", "direction_col", "speed", "cut", "force_unit", "mu_col", "contact_area"):
+        for flag in ("normal_col", "direction_col", "cut", "force_unit", "mu_col", "contact_area"):
             if getattr(args, flag) is not None:
                 raise UserError(f"--{flag.replace('_', '-')} applies to force data only (give --force-col)")
     if len(args.data) > 1:
         if force:
             raise UserError("several files make a velocity series of displacement records; force data: one file")
+        if args.speed is not None:
+            raise UserError("--speed states one record's sliding speed; a velocity series takes each record's own")
         from .series import analyze_series
 
         return analyze_series(args, _read_record)
@@ -119,7 +121,7 @@ def cmd_analyze(args) -> int:
             else:
                 summary.update(units=data.units, **mechanisms_of(
                     data, an.mean_velocity, an.fit.flags, progress=say,
-                    stationarity_p=getattr(an.fit, "stationarity_p", None)))
+                    stationarity_p=getattr(an.fit, "stationarity_p", None), speed=args.speed))
                 sections = [ranking_section(summary)] + list(sections)
     except ValueError as e:
         raise UserError(f"{args.data}: {e}") from None

@@ -11,7 +11,8 @@ SPLIT_HALF = "split-half likelihood ratio of the record model"
 BAND_TEST = "band levels of the two halves (compare.analysis.identify.stationarity)"
 
 
-def mechanisms_of(data, v: float, flags=(), progress=None, *, stationarity_p: float | None = None) -> dict:
+def mechanisms_of(data, v: float, flags=(), progress=None, *, stationarity_p: float | None = None,
+                  speed: float | None = None) -> dict:
     """summary.json's ``mechanisms`` (best first, each :meth:`Mechanism.to_dict`) and ``stationarity`` of a
     measured displacement record at mean speed ``v`` (m/s); ``mechanisms_note`` says why there are none.
 
@@ -34,13 +35,45 @@ def mechanisms_of(data, v: float, flags=(), progress=None, *, stationarity_p: fl
     stationarity_p : float, optional
         The exponent fit's split-half p-value (:attr:`~compare.analysis.record_model.RecordFit.stationarity_p`);
         None or NaN when the test did not run.
+    speed : float, optional
+        The sliding speed the user states (``--speed``, m/s): the families use it instead of ``v``.
 
     Returns
     -------
     dict
         ``mechanisms`` (list), ``stationarity`` (dict or None: ``test``, ``stationary``, and ``p_value`` with
-        ``level`` for the split-half test) and ``mechanisms_note`` (str).
+        ``level`` for the split-half test), ``mechanisms_note`` (str) and ``speed`` (``value`` in m/s, ``source``,
+        and ``halves``, the mean speeds of the record's two halves; ``note`` when they differ by more than a factor
+        :data:`SPEED_RATIO` and no speed was stated: the families assume one steady speed).
     """
+    used = _speed(data, v, speed)
+    if speed is not None:
+        v = speed
+    out = _mechanisms(data, v, flags, progress, stationarity_p)
+    out["speed"] = used
+    return out
+
+
+SPEED_RATIO = 2.0  # halves' mean speeds further apart than this factor: the record is not one steady slide
+
+
+def _speed(data, v: float, speed: float | None) -> dict:
+    """summary.json's ``speed``: the speed the families use, where it came from, the halves' mean speeds and, where
+    they disagree and the user stated none, a note saying what to do."""
+    x, t = np.asarray(data.x, float), np.asarray(data.t, float)
+    h = len(x) // 2
+    halves = [float((x[h] - x[0]) / (t[h] - t[0])), float((x[-1] - x[h]) / (t[-1] - t[h]))] if h >= 1 else []
+    out = {"value": float(speed if speed is not None else v),
+           "source": "--speed" if speed is not None else "the record's mean speed (its ends)", "halves": halves}
+    if speed is None and len(halves) == 2:
+        a, b = halves
+        if a * b <= 0 or max(abs(a), abs(b)) > SPEED_RATIO * min(abs(a), abs(b)):
+            out["note"] = (f"the record's mean speed is {a:.3g} m/s over its first half and {b:.3g} m/s over its "
+                           "second: the families assume one steady sliding speed; give the drive's with --speed")
+    return out
+
+
+def _mechanisms(data, v, flags, progress, stationarity_p) -> dict:
     from ..analysis.identify import MIN_SAMPLES, identify, stationarity, too_short
     from ..analysis.record_model import TEST_LEVEL
 
@@ -92,8 +125,9 @@ def _backward(v: float) -> str:
     if v == 0 or v != v:
         return "no mechanism named: the displacement does not advance over the record (no sliding speed to refer to)"
     return (f"no mechanism named: the displacement falls over the record ({v:.3g} m/s on average); the families "
-            "describe a block sliding forward at the drive's speed (negate x for a record sliding backward; a free "
-            "block that wanders is not a driven slide)")
+            "describe a block sliding forward at the drive's speed (negate x for a record sliding backward; a record "
+            "of a driven slide's fluctuation alone takes the drive's speed from --speed; a free block that wanders is "
+            "not a driven slide)")
 
 
 def _value(p) -> str:
@@ -115,8 +149,11 @@ def ranking_lines(summary: dict) -> list:
     indistinguishable one."""
     mechs = summary.get("mechanisms") or []
     st = stationarity_line(summary)
+    sp = summary.get("speed") or {}
+    speed = ([f"sliding speed {sp['value']:.3g} m/s ({sp['source']})"] if sp else []) + (
+        [f"NOTE: {sp['note']}"] if sp.get("note") else [])
     if not mechs:
-        return [f"mechanism: {summary.get('mechanisms_note') or 'none named'}"] + ([st] if st else [])
+        return [f"mechanism: {summary.get('mechanisms_note') or 'none named'}"] + ([st] if st else []) + speed
     lines = ["mechanisms (best first; p: Holm-adjusted, against the best; +-: 95 % half-width, the larger side of "
              "an asymmetric interval):"]
     best = mechs[0]["model"]
@@ -130,7 +167,7 @@ def ranking_lines(summary: dict) -> list:
             lines.extend(f"        {c['model']}: {c['separate']}" for c in same)
         elif m["separate"]:
             lines.append(f"      to separate: {m['separate']}")
-    return lines + ([st] if st else [])
+    return lines + ([st] if st else []) + speed
 
 
 def ranking_section(summary: dict):

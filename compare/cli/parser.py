@@ -162,7 +162,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="contact area (m^2) that turns a stress column (MPa, ...) into a force; without it a stress "
                          "is refused")
     an.add_argument("--speed", type=float, default=None, metavar="V",
-                    help="imposed sliding speed (m/s), force data: distance-domain spectrum and stroke length")
+                    help="imposed sliding speed (m/s): for force data the distance-domain spectrum and stroke "
+                         "length; for displacement the speed the mechanisms' families use (default: the record's mean "
+                         "speed, from its ends)")
     an.add_argument("--cut", type=float, default=None, metavar="S",
                     help="seconds cut at each end of a stroke (default: 10 %% of the median stroke)")
     an.add_argument("--method", default=None, choices=["record", "whittle", "lsq"],

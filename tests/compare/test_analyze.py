@@ -522,3 +522,45 @@ def test_a_dropped_row_leaves_the_record_model_on_the_longest_piece(tmp_path, ca
                  "-o", str(tmp_path / "c")]) == 0
     fit = json.loads((tmp_path / "c" / "summary.json").read_text())["fit"]
     assert fit["method"] == "record" and fit["n_samples"] == n // 2  # the first piece, rows 1-8192
+
+
+def test_the_ranking_says_which_speed_it_used_and_when_the_record_speeds_up():
+    # summary.json's speed: the record's mean speed from its ends, the halves' mean speeds, and a note where they
+    # differ by more than a factor 2 (here 1 and 3 m/s: a record that accelerates); --speed replaces it, no note
+    from types import SimpleNamespace
+
+    from compare.cli.mechanisms import SPEED_RATIO, _speed, ranking_lines
+
+    t = np.arange(1001) * 1e-3
+    data = SimpleNamespace(t=t, x=np.where(t < 0.5, t, 0.5 + 3 * (t - 0.5)))
+    sp = _speed(data, 2.0, None)
+    assert sp["halves"] == pytest.approx([1.0, 3.0]) and SPEED_RATIO < 3
+    assert "first half and 3 m/s over its second" in sp["note"] and "--speed" in sp["note"]
+    lines = ranking_lines({"mechanisms": [], "mechanisms_note": "none", "speed": sp})
+    assert "sliding speed 2 m/s (the record's mean speed (its ends))" in lines and lines[-1].startswith("NOTE: ")
+    stated = _speed(data, 2.0, 0.1)
+    assert stated["value"] == 0.1 and stated["source"] == "--speed" and "note" not in stated
+    steady = _speed(SimpleNamespace(t=t, x=t), 1.0, None)
+    assert "note" not in steady
+
+
+@pytest.mark.slow  # two identifications of a 20 s record (about 30 s at load 3)
+def test_speed_states_the_drive_of_a_record_that_drifts(tmp_path):
+    # Model III's record (w = 1 cm, v = 0.1 m/s, N = 100) holds v t plus a fluctuation whose mean force is not the
+    # drive's, so the block drifts backward (-0.9 m/s over 20 s): from its ends no sliding speed, no mechanism; with
+    # the drive's speed stated, its own family fits and places the window within 1 % (its interval: 1e-5)
+    import reduced_models as rm
+
+    p = rm.asperity_force.AsperityForceParams(v=0.1, N=100.0)
+    tr = rm.asperity_force.simulate(p, 20.0, 1e-3, seed=0)
+    f = tmp_path / "m3.csv"
+    _write(f, tr.t, tr.x * 1e6)
+    out = tmp_path / "out"
+    assert main(["analyze", str(f), "-o", str(out)]) == 0
+    s = json.loads((out / "summary.json").read_text())
+    assert s["mechanisms"] == [] and "--speed" in s["mechanisms_note"] and s["speed"]["value"] < 0
+    assert main(["analyze", str(f), "--speed", "0.1", "-o", str(out)]) == 0
+    s = json.loads((out / "summary.json").read_text())
+    assert s["speed"]["source"] == "--speed" and s["mechanisms"][0]["model"] == "model_III"
+    assert s["mechanisms"][0]["verdict"] == "fits"
+    assert s["mechanisms"][0]["parameters"]["w"][0] == pytest.approx(p.w, rel=1e-2)

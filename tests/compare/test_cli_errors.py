@@ -420,7 +420,7 @@ def test_near_miss_names_of_models_and_far_misses(tmp_path, out, capsys, monkeyp
 @pytest.mark.parametrize("args, needle", [(["--mass", "nan"], "--mass must be positive"),
                                           (["--mass", "0"], "--mass must be positive"),
                                           (["--mass=-inf"], "--mass must be positive"),
-                                          (["--speed", "1e-3"], "--speed applies to force data only"),
+                                          (["--speed", "0"], "--speed must be positive"),
                                           (["--normal-col", "x"], "--normal-col applies to force data only"),
                                           (["--band", "nan", "10"], "--band must be two finite")])
 def test_analyze_displacement_flags(args, needle, tmp_path, out, capsys):
