@@ -356,14 +356,14 @@ def _separate(best: str, other: str, fits: dict, v: float) -> str:
         f = feats[p.name]
         if fit_o.intervals.get(p.name) is not None or f is None or p.name in shared_names:
             continue
-        if p.name in fit_o.held:
-            where = "its feature does not show on this band: a record reaching further in frequency"
-        elif f < lo * MARGIN:
+        if f < lo * MARGIN:
             where = f"a longer record (its feature near {f:.3g} rad/s lies below the band)"
         elif f > hi / MARGIN:
             where = f"a faster sampling or a quieter sensor (its feature near {f:.3g} rad/s lies above the band)"
         else:
-            where = f"a longer record or a quieter sensor (its feature near {f:.3g} rad/s is too faint to place)"
+            where = (f"a longer record or a quieter sensor (its feature near {f:.3g} rad/s does not show on this "
+                     "band)" if p.name in fit_o.held else
+                     f"a longer record or a quieter sensor (its feature near {f:.3g} rad/s is too faint to place)")
         unseen.setdefault(where, []).append(p.name)
     bits += [f"{other}'s {', '.join(names)}: {where}" for where, names in unseen.items()]
     r_b, r_o = reduced_models.MODELS[best].RESPONSE, reduced_models.MODELS[other].RESPONSE

@@ -211,6 +211,10 @@ def test_families_nesting_model_I_coincide_with_it_on_model_I_records(model_I_cl
     for other in ("model_Ib", "model_ageing", "model_Iv"):
         assert r[other].coincides_with == "model_I" and r[other].verdict == "indistinguishable", other
         assert r[other].separate, other
+    # what would show a held feature says where it lies against the band (a longer record, a faster sampling, ...)
+    for other in ("model_Ib", "model_ageing"):
+        assert "rad/s" in r[other].separate and ("longer record" in r[other].separate
+                                                 or "faster sampling" in r[other].separate), r[other].separate
     # their extra features are not identified: no interval
     for name in ("L2", "a2", "omega3"):
         assert r["model_Ib"].parameters[name] == "not identified"
