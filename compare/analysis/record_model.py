@@ -538,7 +538,8 @@ def check_record(x, name: str = "x", unit: str = "", *, resolution: bool = True)
         q = float(np.min(np.abs(steps[steps != 0])))
         raise ValueError(f"{name} stays the same in {100 * still:.0f} % of its {n - 1} steps (smallest change "
                          f"{q:.3g} {unit}): the record is at the file's resolution and its spectrum is the rounding's; "
-                         "export it with more digits (a finer unit or more decimals)".replace(" )", ")"))
+                         "export it with more digits (a finer unit or more decimals), or the motion stopped for most "
+                         "of the record (a stalled block)".replace(" )", ")"))
 
 
 def fit_record(x, dt: float, *, floor: bool = True, order: int | None = None, band=None, quantity: str = "x",

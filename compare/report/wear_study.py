@@ -109,11 +109,18 @@ def answer(rows: list) -> str:
                          f"{pm:+.2f} &plusmn; {math.hypot(pi, sys_):.2f}.")
         else:
             mass_note = ""
+        runs = sum(r["n"] for r in rs)
+        flagged = sum(r["flagged_fits"] for r in rs)
+        flag_note = (f" The record model flags {flagged} of those {runs} runs and {z[0]['flagged_fits']} of the "
+                     f"{z[0]['n']} twins as not one power law over the band (a bend, a split or halves that differ): "
+                     "there gamma is the best single power law, not a verdict." if flagged or z[0]["flagged_fits"]
+                     else "")
         parts.append(f"On the {track} track (no particles: gamma {z[0]['gamma']:.2f} &plusmn; {z[0]['gamma_err']:.2f}) the "
                      f"particles change gamma by {min(r['delta_gamma'] for r in rs):+.2f} to {max(r['delta_gamma'] for r in rs):+.2f} "
                      f"over {len(rs)} cells ({sum(r['delta_gamma'] > 0 for r in rs)} of them up), {pm:+.2f} &plusmn; {pi:.2f} "
                      f"pooled over the cells' {len(pooled)} paired runs (95 %, seed scatter; sizes and counts mixed); "
                      f"{up} cells steeper and {down} flatter beyond their own 95 % interval; at "
                      f"{big['count']} particles ({big['size']}) {big['delta_gamma']:+.2f} &plusmn; {big['delta_gamma_err']:.2f}, "
-                     f"C_x {', '.join(f'{v:.2f}' for v in big['Cx_ratio_bands'])}x the twin's per band.{mass_note}")
+                     f"C_x {', '.join(f'{v:.2f}' for v in big['Cx_ratio_bands'])}x the twin's per band.{mass_note}"
+                     f"{flag_note}")
     return " ".join(parts) or "No paired cells."

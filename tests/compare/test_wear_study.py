@@ -231,3 +231,15 @@ def test_report_answer_states_the_cells_rise_in_numbers():
     text = answer(cells(rs))
     assert "gamma 4.05 &plusmn;" in text and "by +0.50 to +0.50 over 1 cells (1 of them up)" in text
     assert "1 cells steeper and 0 flatter" in text and "C_x 4.00, 2.00, 1.00x the twin's per band" in text
+
+
+def test_report_answer_says_how_many_runs_the_record_model_flags():
+    # a run whose fit is flagged (not one power law over the band) is counted in the answer, twins apart; with none
+    # flagged the answer says nothing of flags
+    from compare.report.wear_study import answer
+
+    rs = [_task(0, "narrow", "smooth", k, 4.0, 0.1, [1.0, 1.0, 1.0]) for k in (0, 1)]
+    rs += [_task(50, "narrow", "smooth", k, 4.5, 0.1, [4.0, 2.0, 1.0], [2.0, 2.0, 2.0], [1.0, 4.0, 2.0]) for k in (0, 1)]
+    assert "flags" not in answer(cells(rs))
+    rs[2]["wear"]["fit_x"]["power_law"] = False
+    assert "flags 1 of those 2 runs and 0 of the 2 twins as not one power law" in answer(cells(rs))
