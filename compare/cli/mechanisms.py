@@ -60,8 +60,8 @@ SPEED_RATIO = 2.0  # halves' mean speeds further apart than this factor: the rec
 def _speed(data, v: float, speed: float | None) -> dict:
     """summary.json's ``speed``: the speed the families use, where it came from, the halves' mean speeds and, where
     they disagree and the user stated none, a note saying what to do."""
-    x, t = np.asarray(data.x, float), np.asarray(data.t, float)
-    h = len(x) // 2
+    x, t = (np.asarray(getattr(data, k, ()), float) for k in ("x", "t"))
+    h = len(x) // 2 if len(x) == len(t) else 0
     halves = [float((x[h] - x[0]) / (t[h] - t[0])), float((x[-1] - x[h]) / (t[-1] - t[h]))] if h >= 1 else []
     out = {"value": float(speed if speed is not None else v),
            "source": "--speed" if speed is not None else "the record's mean speed (its ends)", "halves": halves}
@@ -153,7 +153,7 @@ def ranking_lines(summary: dict) -> list:
     speed = ([f"sliding speed {sp['value']:.3g} m/s ({sp['source']})"] if sp else []) + (
         [f"NOTE: {sp['note']}"] if sp.get("note") else [])
     if not mechs:
-        return [f"mechanism: {summary.get('mechanisms_note') or 'none named'}"] + ([st] if st else []) + speed
+        return [f"mechanism: {summary.get('mechanisms_note') or 'none named'}"] + speed + ([st] if st else [])
     lines = ["mechanisms (best first; p: Holm-adjusted, against the best; +-: 95 % half-width, the larger side of "
              "an asymmetric interval):"]
     best = mechs[0]["model"]
@@ -167,7 +167,7 @@ def ranking_lines(summary: dict) -> list:
             lines.extend(f"        {c['model']}: {c['separate']}" for c in same)
         elif m["separate"]:
             lines.append(f"      to separate: {m['separate']}")
-    return lines + ([st] if st else []) + speed
+    return lines + speed + ([st] if st else [])
 
 
 def ranking_section(summary: dict):

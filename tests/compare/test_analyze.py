@@ -538,6 +538,7 @@ def test_the_ranking_says_which_speed_it_used_and_when_the_record_speeds_up():
     assert "first half and 3 m/s over its second" in sp["note"] and "--speed" in sp["note"]
     lines = ranking_lines({"mechanisms": [], "mechanisms_note": "none", "speed": sp})
     assert "sliding speed 2 m/s (the record's mean speed (its ends))" in lines and lines[-1].startswith("NOTE: ")
+    assert _speed(SimpleNamespace(t=t), 2.0, None)["halves"] == []  # a record without positions: no halves
     stated = _speed(data, 2.0, 0.1)
     assert stated["value"] == 0.1 and stated["source"] == "--speed" and "note" not in stated
     steady = _speed(SimpleNamespace(t=t, x=t), 1.0, None)
