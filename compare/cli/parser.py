@@ -21,8 +21,25 @@ class Parser(argparse.ArgumentParser):
             close = difflib.get_close_matches(m.group(1), re.findall(r"'([^']*)'", m.group(2)), n=1)
             if close:
                 message += f"; did you mean {close[0]!r}?"
+        m = re.match(r"unrecognized arguments: (--?[\w-]+)", message)
+        if m:
+            options = [o for a in self._actions for o in a.option_strings if o.startswith("--")]
+            close = difflib.get_close_matches(m.group(1), options, n=1)
+            if close:
+                message += f"; did you mean {close[0]!r}?"
         where = "" if self.prog == "frictionnoise" else f"{self.prog}: "
         self.exit(2, f"frictionnoise: error: {where}{message} (see {self.prog} --help)\n")
+
+    def parse_args(self, args=None, namespace=None):
+        """As argparse's, with an unknown option reported by the subcommand it was given to (its help named, the
+        closest of its options suggested) rather than by the top-level parser."""
+        ns, extra = self.parse_known_args(args, namespace)
+        if extra:
+            command = getattr(ns, "command", None)
+            subs = [a for a in self._actions if isinstance(a, argparse._SubParsersAction)]
+            owner = subs[0].choices.get(command, self) if subs and command else self
+            owner.error("unrecognized arguments: " + " ".join(extra))
+        return ns
 
 
 

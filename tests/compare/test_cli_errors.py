@@ -472,3 +472,17 @@ def test_a_mistyped_command_or_choice_gets_the_closest_one_suggested(capsys):
         main(["analyze", "x.csv", "--method", "lsqq"])
     err = capsys.readouterr().err
     assert "frictionnoise analyze: argument --method" in err and "did you mean 'lsq'?" in err
+
+
+def test_a_mistyped_option_is_reported_by_its_command(capsys):
+    # the command's own help named (not the top level's) and its closest option suggested; one line, exit 2
+    with pytest.raises(SystemExit) as e:
+        main(["analyze", "x.csv", "--bnad", "1", "10"])
+    err = capsys.readouterr().err
+    assert e.value.code == 2 and err.count("\n") == 1, err
+    assert "frictionnoise analyze: unrecognized arguments: --bnad" in err and "did you mean '--band'?" in err, err
+    assert "(see frictionnoise analyze --help)" in err, err
+    with pytest.raises(SystemExit):
+        main(["--bnad"])  # no command: the top level's help
+    err = capsys.readouterr().err
+    assert "unrecognized arguments: --bnad (see frictionnoise --help)" in err, err
