@@ -144,7 +144,7 @@ def _params(m: dict) -> str:
 
 def ranking_lines(summary: dict) -> list:
     """The ranking as the terminal shows it, best first: model, verdict, p-value, parameters (identified ones as
-    value +- 95 % half-width, then those not identified); the models coinciding with the best on the record's band
+    value +- 95 % half-width, then those not identified; a rejected model's in summary.json only); the models coinciding with the best on the record's band
     under it as one family, with what would separate each; then the others, with what would separate an
     indistinguishable one."""
     mechs = summary.get("mechanisms") or []
@@ -159,7 +159,9 @@ def ranking_lines(summary: dict) -> list:
     best = mechs[0]["model"]
     same = [m for m in mechs[1:] if m.get("coincides_with") == best]
     for m in [mechs[0]] + [m for m in mechs[1:] if m not in same]:
-        params = _params(m)
+        # a rejected family's best fit is no estimate of anything the record holds: its parameters stay in
+        # summary.json, out of the terminal's reading
+        params = "parameters of its best fit in summary.json" if m["verdict"] == "rejected" else _params(m)
         lines.append(f"  {m['model']:13s} {m['verdict']:17s} p = {m['p_value']:.2g}" + (f"; {params}" if params else ""))
         if m is mechs[0] and same:
             lines.append(f"      {', '.join(c['model'] for c in same)} coincide with it on this band (one family "

@@ -96,3 +96,16 @@ def test_mu_rms_measures_the_friction_not_the_sensors_floor():
     assert abs(noisy.mu_rms / (clean.mu_rms * width**0.5) - 1) < 0.15, (clean.mu_rms, noisy.mu_rms, width)
     to_nyquist = rms_from_spectrum(noisy.C_mu) / rms_from_spectrum(clean.C_mu)
     assert to_nyquist > 2, to_nyquist  # what the floor made of mu_rms over the whole resolved range
+
+
+def test_a_rejected_model_prints_no_parameters():
+    # its best fit estimates nothing the record holds: the terminal points to summary.json, which keeps them
+    summary = {"mechanisms": [
+        {"model": "model_I", "verdict": "fits", "p_value": 1.0, "separate": "",
+         "parameters": {"L": [1.1e-10, 5e-12, "m^2 s^-3"]}},
+        {"model": "model_II", "verdict": "rejected", "p_value": 2.5e-5, "separate": "",
+         "parameters": {"S": [3.2e-9, 1e-10, "m^2 s^-3"], "s": "not identified"}}]}
+    lines = ranking_lines(summary)
+    assert "L = 1.1e-10 +- 5e-12" in lines[1]
+    assert lines[2].split()[:2] == ["model_II", "rejected"] and "S =" not in lines[2] and "s," not in lines[2]
+    assert lines[2].endswith("parameters of its best fit in summary.json"), lines[2]
