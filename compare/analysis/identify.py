@@ -57,10 +57,11 @@ import reduced_models
 from . import null_tables
 from .families import FAMILIES, MARGIN, Family
 from . import lines as lines_mod
+from .band_stationarity import stationarity
 from .family_fit import (FamilyFit, Grouped, cell_of, fit_family, record_for, sampled_spectrum, segments_of,
                          without)
 
-__all__ = ["Mechanism", "NestedGains", "identify", "holm", "nested_gains", "vuong", "stationarity"]
+__all__ = ["Mechanism", "NestedGains", "identify", "holm", "nested_gains", "vuong", "stationarity", "record_stationarity"]
 
 _BASE = ("model_I",)  # fitted first: the families below extend its spectrum and start from its fit, and from its
 #   maximum at their nesting point, so that their gain over it is never negative (fit_family's ``nested``)
@@ -373,45 +374,23 @@ def _separate(best: str, other: str, fits: dict, v: float) -> str:
     return "; ".join(dict.fromkeys(bits))
 
 
-def stationarity(x, dt: float, bands: int = 8, level: float = 0.01) -> dict:
-    """Whether a record's two halves share one spectrum: the twice-differenced periodograms of the halves averaged
-    over ``bands`` log-spaced bands from each half's lowest frequency to Nyquist; each band's log ratio is
-    normal with variance 2/m (m ordinates per half, exponential ordinates) under stationarity.
+def record_stationarity(x, dt: float) -> dict:
+    """The band test (:func:`compare.analysis.band_stationarity.stationarity`) on the record as :func:`identify`
+    fits it: its lines removed and their skirts left out.
 
     Parameters
     ----------
     x : array_like
-        The record (Units: m).
+        Displacement record (Units: m), uniformly sampled.
     dt : float
         Sampling step (Units: s).
-    bands : int, optional
-        Number of bands.
-    level : float, optional
-        Family-wise level (Bonferroni over the bands).
-
-    Returns
-    -------
-    dict
-        ``stationary`` (bool: no band differs both significantly and by more than a factor 1.5), ``ratios`` (second
-        half over first, per band), ``z`` and ``bands`` (rad/s).
     """
     x = np.asarray(x, dtype=float)
-    h = len(x) // 2
-    r1, r2 = record_for(x[:h], dt), record_for(x[h:2 * h], dt)
-    m = min(len(r1.omega), len(r2.omega))
-    w = r1.omega[:m]
-    edges = np.geomspace(w[0], w[-1] * (1 + 1e-12), bands + 1)
-    idx = np.searchsorted(edges[1:-1], w, side="right")
-    cnt = np.bincount(idx, minlength=bands).astype(float)
-    a = np.bincount(idx, weights=r1.periodogram[:m], minlength=bands)
-    b = np.bincount(idx, weights=r2.periodogram[:m], minlength=bands)
-    ok = (cnt > 0) & (a > 0) & (b > 0)
-    ratio = np.where(ok, b / np.where(a > 0, a, 1.0), np.nan)
-    z = np.where(ok, np.log(np.where(ok, ratio, 1.0)) / np.sqrt(2.0 / np.maximum(cnt, 1)), 0.0)
-    crit = float(stats.norm.isf(level / (2 * bands)))
-    bad = ok & (np.abs(z) > crit) & (np.abs(np.log(np.where(ok, ratio, 1.0))) > math.log(1.5))
-    return {"stationary": not bool(bad.any()), "ratios": [float(r) for r in ratio], "z": [float(v) for v in z],
-            "bands": [[float(edges[i]), float(edges[i + 1])] for i in range(bands)]}
+    if len(x) > 4 * lines_mod.WINDOW:
+        x, _, skirts = lines_mod.remove_lines(x, dt)
+    else:
+        skirts = []
+    return stationarity(x, dt, skirts=skirts)
 
 
 _FORMS = "identify(t, x) with times (s) and positions (m), identify(record), or identify(x=x, dt=dt)"
@@ -477,7 +456,8 @@ def identify(t=None, x=None, *positional, dt: float | None = None, v: float | No
         Level of the Holm-adjusted comparisons.
     stationary : bool, optional
         False for a record flagged as not stationary: no mechanism is named (an empty list). None (default): the
-        record's halves are compared by :func:`stationarity`.
+        record's halves are compared by the band test (:func:`compare.analysis.band_stationarity.stationarity`,
+        the lines' skirts left out).
     progress : callable, optional
         Called with one line (str) as each family's fit starts and ends, with its time (a long record's fits take
         minutes: a 600 s record at 1 kHz holds 3e5 ordinates).
@@ -500,7 +480,7 @@ def identify(t=None, x=None, *positional, dt: float | None = None, v: float | No
     else:
         found, skirts = [], []
     if stationary is None:
-        stationary = stationarity(x, dt)["stationary"]
+        stationary = stationarity(x, dt, skirts=skirts)["stationary"]
     if not stationary:
         return []
     if v is None:

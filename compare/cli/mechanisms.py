@@ -8,7 +8,7 @@ __all__ = ["mechanisms_of", "ranking_lines", "ranking_section", "stationarity_li
 
 
 SPLIT_HALF = "split-half likelihood ratio of the record model"
-BAND_TEST = "band levels of the two halves (compare.analysis.identify.stationarity)"
+BAND_TEST = "band levels of the two halves (compare.analysis.band_stationarity)"
 
 
 def mechanisms_of(data, v: float, flags=(), progress=None, *, stationarity_p: float | None = None,
@@ -74,7 +74,7 @@ def _speed(data, v: float, speed: float | None) -> dict:
 
 
 def _mechanisms(data, v, flags, progress, stationarity_p) -> dict:
-    from ..analysis.identify import MIN_SAMPLES, identify, stationarity, too_short
+    from ..analysis.identify import MIN_SAMPLES, identify, record_stationarity, too_short
     from ..analysis.record_model import TEST_LEVEL
 
     if getattr(data, "segmented", False):
@@ -95,7 +95,7 @@ def _mechanisms(data, v, flags, progress, stationarity_p) -> dict:
             return {"mechanisms": [], "stationarity": st, "mechanisms_note": f"no mechanism named: {split[0]}"}
     else:
         dt = float(np.median(np.diff(data.t)))
-        st = {"test": BAND_TEST, **stationarity(data.x, dt)}
+        st = {"test": BAND_TEST, **record_stationarity(data.x, dt)}
         if not st["stationary"]:
             return {"mechanisms": [], "stationarity": st,
                     "mechanisms_note": "no mechanism named: the record's two halves have different spectra (not "
