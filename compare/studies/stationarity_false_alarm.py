@@ -6,8 +6,9 @@ Records: exact sampled omega^-gamma processes (compare.analysis.synthetic.power_
 gamma = 2, 4, 6, without a floor and with the "dominant" floor of docs/results/exponent_coverage.md (it meets the
 power law at the geometric middle of the resolved band), fitted by fit_record as analyze fits them (automatic band,
 floor term, split-half test on). Beside it, on the same records, the band test of
-compare.analysis.identify.stationarity (eight log-spaced bands, Bonferroni at 1 %, a factor 1.5), which analyze no
-longer states when the split-half test has run. Then records of a mechanism, not a power law: model I's reference
+compare.analysis.band_stationarity (eight log-spaced bands, each against F(2m, 2m) widened by the level scatter the
+record's quarters show, Bonferroni at 1 %, a factor 1.5), as `fn.identify` runs it (compare.analysis.identify.
+record_stationarity), which analyze states only when the split-half test has not run. Then records of a mechanism, not a power law: model I's reference
 case (reduced_models.spring_block, SpringBlockParams.reference()), 60 s at 1 kHz with a sensor's white floor of
 79 pm rms, both tests on each.
 
@@ -29,7 +30,7 @@ from pathlib import Path
 
 from scipy import stats
 
-from compare.analysis.identify import stationarity
+from compare.analysis.identify import record_stationarity
 from compare.analysis.record_model import TEST_LEVEL, fit_record, split_half_references
 from compare.analysis.synthetic import power_law_record
 from compare.studies.exponent_coverage import floor_rms
@@ -51,7 +52,7 @@ def _record_row(x, row: dict) -> None:
     row["split_half_p"].append(float(f.stationarity_p))
     row["halves_chi2_p"].append(p_chi2)
     row["quarters_f_p"].append(p_quarters)
-    row["band_test_flags"] += not stationarity(x, DT)["stationary"]
+    row["band_test_flags"] += not record_stationarity(x, DT)["stationary"]
 
 
 def _empty_row(seeds, **key) -> dict:
@@ -117,9 +118,10 @@ def page(rows: list, seconds: float, note: str = "") -> list:
              "exact stationary omega^-gamma records (`power_law_record`, dt = 1 ms), without a floor and with a "
              "floor dominant over the upper half of the band. Beside it, on the same records: each of its two "
              "references alone, and the band test of "
-             "`compare.analysis.identify.stationarity` (eight log-spaced bands, Bonferroni at "
-             "1 %, a ratio beyond 1.5): `fn.identify` still runs it when it is not told the verdict, analyze does "
-             "not.", "",
+             "`compare.analysis.band_stationarity` (eight log-spaced bands, each band's ratio of the halves' levels "
+             "against F(2m, 2m), widened by the level scatter the record's quarters show; Bonferroni at 1 %, a "
+             "ratio beyond 1.5), as `fn.identify` runs it when it is not told the verdict; analyze states it only "
+             "for a fit without the split-half test.", "",
              "| samples | gamma | floor | records | split-half flags (p < 0.01) | LR_h against chi2 alone | "
              "against the quarters alone | band-test flags |",
              "|---|---|---|---|---|---|---|---|"]
@@ -151,8 +153,8 @@ def page(rows: list, seconds: float, note: str = "") -> list:
               "What each tests: the split-half test asks whether the two halves have the same power law and floor "
               "(three parameters) over the band the exponent was fitted on, measuring the scatter of such fits by "
               "the quarters of the same record; the band test asks whether any of eight "
-              "frequency bands changed its level by more than a factor 1.5 between halves, a shape-free check over "
-              "all frequencies. analyze names no mechanism when the split-half test flags the record; the band test "
+              "frequency bands changed its level by more than a factor 1.5 between halves, beyond what the "
+              "scatter of the ordinates and of the quarters' levels allows, a shape-free check over all frequencies. analyze names no mechanism when the split-half test flags the record; the band test "
               "is stated only for a fit without a split-half test (`--method whittle` or `lsq`).", ""]
     for r in models:
         f = sum(p < TEST_LEVEL for p in r["split_half_p"])
