@@ -155,6 +155,26 @@ def _seed_range(seeds) -> str:
     return ", ".join(map(str, seeds))
 
 
+def _commands_text(commands: list, parts: list) -> str:
+    """The commands that measured the parts, for the page: each one where there are a few, else their form and, per
+    record length, the seeds the parts cover."""
+    if len(commands) <= 4:
+        return "`, `".join(commands) + f"`, then `{COMMAND} --combine"
+    by_key = {_key(c): c for c in CELLS}
+    per = {}
+    for f in parts:
+        d = json.loads(f.read_text())
+        for key, r in d["cells"].items():
+            T = by_key[key].duration
+            seen, names = per.setdefault(T, (set(), set()))
+            seen.update(r.get("seeds", []))
+            names.add(f.stem)
+    spans = "; ".join(f"{T:g} s: seeds {_seed_range(sorted(seen))} in {len(names)} parts"
+                      for T, (seen, names) in sorted(per.items()))
+    return (f"{COMMAND} --part NAME --durations T --first-seed S --seeds K` in {len(parts)} parts ({spans}), "
+            f"then `{COMMAND} --combine")
+
+
 def write_page(text: str, path: Path = PAGE) -> None:
     """Replace the generated part of ``path`` (between :data:`BEGIN` and :data:`END`), keeping the rest; a page
     without the markers is written whole (a title and the generated part)."""
@@ -223,7 +243,7 @@ def main(argv=None):
             for key, r in d["cells"].items():
                 summed[key] = _add(summed[key], r) if key in summed else r
         rows = [(by_key[k], summed[k]) for k in by_key if k in summed]
-        text = table(rows, cpu, "`, `".join(commands) + f"`, then `{COMMAND} --combine", _remaining(rows))
+        text = table(rows, cpu, _commands_text(commands, parts), _remaining(rows))
         write_page(text, Path(a.out) if a.out else PAGE)
         print(f"wrote {a.out or PAGE} from {len(parts)} parts")
         return 0
