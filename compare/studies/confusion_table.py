@@ -7,7 +7,8 @@ Default: every cell of CELLS (models I, Iv, ageing, II, III and Ib at one or two
 900 s at 1 kHz) with 100 seeds each (seeds 0-99); the generated part of docs/results/identification.md (between its
 markers) is replaced, the rest of the page kept. A long run may be split: each ``--part NAME`` (with its
 ``--durations``, ``--seeds`` and ``--first-seed``) writes its counts to study-results/confusion_table/NAME.json;
-``--combine`` adds up every part per cell and writes the page. --quick: four 10 s cells, one seed (a CI smoke, seconds
+``--combine`` adds up every part per cell and writes the page; a part run again with the same command keeps the cells
+it had finished. --quick: four 10 s cells, one seed (a CI smoke, seconds
 per record); --smoke: four 30 s cells, 2 seeds; both printed, or written to --out. Each count carries its 95 %
 Clopper-Pearson interval, against which a cell with fewer than 100 seeds is read.
 """
@@ -251,7 +252,18 @@ def main(argv=None):
     seeds = list(range(a.first_seed, a.first_seed + n_seeds))
     out = a.out or (None if a.smoke or a.quick or a.part else str(PAGE))
     rows, cpu = [], 0.0
+    kept = {}
+    if a.part and (PARTS / f"{a.part}.json").exists():  # an interrupted part resumes: its finished cells are kept
+        d = json.loads((PARTS / f"{a.part}.json").read_text())
+        if d.get("command") == command:
+            kept = {k: r for k, r in d["cells"].items() if r.get("seeds") == seeds}
+            print(f"resuming part {a.part}: {len(kept)} of {len(cells)} cells kept", flush=True)
     for cell in cells:
+        if _key(cell) in kept:
+            r = kept[_key(cell)]
+            rows.append((cell, r))
+            cpu += r["cpu_s"]
+            continue
         r = run_cell(cell, seeds)
         r["seeds"] = seeds
         rows.append((cell, r))

@@ -91,3 +91,33 @@ def test_many_parts_are_named_by_their_form_and_the_seeds_they_cover(tmp_path):
     assert "60 s: seeds 0-3 in 2 parts; 300 s: seeds 0-2 in 3 parts" in text
     assert "cmd 1" not in text and text.endswith(f"{COMMAND} --combine")
     assert _commands_text(["cmd 0", "cmd 1"], parts[:2]) == f"cmd 0`, `cmd 1`, then `{COMMAND} --combine"
+
+
+def test_an_interrupted_part_resumes_with_its_finished_cells(tmp_path, monkeypatch):
+    import json
+
+    import pytest
+
+    from compare.studies import confusion_table as ct
+
+    monkeypatch.setattr(ct, "PARTS", tmp_path)
+    calls = []
+
+    def stub(cell, seeds):
+        if len(calls) == 2 and not resumed:
+            raise KeyboardInterrupt  # interrupted while the third cell runs
+        calls.append(cell)
+        return {"n": len(seeds), "cpu_s": 1.0}
+
+    monkeypatch.setattr(ct, "run_cell", stub)
+    resumed = False
+    with pytest.raises(KeyboardInterrupt):
+        ct.main(["--quick", "--part", "p"])
+    assert len(json.loads((tmp_path / "p.json").read_text())["cells"]) == 2
+    resumed = True
+    assert ct.main(["--quick", "--part", "p"]) == 0
+    assert len(calls) == len(ct.QUICK_CELLS)  # the two finished cells were not run again
+    assert len(json.loads((tmp_path / "p.json").read_text())["cells"]) == len(ct.QUICK_CELLS)
+    calls.clear()
+    assert ct.main(["--quick", "--part", "p", "--first-seed", "3"]) == 0  # another command: every cell runs
+    assert len(calls) == len(ct.QUICK_CELLS)
