@@ -40,10 +40,16 @@ def test_binomial_interval_is_clopper_pearson():
 def test_a_criterion_is_read_against_the_clopper_pearson_interval():
     from compare.studies.confusion_table import judge
 
-    # 100 of 100: interval (0.964, 1) lies above 0.90: met; 5 of 5: (0.478, 1) straddles it: not contradicted;
+    # 99 of 99: interval (0.963, 1) lies above 0.90: met; 5 of 5: (0.478, 1) straddles it: not contradicted;
     # 2 of 10: (0.025, 0.556) lies below: contradicted. "At most 5 %": 0 of 100, interval (0, 0.036): met;
     # 3 of 10: (0.067, 0.652) lies above 5 %: contradicted
+    assert judge(99, 99, ">=", 0.90) == "met"
     assert judge(100, 100, ">=", 0.90) == "met"
+    # with the must-show's 100 records the criterion is the count itself: 75 of 100 for ">= 80 %" is not met,
+    # although its interval (65-83 %) straddles 80 %; 5 of 100 for "<= 5 %" is met, 6 is not
+    assert judge(75, 100, ">=", 0.80) == "not met"
+    assert judge(80, 100, ">=", 0.80) == "met"
+    assert judge(5, 100, "<=", 0.05) == "met" and judge(6, 100, "<=", 0.05) == "not met"
     assert judge(5, 5, ">=", 0.90) == "not contradicted"
     assert judge(2, 10, ">=", 0.90) == "contradicted"
     assert judge(0, 100, "<=", 0.05) == "met"
