@@ -385,12 +385,16 @@ def record_stationarity(x, dt: float) -> dict:
     dt : float
         Sampling step (Units: s).
     """
-    x = np.asarray(x, dtype=float)
-    if len(x) > 4 * lines_mod.WINDOW:
-        x, _, skirts = lines_mod.remove_lines(x, dt)
-    else:
-        skirts = []
+    x, _, skirts = _without_lines(np.asarray(x, dtype=float), dt)
     return stationarity(x, dt, skirts=skirts)
+
+
+def _without_lines(x: np.ndarray, dt: float):
+    """(the record with its lines removed, the lines found, their skirts): :func:`compare.analysis.lines.
+    remove_lines` on a record long enough to search, else the record as it is."""
+    if len(x) > 4 * lines_mod.WINDOW:
+        return lines_mod.remove_lines(x, dt)
+    return x, [], []
 
 
 _FORMS = "identify(t, x) with times (s) and positions (m), identify(record), or identify(x=x, dt=dt)"
@@ -475,10 +479,7 @@ def identify(t=None, x=None, *positional, dt: float | None = None, v: float | No
         raise ValueError(too_short(len(x)))
     if v is None and len(x) > 1:
         v = float((x[-1] - x[0]) / (dt * (len(x) - 1)))
-    if len(x) > 4 * lines_mod.WINDOW:
-        x, found, skirts = lines_mod.remove_lines(x, dt)
-    else:
-        found, skirts = [], []
+    x, found, skirts = _without_lines(x, dt)
     if stationary is None:
         stationary = stationarity(x, dt, skirts=skirts)["stationary"]
     if not stationary:

@@ -164,18 +164,17 @@ def _seed_range(seeds) -> str:
 
 def _commands_text(commands: list, parts: list) -> str:
     """The commands that measured the parts, for the page: each one where there are a few, else their form and, per
-    record length, the seeds the parts cover."""
+    record length, the seeds the parts cover (``parts``: (name, the part's stored counts) each)."""
     if len(commands) <= 4:
         return "`, `".join(commands) + f"`, then `{COMMAND} --combine"
     by_key = {_key(c): c for c in CELLS}
     per = {}
-    for f in parts:
-        d = json.loads(f.read_text())
+    for name, d in parts:
         for key, r in d["cells"].items():
             T = by_key[key].duration
             seen, names = per.setdefault(T, (set(), set()))
             seen.update(r.get("seeds", []))
-            names.add(f.stem)
+            names.add(name)
     spans = "; ".join(f"{T:g} s: seeds {_seed_range(sorted(seen))} in {len(names)} parts"
                       for T, (seen, names) in sorted(per.items()))
     return (f"{COMMAND} --part NAME --durations T --first-seed S --seeds K` in {len(parts)} parts ({spans}), "
@@ -242,15 +241,16 @@ def main(argv=None):
             print(f"no parts in {PARTS}: run with --part NAME first", file=sys.stderr)
             return 2
         by_key = {_key(c): c for c in CELLS}
-        summed, cpu, commands = {}, 0.0, []
+        summed, cpu, commands, loaded = {}, 0.0, [], []
         for f in parts:
             d = json.loads(f.read_text())
+            loaded.append((f.stem, d))
             cpu += d["cpu_s"]
             commands.append(d["command"])
             for key, r in d["cells"].items():
                 summed[key] = _add(summed[key], r) if key in summed else r
         rows = [(by_key[k], summed[k]) for k in by_key if k in summed]
-        text = table(rows, cpu, _commands_text(commands, parts), _remaining(rows))
+        text = table(rows, cpu, _commands_text(commands, loaded), _remaining(rows))
         write_page(text, Path(a.out) if a.out else PAGE)
         print(f"wrote {a.out or PAGE} from {len(parts)} parts")
         return 0

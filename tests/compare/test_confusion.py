@@ -80,18 +80,14 @@ def test_parts_of_one_cell_add_up():
     assert s["by_parameter"] == {"L": [3, 5], "a": [1, 1]}
 
 
-def test_many_parts_are_named_by_their_form_and_the_seeds_they_cover(tmp_path):
-    import json
-
+def test_many_parts_are_named_by_their_form_and_the_seeds_they_cover():
     from compare.analysis.confusion import CELLS
     from compare.studies.confusion_table import COMMAND, _commands_text, _key
 
     c60, c300 = (next(c for c in CELLS if c.duration == T) for T in (60.0, 300.0))
     parts = []
     for i, (cell, seeds) in enumerate([(c60, [0, 1]), (c60, [2, 3]), (c300, [0]), (c300, [1]), (c300, [2])]):
-        f = tmp_path / f"p{i}.json"
-        f.write_text(json.dumps({"command": f"cmd {i}", "cpu_s": 1.0, "cells": {_key(cell): {"seeds": seeds}}}))
-        parts.append(f)
+        parts.append((f"p{i}", {"command": f"cmd {i}", "cpu_s": 1.0, "cells": {_key(cell): {"seeds": seeds}}}))
     text = _commands_text([f"cmd {i}" for i in range(5)], parts)
     assert text.startswith(f"{COMMAND} --part NAME") and "in 5 parts" in text
     assert "60 s: seeds 0-3 in 2 parts; 300 s: seeds 0-2 in 3 parts" in text
